@@ -1,0 +1,7 @@
+"""vcor: the viscoelastic coefficient of restitution (Green 2026; Ramirez et al. 1999)."""
+
+from . import materials
+from .solvers import Result, simulate
+
+__version__ = "0.1.0"
+__all__ = ["simulate", "Result", "materials", "__version__"]

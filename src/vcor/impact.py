@@ -1,0 +1,170 @@
+"""Impact set-up: geometry and case -> sphere mass m, contact kernel k(t), plate mobility alpha(t).
+
+Green 2026, Eqs. 1, 3, 12 and Section 3 (SI units throughout):
+
+* k(t) = 4/3 sqrt(r) E'(t) (N m^-1.5), E'(t) = c_case E(t) / (1 - nu^2)
+* alpha(t) = sqrt(3 rho_b / E'_b(t)) / (16 rho_b h^2) (m N^-1 s^-1), Zener's point mobility of
+  an infinite Kirchhoff plate of half-thickness h; ``rigid=True`` sets alpha = 0.
+
+Cases (which body is viscoelastic, Eq. 1):
+
+1. both elastic: the material must be elastic; treated like case 3 (sphere much stiffer).
+2. sphere and plate of the same viscoelastic material: E' = E/(2 (1 - nu^2)), the plate
+   mobility uses E'_b = E/(1 - nu^2).
+3. (default, the paper's) stiff elastic sphere on a viscoelastic plate: E' = E'_b = E/(1-nu^2).
+4. viscoelastic sphere on a stiff elastic plate: E' = E/(1 - nu^2); alpha is constant, from the
+   plate's own modulus ``E_plate`` and ``nu_plate`` (defaults: steel, 200 GPa, 0.3).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import materials as _materials
+
+__all__ = ["Geometry", "Impact", "GEOMETRY_DEFAULTS"]
+
+GEOMETRY_DEFAULTS = {
+    "r": 0.010,  # sphere radius, m
+    "rho_a": 7800.0,  # sphere density (steel), kg/m^3
+    "rho_b": 1100.0,  # plate density, kg/m^3
+    "h": None,  # plate half-thickness, m (None -> 2 r, as in the paper)
+    "nu": 0.5,  # Poisson ratio of the viscoelastic body
+    "case": 3,
+    "rigid": False,  # rigid, immovable target: alpha = 0
+    "E_plate": 200e9,  # case 4 only: elastic plate modulus, Pa
+    "nu_plate": 0.3,  # case 4 only
+}
+
+
+def _check(name, value, lo, hi, lo_open=True, hi_open=True):
+    v = float(value)
+    ok = math.isfinite(v) and (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi)
+    if not ok:
+        lb = "(" if lo_open else "["
+        rb = ")" if hi_open else "]"
+        raise ValueError(f"{name} must be in {lb}{lo}, {hi}{rb}, got {value!r}")
+    return v
+
+
+@dataclass(frozen=True, kw_only=True)
+class Geometry:
+    """Sphere-plate geometry. Units: m, kg/m^3, Pa."""
+
+    r: float = GEOMETRY_DEFAULTS["r"]
+    rho_a: float = GEOMETRY_DEFAULTS["rho_a"]
+    rho_b: float = GEOMETRY_DEFAULTS["rho_b"]
+    h: float | None = None
+    nu: float = GEOMETRY_DEFAULTS["nu"]
+    case: int = 3
+    rigid: bool = False
+    E_plate: float = GEOMETRY_DEFAULTS["E_plate"]
+    nu_plate: float = GEOMETRY_DEFAULTS["nu_plate"]
+
+    def __post_init__(self):
+        _check("r", self.r, 0, math.inf)
+        _check("rho_a", self.rho_a, 0, math.inf)
+        _check("rho_b", self.rho_b, 0, math.inf)
+        if self.h is not None:
+            _check("h", self.h, 0, math.inf)
+        _check("nu", self.nu, -1, 0.5, hi_open=False)
+        _check("nu_plate", self.nu_plate, -1, 0.5, hi_open=False)
+        _check("E_plate", self.E_plate, 0, math.inf)
+        if self.case not in (1, 2, 3, 4) or isinstance(self.case, bool):
+            raise ValueError(f"case must be one of 1, 2, 3, 4, got {self.case!r}")
+        if not isinstance(self.rigid, (bool, np.bool_)):
+            raise ValueError(f"rigid must be true or false, got {self.rigid!r}")
+
+    @property
+    def half_thickness(self) -> float:
+        return 2.0 * self.r if self.h is None else float(self.h)
+
+    @property
+    def mass(self) -> float:
+        """Sphere mass, kg."""
+        return 4.0 / 3.0 * math.pi * self.r**3 * self.rho_a
+
+
+@dataclass(frozen=True)
+class Impact:
+    """One impact problem: material, geometry and impact speed v0 (m/s).
+
+    Exposes the mass ``m`` (kg), the kernel scale ``kappa`` (k(t) = kappa E(t), m^0.5),
+    and the plate mobility ``alpha(t)`` / ``alpha_rate(t)``.
+    """
+
+    material: _materials.Material
+    v0: float
+    geometry: Geometry = field(default_factory=Geometry)
+
+    def __post_init__(self):
+        _check("v0", self.v0, 0, math.inf)
+        g = self.geometry
+        if g.case == 1 and not (self.material.is_prony and not self.material.beta):
+            raise ValueError("case 1 (both bodies elastic) needs an elastic material")
+
+    @property
+    def m(self) -> float:
+        return self.geometry.mass
+
+    @property
+    def kappa(self) -> float:
+        g = self.geometry
+        c = 0.5 if g.case == 2 else 1.0
+        return 4.0 / 3.0 * math.sqrt(g.r) * c / (1.0 - g.nu**2)
+
+    def kernel(self, t):
+        """k(t) = kappa E(t) in N m^-1.5 (regular part)."""
+        return self.kappa * self.material.relaxation_modulus(t)
+
+    @property
+    def _mobility_scale(self) -> float:
+        g = self.geometry
+        h = g.half_thickness
+        return math.sqrt(3.0 * g.rho_b) / (16.0 * g.rho_b * h * h)
+
+    def _plate_modulus(self, t):
+        """E'_b(t) in Pa (plane-strain modulus of the plate)."""
+        g = self.geometry
+        t = np.asarray(t, dtype=float)
+        if g.case == 4:
+            return np.full_like(t, g.E_plate / (1.0 - g.nu_plate**2))
+        return self.material.relaxation_modulus(t) / (1.0 - g.nu**2)
+
+    def alpha(self, t):
+        """Plate mobility alpha(t), m N^-1 s^-1 (0 for a rigid target)."""
+        t = np.asarray(t, dtype=float)
+        if self.geometry.rigid:
+            return np.zeros_like(t)
+        with np.errstate(divide="ignore"):
+            return self._mobility_scale / np.sqrt(self._plate_modulus(t))
+
+    def alpha_rate(self, t):
+        """d alpha/dt, m N^-1 s^-2. 0 at t = 0 where it is singular but multiplies J(0) = 0."""
+        t = np.asarray(t, dtype=float)
+        g = self.geometry
+        if g.rigid or g.case == 4:
+            return np.zeros_like(t)
+        eb = self._plate_modulus(t)
+        deb = self.material.relaxation_rate(t) / (1.0 - g.nu**2)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = -0.5 * self._mobility_scale * deb / eb**1.5
+        return np.where(t > 0, out, 0.0)
+
+    def contact_time_estimate(self) -> float:
+        """Hertz contact time on a rigid target with k evaluated at a quarter of that time.
+
+        t_c = 2.9432 s_max / v0, s_max = (5 m v0^2 / (4 k))^(2/5). The plate's compliance only
+        lengthens the contact, so this is a lower bound used to choose dt and T_max.
+        """
+        t = 1e-3
+        for _ in range(8):
+            k = float(self.kernel(np.array([t / 4]))[0])
+            if self.material.viscosity > 0:
+                k = max(k, 1e-300)
+            smax = (5.0 * self.m * self.v0**2 / (4.0 * k)) ** 0.4
+            t = 2.9432 * smax / self.v0
+        return t

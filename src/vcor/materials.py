@@ -1,0 +1,522 @@
+"""Linear viscoelastic relaxation models (uniaxial moduli, SI units: Pa, s, rad/s).
+
+Every model provides
+
+* ``relaxation_modulus(t)``  E(t) in Pa,
+* ``relaxation_rate(t)``     dE/dt in Pa/s (``-inf`` where it is singular),
+* ``complex_modulus(omega)`` E*(omega) = i omega L[E](i omega) in Pa,
+* ``antiderivative(t, order)`` the first (Pa s) or second (Pa s^2) antiderivative of
+  the regular part of E, in closed form; the solvers integrate kernels *exactly* over
+  each time step with these (product integration), which is what makes the weakly
+  singular fractional kernels (E ~ t^-1/2) work without clamping t to dt,
+* ``viscosity`` the weight (Pa s) of a Dirac term eta * delta(t) in E(t) (Kelvin-Voigt
+  only), ``glassy`` = E(0+) (may be ``inf``) and ``rubbery`` = E(inf).
+
+Presets (Green 2026, Eqs. 14, 23b, 24, 26) are available through :func:`get`.
+Materials written by the fit rule are loaded with :func:`from_file`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.special import erfcx, gamma
+
+__all__ = [
+    "Material",
+    "Elastic",
+    "Prony",
+    "SLS",
+    "FractionalPower",
+    "Cerf",
+    "KelvinVoigt",
+    "PRESETS",
+    "get",
+    "from_dict",
+    "from_file",
+]
+
+_SQRT_PI = math.sqrt(math.pi)
+
+
+def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
+    value = float(value)
+    ok = value >= 0 if allow_zero else value > 0
+    if not (math.isfinite(value) and ok):
+        rng = "[0, inf)" if allow_zero else "(0, inf)"
+        raise ValueError(f"{name} must be finite and in {rng}, got {value!r}")
+    return value
+
+
+class Material:
+    """Base class: a relaxation modulus E(t) = E_reg(t) + viscosity * delta(t)."""
+
+    kind: str = "material"
+    viscosity: float = 0.0
+
+    # -- to be provided by subclasses -------------------------------------------------
+    def relaxation_modulus(self, t):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def relaxation_rate(self, t):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def complex_modulus(self, omega):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def antiderivative(self, t, order: int = 1):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def params(self) -> dict:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    # -- shared -----------------------------------------------------------------------
+    @property
+    def glassy(self) -> float:
+        """E(0+) in Pa (``inf`` for the fractional power law)."""
+        return float(self.relaxation_modulus(np.array([0.0]))[0])
+
+    @property
+    def rubbery(self) -> float:
+        """E(t -> inf) in Pa."""
+        return float(self.relaxation_modulus(np.array([np.inf]))[0])
+
+    @property
+    def is_prony(self) -> bool:
+        return False
+
+    @property
+    def fastest_rate(self) -> float:
+        """Largest relaxation rate in 1/s (0 for rate-free models)."""
+        return 0.0
+
+    def step_integrals(self, dt: float, n: int) -> np.ndarray:
+        """W_i = int_{i dt}^{(i+1) dt} E_reg(t) dt for i = 0..n-1, in Pa s (exact)."""
+        nodes = dt * np.arange(n + 1, dtype=float)
+        return np.diff(self.antiderivative(nodes, 1))
+
+    def storage_loss(self, omega):
+        """(E', E'', tan delta) at angular frequency omega [rad/s]."""
+        e = self.complex_modulus(omega)
+        return e.real, e.imag, e.imag / e.real
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, **self.params()}
+
+    def describe(self) -> str:
+        return json.dumps(self.to_dict())
+
+
+@dataclass(frozen=True)
+class Prony(Material):
+    """Generalised Maxwell (Prony) solid.
+
+    .. math:: E(t) = E_\\infty + \\sum_i E_i e^{-\\beta_i t}
+
+    Parameters
+    ----------
+    E_inf : float
+        Rubbery (equilibrium) modulus, Pa, >= 0.
+    E : sequence of float
+        Term moduli, Pa, each >= 0 (negative terms would make E(t) increase).
+    beta : sequence of float
+        Relaxation rates, 1/s, each >= 0 (beta_i = 1/tau_i).
+    """
+
+    E_inf: float
+    E: tuple = ()
+    beta: tuple = ()
+    kind: str = field(default="prony", init=False)
+
+    def __post_init__(self):
+        _positive("E_inf", self.E_inf, allow_zero=True)
+        e = tuple(float(x) for x in np.atleast_1d(np.asarray(self.E, dtype=float)))
+        b = tuple(float(x) for x in np.atleast_1d(np.asarray(self.beta, dtype=float)))
+        if len(e) != len(b):
+            raise ValueError(f"Prony: E and beta must have equal length, got {len(e)} and {len(b)}")
+        for i, x in enumerate(e):
+            if not (math.isfinite(x) and x >= 0):
+                raise ValueError(
+                    f"Prony E[{i}] must be in [0, inf) (a negative term makes the "
+                    f"relaxation modulus increase), got {x!r}"
+                )
+        for i, x in enumerate(b):
+            if not (math.isfinite(x) and x >= 0):
+                raise ValueError(f"Prony beta[{i}] must be in [0, inf) 1/s, got {x!r}")
+        object.__setattr__(self, "E", e)
+        object.__setattr__(self, "beta", b)
+        if self.E_inf + sum(e) <= 0:
+            raise ValueError("Prony: glassy modulus E_inf + sum(E) must be > 0 Pa")
+
+    @property
+    def is_prony(self) -> bool:
+        return True
+
+    @property
+    def fastest_rate(self) -> float:
+        return max(self.beta, default=0.0)
+
+    def _arrays(self):
+        return np.asarray(self.E, float), np.asarray(self.beta, float)
+
+    def relaxation_modulus(self, t):
+        t = np.asarray(t, dtype=float)
+        e, b = self._arrays()
+        with np.errstate(invalid="ignore"):
+            terms = e * np.exp(-np.multiply.outer(t, b))
+        terms = np.where(np.isnan(terms), 0.0, terms)  # 0 * exp(-inf * 0) at t = inf, b = 0
+        if b.size:
+            terms = np.where(np.multiply.outer(np.isinf(t), b == 0), e, terms)
+        return self.E_inf + terms.sum(axis=-1)
+
+    def relaxation_rate(self, t):
+        t = np.asarray(t, dtype=float)
+        e, b = self._arrays()
+        return -(e * b * np.exp(-np.multiply.outer(t, b))).sum(axis=-1)
+
+    def complex_modulus(self, omega):
+        w = 1j * np.asarray(omega, dtype=float)
+        e, b = self._arrays()
+        return self.E_inf + (e * np.divide.outer(w, np.add.outer(w, b))).sum(axis=-1)
+
+    def antiderivative(self, t, order: int = 1):
+        t = np.asarray(t, dtype=float)
+        e, b = self._arrays()
+        bt = np.multiply.outer(t, b)
+        safe_b = np.where(b > 0, b, 1.0)
+        if order == 1:
+            # int_0^t e^{-b s} ds = -expm1(-b t)/b  (-> t as b -> 0)
+            part = np.where(b > 0, -np.expm1(-bt) / safe_b, t[..., None])
+            return self.E_inf * t + (e * part).sum(axis=-1)
+        if order == 2:
+            # int_0^t (1 - e^{-b s})/b ds = (b t + expm1(-b t)) / b^2  (-> t^2/2)
+            part = np.where(b > 0, (bt + np.expm1(-bt)) / safe_b**2, 0.5 * t[..., None] ** 2)
+            return 0.5 * self.E_inf * t**2 + (e * part).sum(axis=-1)
+        raise ValueError(f"order must be 1 or 2, got {order}")
+
+    def step_integrals(self, dt: float, n: int) -> np.ndarray:
+        # Closed form without differences of growing antiderivatives (no cancellation).
+        i = np.arange(n, dtype=float)
+        e, b = self._arrays()
+        bdt = b * dt
+        frac = np.where(b > 0, -np.expm1(-bdt) / np.where(b > 0, b, 1.0), dt)
+        return self.E_inf * dt + (e * frac * np.exp(-np.multiply.outer(i, bdt))).sum(axis=-1)
+
+    def prony_terms(self):
+        """(E_inf, E[], beta[]) as float and arrays (for the internal-variable solver)."""
+        e, b = self._arrays()
+        return float(self.E_inf), e, b
+
+    def params(self) -> dict:
+        return {"E_inf": self.E_inf, "E": list(self.E), "beta": list(self.beta)}
+
+
+@dataclass(frozen=True, init=False)
+class SLS(Prony):
+    """Standard linear solid (Zener material), Green 2026 Eq. 13.
+
+    .. math:: E(t) = E_g [\\alpha/\\beta + (1 - \\alpha/\\beta) e^{-\\beta t}],
+              \\quad E^*(\\omega) = E_g (\\alpha + i\\omega)/(\\beta + i\\omega)
+
+    Parameters
+    ----------
+    E_glassy : float
+        Glassy modulus E_g, Pa, > 0.
+    alpha, beta : float
+        Rates in 1/s with 0 <= alpha <= beta; rubbery modulus E_g alpha/beta.
+        beta = 0 (then alpha must be 0) is the elastic limit E(t) = E_g used by the
+        paper's check against Zener.
+    """
+
+    E_glassy: float = 0.0
+    alpha: float = 0.0
+
+    def __init__(self, E_glassy: float, alpha: float, beta: float):
+        eg = _positive("E_glassy", E_glassy)
+        a = _positive("alpha", alpha, allow_zero=True)
+        b = _positive("beta", beta, allow_zero=True)
+        if a > b:
+            raise ValueError(
+                f"SLS alpha must be in [0, beta] = [0, {b}] 1/s (alpha > beta makes the "
+                f"relaxation modulus increase), got {a}"
+            )
+        ratio = a / b if b > 0 else 0.0
+        object.__setattr__(self, "E_glassy", eg)
+        object.__setattr__(self, "alpha", a)
+        object.__setattr__(self, "E_inf", eg * ratio)
+        object.__setattr__(self, "E", (eg * (1.0 - ratio),))
+        object.__setattr__(self, "beta", (b,))
+        object.__setattr__(self, "kind", "sls")
+        Prony.__post_init__(self)
+
+    def params(self) -> dict:
+        return {"E_glassy": self.E_glassy, "alpha": self.alpha, "beta": self.beta[0]}
+
+
+@dataclass(frozen=True, init=False)
+class Elastic(Prony):
+    """Elastic solid, E(t) = E (Pa)."""
+
+    def __init__(self, E: float):
+        object.__setattr__(self, "E_inf", _positive("E", E))
+        object.__setattr__(self, "E", ())
+        object.__setattr__(self, "beta", ())
+        object.__setattr__(self, "kind", "elastic")
+        Prony.__post_init__(self)
+
+    def params(self) -> dict:
+        return {"E": self.E_inf}
+
+
+@dataclass(frozen=True)
+class FractionalPower(Material):
+    """Bagley-Torvik fractional (order 1/2) law, Green 2026 Eq. 23.
+
+    .. math:: E(t) = E_0 + E_1 / \\sqrt{\\pi t}, \\quad E^*(\\omega) = E_0 + E_1 \\sqrt{i\\omega}
+
+    Parameters
+    ----------
+    E0 : float
+        Rubbery modulus, Pa, >= 0.
+    E1 : float
+        Fractional coefficient, Pa s^0.5, >= 0.
+    """
+
+    E0: float
+    E1: float
+    kind: str = field(default="fractional", init=False)
+
+    def __post_init__(self):
+        _positive("E0", self.E0, allow_zero=True)
+        _positive("E1", self.E1, allow_zero=True)
+        if self.E0 + self.E1 <= 0:
+            raise ValueError("FractionalPower: E0 + E1 must be > 0")
+
+    @property
+    def fastest_rate(self) -> float:
+        return math.inf if self.E1 > 0 else 0.0
+
+    def relaxation_modulus(self, t):
+        t = np.asarray(t, dtype=float)
+        with np.errstate(divide="ignore"):
+            return self.E0 + self.E1 / np.sqrt(math.pi * t)
+
+    def relaxation_rate(self, t):
+        t = np.asarray(t, dtype=float)
+        with np.errstate(divide="ignore"):
+            return -0.5 * self.E1 / (_SQRT_PI * t**1.5)
+
+    def complex_modulus(self, omega):
+        w = np.asarray(omega, dtype=float)
+        return self.E0 + self.E1 * np.sqrt(1j * w)
+
+    def antiderivative(self, t, order: int = 1):
+        t = np.asarray(t, dtype=float)
+        if order == 1:
+            return self.E0 * t + 2.0 * self.E1 * np.sqrt(t / math.pi)
+        if order == 2:
+            return 0.5 * self.E0 * t**2 + (4.0 / 3.0) * self.E1 * t**1.5 / _SQRT_PI
+        raise ValueError(f"order must be 1 or 2, got {order}")
+
+    def params(self) -> dict:
+        return {"E0": self.E0, "E1": self.E1}
+
+
+def _erfcx_tail(x, start: int):
+    """sum_{n >= start} (-x)^n / Gamma(n/2 + 1): erfcx(x) minus its first Taylor terms.
+
+    Closed form for x >= 0.2, the (absolutely convergent) series below, where the
+    closed form would cancel.
+    """
+    x = np.asarray(x, dtype=float)
+    head = np.zeros_like(x)
+    for n in range(start):
+        head = head + (-x) ** n / gamma(n / 2 + 1)
+    closed = erfcx(x) - head
+    small = x < 0.2
+    if np.any(small):
+        xs = np.where(small, x, 0.0)
+        series = np.zeros_like(x)
+        for n in range(start, start + 40):
+            series = series + (-xs) ** n / gamma(n / 2 + 1)
+        closed = np.where(small, series, closed)
+    return closed
+
+
+@dataclass(frozen=True)
+class Cerf(Material):
+    """Mittag-Leffler (order 1/2) relaxation, the 'CERF' law of Green 2026 Eq. 24-25.
+
+    .. math:: E(t) = E_0 + E_1\\,\\mathrm{erfcx}(b_1\\sqrt t), \\quad
+              E^*(\\omega) = E_0 + E_1 \\sqrt{i\\omega}/(\\sqrt{i\\omega} + b_1)
+
+    ``erfcx`` is :func:`scipy.special.erfcx` (the paper's CERF, Appendix Eq. A3).
+
+    Parameters
+    ----------
+    E0 : float
+        Rubbery modulus, Pa, >= 0.
+    E1 : float
+        Relaxing part, Pa, >= 0 (glassy modulus E0 + E1).
+    b1 : float
+        Rate parameter, s^-1/2 ... in the paper's units "1/s" with x = b1 sqrt(t);
+        b1^2 is a rate in 1/s. Must be > 0.
+    """
+
+    E0: float
+    E1: float
+    b1: float
+    kind: str = field(default="cerf", init=False)
+
+    def __post_init__(self):
+        _positive("E0", self.E0, allow_zero=True)
+        _positive("E1", self.E1, allow_zero=True)
+        _positive("b1", self.b1)
+        if self.E0 + self.E1 <= 0:
+            raise ValueError("Cerf: E0 + E1 must be > 0")
+
+    @property
+    def fastest_rate(self) -> float:
+        return math.inf if self.E1 > 0 else 0.0
+
+    def relaxation_modulus(self, t):
+        t = np.asarray(t, dtype=float)
+        return self.E0 + self.E1 * erfcx(self.b1 * np.sqrt(t))
+
+    def relaxation_rate(self, t):
+        t = np.asarray(t, dtype=float)
+        x = self.b1 * np.sqrt(t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = self.E1 * (self.b1**2 * erfcx(x) - self.b1 / np.sqrt(math.pi * t))
+        return np.where(t > 0, r, -np.inf)
+
+    def complex_modulus(self, omega):
+        w = np.sqrt(1j * np.asarray(omega, dtype=float))
+        return self.E0 + self.E1 * w / (w + self.b1)
+
+    def antiderivative(self, t, order: int = 1):
+        t = np.asarray(t, dtype=float)
+        x = self.b1 * np.sqrt(t)
+        if order == 1:
+            return self.E0 * t + self.E1 * _erfcx_tail(x, 2) / self.b1**2
+        if order == 2:
+            return 0.5 * self.E0 * t**2 + self.E1 * _erfcx_tail(x, 4) / self.b1**4
+        raise ValueError(f"order must be 1 or 2, got {order}")
+
+    def params(self) -> dict:
+        return {"E0": self.E0, "E1": self.E1, "b1": self.b1}
+
+
+@dataclass(frozen=True)
+class KelvinVoigt(Material):
+    """Kelvin-Voigt solid, E(t) = E [1 + tau delta(t)]: sigma = E (eps + tau eps').
+
+    In the contact law this gives F = k (u + tau u'), Ramirez et al. 1999 Eq. 3 with
+    their dissipative constant A = tau.
+
+    Parameters
+    ----------
+    E : float
+        Elastic modulus, Pa, > 0.
+    tau : float
+        Retardation time, s, >= 0.
+    """
+
+    E: float
+    tau: float
+    kind: str = field(default="kelvin-voigt", init=False)
+
+    def __post_init__(self):
+        _positive("E", self.E)
+        _positive("tau", self.tau, allow_zero=True)
+
+    @property
+    def viscosity(self) -> float:  # type: ignore[override]
+        return self.E * self.tau
+
+    def relaxation_modulus(self, t):
+        """Regular part of E(t) (the Dirac term is ``viscosity``)."""
+        return np.full_like(np.asarray(t, dtype=float), self.E)
+
+    def relaxation_rate(self, t):
+        return np.zeros_like(np.asarray(t, dtype=float))
+
+    def complex_modulus(self, omega):
+        return self.E * (1.0 + 1j * np.asarray(omega, dtype=float) * self.tau)
+
+    def antiderivative(self, t, order: int = 1):
+        t = np.asarray(t, dtype=float)
+        if order == 1:
+            return self.E * t
+        if order == 2:
+            return 0.5 * self.E * t**2
+        raise ValueError(f"order must be 1 or 2, got {order}")
+
+    def params(self) -> dict:
+        return {"E": self.E, "tau": self.tau}
+
+
+# --------------------------------------------------------------------------------------
+PRESETS = {
+    # Green 2026 Eq. 14: E_g = 15 MPa, alpha = 300 1/s, beta = 1200 1/s
+    "sls": lambda: SLS(15e6, 300.0, 1200.0),
+    # Eq. 23b: Bagley & Torvik Butyl B252, fractional order 1/2
+    "butyl-fc": lambda: FractionalPower(3 * 7.6e5, 3 * 2.95e5),
+    # Eq. 24: the paper's CERF fit
+    "butyl-cerf": lambda: Cerf(0.442e6, 0.6765e9, 700.0),
+    # Eq. 26: Szumski's 3-term Prony fit
+    "butyl-prony3": lambda: Prony(10.421e6, (20.181e6, 38.204e6, 87.344e6), (972.0, 6426.0, 34221.0)),
+    # the SLS glassy modulus without relaxation (the paper's elastic-limit check)
+    "elastic": lambda: Elastic(15e6),
+    # illustrative Kelvin-Voigt solid (E = 15 MPa, tau = 0.1 ms); chosen, not from a paper
+    "kelvin-voigt": lambda: KelvinVoigt(15e6, 1e-4),
+}
+
+_KINDS = {
+    "prony": Prony,
+    "sls": SLS,
+    "elastic": Elastic,
+    "fractional": FractionalPower,
+    "cerf": Cerf,
+    "kelvin-voigt": KelvinVoigt,
+}
+
+
+def get(name: str) -> Material:
+    """Preset material by name (see ``PRESETS``)."""
+    if isinstance(name, Material):
+        return name
+    try:
+        return PRESETS[name]()
+    except KeyError:
+        raise ValueError(
+            f"unknown material {name!r}; allowed presets: {sorted(PRESETS)} "
+            "(fitted materials: vcor.materials.from_file)"
+        ) from None
+
+
+def from_dict(d: dict) -> Material:
+    """Material from ``Material.to_dict()`` output."""
+    d = dict(d)
+    kind = d.pop("kind", None)
+    if kind not in _KINDS:
+        raise ValueError(f"unknown material kind {kind!r}; allowed: {sorted(_KINDS)}")
+    return _KINDS[kind](**d)
+
+
+def from_file(path) -> Material:
+    """Load a fitted material: a NetCDF written by the fit rule (attribute ``material``,
+    a JSON ``to_dict``) or a JSON file holding the same dict."""
+    path = Path(path)
+    if not path.exists():
+        raise ValueError(f"material file {str(path)!r} does not exist")
+    if path.suffix == ".json":
+        return from_dict(json.loads(path.read_text()))
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        return from_dict(json.loads(ds.attrs["material"]))

@@ -1,0 +1,206 @@
+"""Private numba kernels. Arrays and scalars in, arrays and integer codes out.
+
+All compile flags live here (``cache=True``, ``error_model="numpy"``, no fastmath).
+
+Discretisation (shared by the direct and the fixed-step internal-variable kernels)
+-------------------------------------------------------------------------------
+First-order system (DESIGN 1.1): s' = g = v0 - J/m - alpha'(t) J - alpha(t) F,  J' = F.
+Trapezoidal rule for s and J (implicit, A-stable, order 2); the unknown s_n of each step is
+found by Newton's method, so the local contact term alpha k(0) sqrt(s) is treated implicitly.
+The hereditary force uses product integration with u = s^{3/2} linear on each step:
+
+    F_n = sum_{j<n} (u_{j+1} - u_j) w_{n-1-j} + eta u'_n (+ Volterra term),
+    w_i = (1/dt) int_{i dt}^{(i+1) dt} k(sigma) d sigma (exact, from the material),
+
+where eta is the weight of a Dirac term of the kernel (Kelvin-Voigt) and u'_n = 3/2 sqrt(s_n) g_n.
+For u = sgn(s)|s|^{3/2} (odd extension, used only by the "ghost" solution after separation).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+_JIT = dict(cache=True, nogil=True, error_model="numpy")
+
+STATUS_RUNNING = 0
+STATUS_SEPARATED = 1
+STATUS_DIVERGED = 2
+STATUS_END = 3  # reached the end of the arrays without separating
+
+
+@numba.njit(**_JIT)
+def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, m, v0, dt, s_scale):
+    """Solve the implicit trapezoidal step for s_n.
+
+    F(s) = w0 u(s) + H + V(u(s) - u_prev) + eta p(s) g, V(d) = a2 + b2 d + c2q d^2,
+    g = B - c F, R(s) = s - s_prev - dt/2 (g_prev + g) = 0.
+    Returns (s, g, F, u, J, ok).
+    """
+    half = 0.5 * dt
+    kin = 1.0 / m + alphad_n
+    Jb = J_prev + half * F_prev
+    B = v0 - Jb * kin
+    c = alpha_n + half * kin
+    s = s_prev + dt * g_prev  # explicit Euler predictor
+    ok = False
+    F = 0.0
+    g = 0.0
+    u = 0.0
+    for _ in range(50):
+        a = abs(s)
+        sq = math.sqrt(a)
+        sgn = 1.0 if s >= 0.0 else -1.0
+        u = sgn * a * sq
+        up = 1.5 * sq  # du/ds
+        d = u - u_prev
+        A = w0 * u + H + a2 + (b2 + c2q * d) * d
+        dA = (w0 + b2 + 2.0 * c2q * d) * up
+        p = 1.5 * sq
+        pp = 0.75 / max(sq, 1e-300) * sgn if eta > 0.0 else 0.0
+        den = 1.0 + eta * p * c
+        num = A + eta * p * B
+        F = num / den
+        dF = (dA + eta * pp * B) / den - num * eta * pp * c / (den * den)
+        g = B - c * F
+        R = s - s_prev - half * (g_prev + g)
+        dR = 1.0 + half * c * dF
+        if dR == 0.0 or not math.isfinite(dR):
+            break
+        ds = R / dR
+        s -= ds
+        if abs(ds) <= 1e-15 * (abs(s) + s_scale):
+            ok = True
+            break
+    # final consistent evaluation at the converged s
+    a = abs(s)
+    sq = math.sqrt(a)
+    sgn = 1.0 if s >= 0.0 else -1.0
+    u = sgn * a * sq
+    d = u - u_prev
+    A = w0 * u + H + a2 + (b2 + c2q * d) * d
+    p = 1.5 * sq
+    F = (A + eta * p * B) / (1.0 + eta * p * c)
+    g = B - c * F
+    J = Jb + half * F
+    if not ok:
+        R = s - s_prev - half * (g_prev + g)
+        ok = abs(R) <= 1e-10 * (abs(s) + s_scale)
+    return s, g, F, u, J, ok
+
+
+@numba.njit(**_JIT)
+def _separated(rule, loaded, F, s):
+    if rule == 0:
+        return loaded and F <= 0.0
+    return loaded and s <= 0.0
+
+
+@numba.njit(**_JIT)
+def march_direct(n_start, n_end, s, g, F, J, u, du, w, eta, alpha, alphad, m, v0, dt,
+                 volterra, c2, Q2, S2, rule, n_extra, state):
+    """March the direct (full-history) scheme from step n_start to at most n_end.
+
+    Arrays s, g, F, J, u (length >= n_end + 1) hold the solution; du[j] = u_{j+1} - u_j.
+    Volterra (form a, h2 = c2 k(t1 + t2)): Q2[c] = double cell integral of k for index
+    c = 2n - (i + j) - 1 >= 1, S2[m] = running auto-convolution sum_{i+j=m} du_i du_j.
+    ``state`` = [loaded flag, separation index, last index, status] (int64), updated in place.
+    """
+    s_scale = v0 * dt
+    w0 = w[0]
+    inv_dt2 = 1.0 / (dt * dt)
+    for n in range(n_start, n_end + 1):
+        # history part of the first-order convolution: F1 = w0 u_n + H
+        H = -w0 * u[n - 1]
+        for j in range(n - 1):
+            H += du[j] * w[n - 1 - j]
+        a2 = 0.0
+        b2 = 0.0
+        c2q = 0.0
+        if volterra:
+            acc = 0.0
+            for mm in range(2 * n - 3):  # m = i + j <= 2(n-2)
+                acc += S2[mm] * Q2[2 * n - mm - 1]
+            bacc = 0.0
+            for j in range(n - 1):
+                bacc += du[j] * Q2[n - j]
+            a2 = c2 * inv_dt2 * acc
+            b2 = c2 * inv_dt2 * 2.0 * bacc
+            c2q = c2 * inv_dt2 * Q2[1]
+        sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
+                                              a2, b2, c2q, alpha[n], alphad[n], m, v0, dt, s_scale)
+        s[n] = sn
+        g[n] = gn
+        F[n] = Fn
+        u[n] = un
+        J[n] = Jn
+        d = un - u[n - 1]
+        du[n - 1] = d
+        if volterra:
+            for j in range(n - 1):
+                S2[n - 1 + j] += 2.0 * d * du[j]
+            S2[2 * n - 2] += d * d
+        state[2] = n
+        if not (ok and math.isfinite(sn) and math.isfinite(Fn) and math.isfinite(gn)):
+            state[3] = STATUS_DIVERGED
+            return
+        if state[1] < 0:
+            if Fn > 0.0 and sn > 0.0:
+                state[0] = 1
+            if _separated(rule, state[0] == 1, Fn, sn):
+                state[1] = n
+        if state[1] >= 0 and n >= state[1] + n_extra:
+            state[3] = STATUS_SEPARATED
+            return
+    state[3] = STATUS_END
+
+
+@numba.njit(**_JIT)
+def march_prony(n_start, n_end, s, g, F, J, u, Q, G_inf, G, decay, weight, eta, alpha, alphad, m, v0, dt,
+                rule, n_extra, state):
+    """Fixed-step internal-variable march for a Prony kernel (O(N)).
+
+    Q[k] holds the internal variables (Green Eq. 18-19) at the last computed step; each step
+    updates them exactly for u linear on the step: Q_k <- decay_k Q_k + weight_k (u_n - u_{n-1}),
+    decay_k = exp(-b_k dt), weight_k = G_k (1 - exp(-b_k dt)) / (b_k dt). This is the recursive
+    form of the direct scheme's product integration, so both give the same numbers.
+    """
+    s_scale = v0 * dt
+    nq = G.shape[0]
+    w0 = G_inf
+    for k in range(nq):
+        w0 += weight[k]
+    for n in range(n_start, n_end + 1):
+        # F_n = G_inf u_n + sum_k (decay_k Q_k + weight_k (u_n - u_{n-1})) = w0 u_n + H
+        H = 0.0
+        for k in range(nq):
+            H += decay[k] * Q[k] - weight[k] * u[n - 1]
+        sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
+                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale)
+        d = un - u[n - 1]
+        for k in range(nq):
+            Q[k] = decay[k] * Q[k] + weight[k] * d
+        s[n] = sn
+        g[n] = gn
+        F[n] = Fn
+        u[n] = un
+        J[n] = Jn
+        state[2] = n
+        if not (ok and math.isfinite(sn) and math.isfinite(Fn) and math.isfinite(gn)):
+            state[3] = STATUS_DIVERGED
+            return
+        if state[1] < 0:
+            if Fn > 0.0 and sn > 0.0:
+                state[0] = 1
+            if _separated(rule, state[0] == 1, Fn, sn):
+                state[1] = n
+        if state[1] >= 0 and n >= state[1] + n_extra:
+            state[3] = STATUS_SEPARATED
+            return
+    state[3] = STATUS_END
+
+
+def empty_state() -> np.ndarray:
+    return np.array([0, -1, 0, STATUS_RUNNING], dtype=np.int64)

@@ -1,0 +1,189 @@
+"""Shared pieces of the solvers: the Result record, status codes, and separation post-processing."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+__all__ = ["Result", "STATUS_CODES", "UNITS", "LONG_NAMES", "separation", "peak", "Histories"]
+
+#: status name -> small integer code (stored in datasets with flag_values/flag_meanings)
+STATUS_CODES = {"ok": 0, "no-separation": 1, "diverged": 2, "invalid-input": 3, "failed": 4}
+
+UNITS = {
+    "cor": "1",
+    "t0": "s",
+    "s_max": "m",
+    "f_max": "N",
+    "s_residual": "m",
+    "w_h": "J",
+    "w_plate": "J",
+    "omega_min": "rad s-1",
+    "energy_residual": "1",
+    "steps": "1",
+    "wall_time": "s",
+    "dt": "s",
+}
+
+LONG_NAMES = {
+    "cor": "coefficient of restitution |s'(t0)|/v0",
+    "t0": "separation time (contact force returns to zero)",
+    "s_max": "maximum interference",
+    "f_max": "maximum contact force",
+    "s_residual": "residual interference at separation",
+    "w_h": "hysteretic loss int_0^t0 F s' dt",
+    "w_plate": "work done on the plate int_0^t0 F U' dt",
+    "omega_min": "minimum frequency of relevance 2 pi / t0",
+    "energy_residual": "relative energy balance residual (see README)",
+    "steps": "time steps taken",
+    "wall_time": "solver wall time",
+    "dt": "time step",
+}
+
+
+@dataclass
+class Histories:
+    """Time histories (SI). ``ghost`` marks samples after separation (t > t0)."""
+
+    t: np.ndarray
+    s: np.ndarray
+    sdot: np.ndarray
+    F: np.ndarray
+    J: np.ndarray
+    zdot: np.ndarray
+    U: np.ndarray
+
+    @property
+    def ghost(self) -> np.ndarray:
+        return self._ghost
+
+    def mark(self, t0: float):
+        self._ghost = self.t > t0
+        return self
+
+
+@dataclass
+class Result:
+    """Outcome of one impact. Units: s, m, N, J, rad/s; cor and energy_residual are ratios."""
+
+    cor: float = math.nan
+    t0: float = math.nan
+    s_max: float = math.nan
+    f_max: float = math.nan
+    s_residual: float = math.nan
+    w_h: float = math.nan
+    w_plate: float = math.nan
+    omega_min: float = math.nan
+    energy_residual: float = math.nan
+    steps: int = 0
+    wall_time: float = math.nan
+    dt: float = math.nan
+    status: str = "ok"
+    message: str = ""
+    method: str = ""
+    history: Histories | None = field(default=None, repr=False)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+    def scalars(self) -> dict:
+        d = asdict(self)
+        d.pop("history", None)
+        return d
+
+    def with_units(self) -> dict:
+        """Scalars as {name: {"value": v, "units": u}} (for JSON output)."""
+        out = {}
+        for k, v in self.scalars().items():
+            if k in UNITS:
+                out[k] = {"value": v, "units": UNITS[k]}
+            else:
+                out[k] = v
+        return out
+
+
+def _lagrange(tn, yn, t):
+    """Evaluate the Lagrange polynomial through (tn, yn) at t (scalar)."""
+    total = 0.0
+    for i in range(len(tn)):
+        li = 1.0
+        for j in range(len(tn)):
+            if j != i:
+                li *= (t - tn[j]) / (tn[i] - tn[j])
+        total += yn[i] * li
+    return total
+
+
+def _root_bracket(f, a, b, fa, fb, tol):
+    """Brent's method on a cubic interpolant (bracketed: fa > 0 >= fb)."""
+    from scipy.optimize import brentq
+
+    if fb == 0.0:
+        return b
+    return brentq(f, a, b, xtol=tol, rtol=4 * np.finfo(float).eps, maxiter=200)
+
+
+def peak(t, y):
+    """Maximum of sampled y, refined by the parabola through the largest sample and its neighbours."""
+    i = int(np.argmax(y))
+    if i == 0 or i == y.size - 1:
+        return float(y[i])
+    a, b, c = y[i - 1], y[i], y[i + 1]
+    den = a - 2.0 * b + c
+    if den >= 0.0:
+        return float(b)
+    return float(b - 0.125 * (c - a) ** 2 / den)
+
+
+def separation(t, s, g, F, J, n_sep, rule, m, v0):
+    """Locate separation inside [t_{n-1}, t_n] and evaluate the outcome there.
+
+    The crossing of F (rule "force") or s (rule "overlap") is found as the root of the cubic
+    Lagrange interpolant through the four nodes around it (third-order interpolation, error
+    O(dt^4)); s, s', J are interpolated the same way. Returns a dict of the scalars.
+    """
+    n = int(n_sep)
+    lo = max(0, min(n - 2, len(t) - 4))
+    idx = slice(lo, lo + 4)
+    tn = t[idx]
+    target = F if rule == "force" else s
+    yn = target[idx]
+
+    def f(x):
+        return _lagrange(tn, yn, x)
+
+    a, b = t[n - 1], t[n]
+    fa, fb = f(a), f(b)
+    if not (fa > 0 >= fb):  # interpolant does not bracket: fall back to linear on the nodes
+        y0, y1 = target[n - 1], target[n]
+        t0 = a + (b - a) * y0 / (y0 - y1)
+    else:
+        t0 = _root_bracket(f, a, b, fa, fb, tol=1e-15 * max(b, 1e-300))
+    s0 = _lagrange(tn, s[idx], t0)
+    g0 = _lagrange(tn, g[idx], t0)
+    J0 = _lagrange(tn, J[idx], t0)
+    F0 = 0.0 if rule == "force" else _lagrange(tn, F[idx], t0)
+    z0 = v0 - J0 / m
+    # quadrature: trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]
+    zd = v0 - J / m
+    fg = F[:n] * g[:n]
+    fz = F[:n] * zd[:n]
+    dt = t[1] - t[0]
+    w_h = dt * (fg.sum() - 0.5 * (fg[0] + fg[-1])) + 0.5 * (t0 - a) * (fg[-1] + F0 * g0)
+    w_z = dt * (fz.sum() - 0.5 * (fz[0] + fz[-1])) + 0.5 * (t0 - a) * (fz[-1] + F0 * z0)
+    e_in = 0.5 * m * v0 * v0
+    energy_residual = (e_in - 0.5 * m * z0 * z0 - w_z) / e_in
+    return {
+        "t0": float(t0),
+        "cor": float(abs(g0) / v0),
+        "s_residual": float(s0),
+        "w_h": float(w_h),
+        "w_plate": float(w_z - w_h),
+        "omega_min": float(2 * math.pi / t0),
+        "energy_residual": float(energy_residual),
+        "s_max": peak(t[: n + 1], s[: n + 1]),
+        "f_max": peak(t[: n + 1], F[: n + 1]),
+    }

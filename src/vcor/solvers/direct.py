@@ -1,0 +1,206 @@
+"""Direct (full-history) solver and the fixed-step internal-variable variant, both numba.
+
+See ``_kernels`` for the discretisation. This module prepares the arrays (exact kernel step
+integrals, plate mobility), runs the march, extends T_max when needed and post-processes.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from . import _kernels as K
+from .common import Histories, Result, separation
+
+__all__ = ["run_direct", "run_ive_fixed", "MAX_T_FACTOR"]
+
+#: T_max starts at 4 contact-time estimates and doubles, at most up to this many of them
+MAX_T_FACTOR = 64.0
+
+
+def _kernel_weights(impact, dt, n):
+    """w_i = (1/dt) int_{i dt}^{(i+1)dt} k, in N m^-1.5."""
+    return impact.kappa * impact.material.step_integrals(dt, n) / dt
+
+
+def _volterra_weights(impact, dt, n):
+    """Q_c = double cell integrals of k: K2((c+1)dt) - 2 K2(c dt) + K2((c-1)dt), c = 0..2n."""
+    nodes = dt * np.arange(2 * n + 2, dtype=float)
+    k2 = impact.kappa * impact.material.antiderivative(nodes, 2)
+    q = np.zeros(2 * n + 1)
+    q[1:] = k2[2:] - 2.0 * k2[1:-1] + k2[:-2]
+    return q
+
+
+class _Arrays:
+    """Growable solution arrays."""
+
+    names = ("s", "g", "F", "J", "u", "du")
+
+    def __init__(self, n):
+        for k in self.names:
+            setattr(self, k, np.zeros(n + 1))
+        self.n = n
+
+    def grow(self, n):
+        for k in self.names:
+            old = getattr(self, k)
+            new = np.zeros(n + 1)
+            new[: old.size] = old
+            setattr(self, k, new)
+        self.n = n
+
+
+def _march(impact, dt, n_steps, max_steps, rule, ghost, step_fn):
+    """Common driver: initial conditions, T_max extension, ghost continuation."""
+    v0 = impact.v0
+    arr = _Arrays(n_steps)
+    arr.g[0] = v0
+    state = K.empty_state()
+    n_done = 0
+    n_cap = n_steps
+    while True:
+        t = dt * np.arange(n_cap + 1)
+        alpha = impact.alpha(t)
+        alphad = impact.alpha_rate(t)
+        step_fn(n_done + 1, n_cap, arr, alpha, alphad, state, n_extra=2)
+        n_done = int(state[2])
+        if state[3] != K.STATUS_END:
+            break
+        if n_cap >= max_steps:
+            break
+        n_cap = min(2 * n_cap, max_steps)
+        arr.grow(n_cap)
+    if state[3] == K.STATUS_SEPARATED and ghost > 0:
+        n_sep = int(state[1])
+        n_ghost = min(int(math.ceil(n_sep * (1.0 + ghost))), max(n_cap, n_sep + 3))
+        if n_ghost > n_cap:
+            arr.grow(n_ghost)
+            n_cap = n_ghost
+        t = dt * np.arange(n_cap + 1)
+        if n_ghost > n_done:
+            st = state.copy()
+            step_fn(n_done + 1, n_ghost, arr, impact.alpha(t), impact.alpha_rate(t), st, n_extra=n_ghost)
+            n_done = int(st[2])
+    return arr, state, n_done
+
+
+def _finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_steps):
+    m, v0 = impact.m, impact.v0
+    t = dt * np.arange(n_done + 1)
+    s, g, F, J = arr.s[: n_done + 1], arr.g[: n_done + 1], arr.F[: n_done + 1], arr.J[: n_done + 1]
+    res = Result(steps=n_done, wall_time=wall, dt=dt, method=method)
+    status = int(state[3])
+    if status == K.STATUS_SEPARATED:
+        res.__dict__.update(separation(t, s, g, F, J, int(state[1]), rule, m, v0))
+        res.steps = int(state[1])
+    elif status == K.STATUS_DIVERGED:
+        res.status = "diverged"
+        res.message = (
+            f"Newton iteration failed or a non-finite value appeared at step {n_done} "
+            f"(t = {t[-1]:.6g} s, dt = {dt:.3g} s); try a smaller dt"
+        )
+    else:
+        res.status = "no-separation"
+        res.message = (
+            f"contact force did not return to zero within T_max = {t[-1]:.6g} s "
+            f"({n_done} steps, bound max_steps = {max_steps}); s_max, f_max are over that window"
+        )
+        res.s_max = float(np.max(s))
+        res.f_max = float(np.max(F))
+    if history:
+        zd = v0 - J / m
+        h = Histories(t=t, s=s.copy(), sdot=g.copy(), F=F.copy(), J=J.copy(), zdot=zd, U=impact.alpha(t) * J)
+        res.history = h.mark(res.t0 if res.ok else math.inf)
+    return res
+
+
+def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, c2=1.0, form="a",
+               history=False, ghost=0.0):
+    """Direct scheme, any kernel (O(N^2); the Volterra term keeps O(N^2))."""
+    mat = impact.material
+    eta = impact.kappa * mat.viscosity
+    if form == "b":
+        if not math.isfinite(mat.glassy):
+            raise ValueError(
+                "form 'b' needs a finite k(0) and an integrable kdot; "
+                f"material {mat.kind!r} is singular at t = 0: use form 'a'"
+            )
+        if volterra:
+            raise ValueError("volterra=True is implemented for form 'a' (h2 = c2 k(t1 + t2)) only")
+    cache = {}
+
+    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
+        if cache.get("n") != arr.n:
+            cache["n"] = arr.n
+            cache["w"] = (_form_b_weights if form == "b" else _kernel_weights)(impact, dt, arr.n)
+            if volterra:
+                q2 = _volterra_weights(impact, dt, arr.n)
+                s2 = np.zeros(2 * arr.n + 1)
+                if "S2" in cache:
+                    s2[: cache["S2"].size] = cache["S2"]
+                cache["Q2"], cache["S2"] = q2, s2
+            else:
+                cache["Q2"] = cache["S2"] = np.zeros(1)
+        K.march_direct(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, arr.du, cache["w"], eta, alpha, alphad,
+                       impact.m, impact.v0, dt, bool(volterra), float(c2), cache["Q2"], cache["S2"],
+                       0 if rule == "force" else 1, n_extra, state)
+
+    t_start = time.perf_counter()
+    arr, state, n_done = _march(impact, dt, n_steps, max_steps, rule, ghost if history else 0.0, step_fn)
+    wall = time.perf_counter() - t_start
+    name = f"direct-{form}" + ("+volterra" if volterra else "")
+    return _finish(impact, dt, arr, state, n_done, rule, history, wall, name, max_steps)
+
+
+def _form_b_weights(impact, dt, n):
+    """Form b: F_n = k(0) u_n + sum_j int phi_j(tau) kdot(t_n - tau) d tau u_j (phi_j: hat functions).
+
+    Integrating kdot against the hat functions exactly (by parts, from k at the nodes and the step
+    integrals of k) and regrouping into increments of u gives weights for the same march. With the
+    same piecewise-linear u this is algebraically identical to form a, so agreement of the two is a
+    check of the implementation (kernel values, step integrals, summation), not of the
+    discretisation; the paper's forms differ only through their quadratures.
+    """
+    mat = impact.material
+    nodes = dt * np.arange(n + 1, dtype=float)
+    k = impact.kappa * mat.relaxation_modulus(nodes)
+    W = impact.kappa * mat.step_integrals(dt, n)  # int over step i of k
+    # int_{i dt}^{(i+1)dt} kdot(sigma) (linear weight) -> contributions to u_j coefficients:
+    # c_i^- = int kdot (sigma - i dt)/dt = k_{i+1} - W_i/dt,  c_i^+ = int kdot ((i+1)dt - sigma)/dt = W_i/dt - k_i
+    cm = k[1:] - W / dt
+    cp = W / dt - k[:-1]
+    # F_n = k0 u_n + sum_{i} [c_i^+ u_{n-i} + c_i^- u_{n-1-i}] (sigma = t_n - tau)
+    # coefficient of u_{n-l}: a_0 = k0 + c_0^+, a_l = c_l^+ + c_{l-1}^- (l >= 1)
+    a = np.empty(n + 1)
+    a[0] = k[0] + cp[0]
+    a[1:n] = cp[1:] + cm[:-1]
+    a[n] = cm[-1]
+    # sum_l a_l u_{n-l} = sum_j du_j w_{n-1-j} with w_i = sum_{l <= i} a_l (u_0 = 0)
+    return np.cumsum(a)[:n]
+
+
+def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0):
+    """Internal variables with the fixed-step exponential update (numba, O(N)); Prony kernels."""
+    mat = impact.material
+    if not mat.is_prony:
+        raise ValueError(f"method 'ive' needs a Prony kernel (sls, butyl-prony3, prony, elastic); got {mat.kind!r}")
+    g_inf, e, b = mat.prony_terms()
+    kap = impact.kappa
+    bdt = b * dt
+    decay = np.exp(-bdt)
+    frac = np.where(b > 0, -np.expm1(-bdt) / np.where(bdt > 0, bdt, 1.0), 1.0)
+    weight = kap * e * frac
+    Q = np.zeros(e.size)
+    eta = kap * mat.viscosity
+
+    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
+        K.march_prony(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, Q, kap * g_inf, kap * e, decay, weight, eta,
+                      alpha, alphad, impact.m, impact.v0, dt, 0 if rule == "force" else 1, n_extra, state)
+
+    t_start = time.perf_counter()
+    arr, state, n_done = _march(impact, dt, n_steps, max_steps, rule, ghost if history else 0.0, step_fn)
+    wall = time.perf_counter() - t_start
+    return _finish(impact, dt, arr, state, n_done, rule, history, wall, "ive-numba", max_steps)
