@@ -141,7 +141,8 @@ def peak(t, y):
 def separation(t, s, g, F, J, n_sep, rule, m, v0):
     """Locate separation inside [t_{n-1}, t_n] and evaluate the outcome there.
 
-    The crossing of F (rule "force") or s (rule "overlap") is found as the root of the cubic
+    The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
+    is found as the root of the cubic
     Lagrange interpolant through the four nodes around it (third-order interpolation, error
     O(dt^4)); s, s', J are interpolated the same way. Returns a dict of the scalars.
     """
@@ -149,7 +150,10 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     lo = max(0, min(n - 2, len(t) - 4))
     idx = slice(lo, lo + 4)
     tn = t[idx]
-    target = F if rule == "force" else s
+    # F = 0 and s = 0 in the same step (elastic-like separation): F ~ s^{3/2} is not smooth at its
+    # root, s is, so the root of s locates the same instant far more accurately.
+    by_overlap = rule == "overlap" or s[n] <= 0.0
+    target = s if by_overlap else F
     yn = target[idx]
 
     def f(x):

@@ -16,13 +16,22 @@ from .common import Histories, Result, separation
 
 __all__ = ["run_direct", "run_ive_fixed", "MAX_T_FACTOR"]
 
-#: T_max starts at 4 contact-time estimates and doubles, at most up to this many of them
+#: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
 MAX_T_FACTOR = 64.0
 
 
 def _kernel_weights(impact, dt, n):
-    """w_i = (1/dt) int_{i dt}^{(i+1)dt} k, in N m^-1.5."""
-    return impact.kappa * impact.material.step_integrals(dt, n) / dt
+    """Folded weights (wt, v) of the quadratic product integration (see ``_kernels``), N m^-1.5."""
+    w = impact.kappa * impact.material.step_integrals(dt, n) / dt
+    v = -impact.kappa * impact.material.step_moments(dt, n) / dt**2
+    wt = w + v
+    wt[1:] -= v[:-1]
+    return wt, v
+
+
+def _linear_weights(impact, dt, n):
+    """Linear product integration only (the internal-variable march's scheme), as (w, 0)."""
+    return impact.kappa * impact.material.step_integrals(dt, n) / dt, np.zeros(n)
 
 
 def _volterra_weights(impact, dt, n):
@@ -135,7 +144,7 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
     def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
         if cache.get("n") != arr.n:
             cache["n"] = arr.n
-            cache["w"] = (_form_b_weights if form == "b" else _kernel_weights)(impact, dt, arr.n)
+            cache["w"], cache["v"] = (_form_b_weights if form == "b" else _kernel_weights)(impact, dt, arr.n)
             if volterra:
                 q2 = _volterra_weights(impact, dt, arr.n)
                 s2 = np.zeros(2 * arr.n + 1)
@@ -144,7 +153,7 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
                 cache["Q2"], cache["S2"] = q2, s2
             else:
                 cache["Q2"] = cache["S2"] = np.zeros(1)
-        K.march_direct(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, arr.du, cache["w"], eta, alpha, alphad,
+        K.march_direct(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, arr.du, cache["w"], cache["v"], eta, alpha, alphad,
                        impact.m, impact.v0, dt, bool(volterra), float(c2), cache["Q2"], cache["S2"],
                        0 if rule == "force" else 1, n_extra, state)
 
@@ -160,9 +169,9 @@ def _form_b_weights(impact, dt, n):
 
     Integrating kdot against the hat functions exactly (by parts, from k at the nodes and the step
     integrals of k) and regrouping into increments of u gives weights for the same march. With the
-    same piecewise-linear u this is algebraically identical to form a, so agreement of the two is a
-    check of the implementation (kernel values, step integrals, summation), not of the
-    discretisation; the paper's forms differ only through their quadratures.
+    same piecewise-linear u this is algebraically the linear product integration of form a; the
+    direct form a adds the quadratic correction, so the two are different O(dt^2) discretisations
+    and their agreement is a real check.
     """
     mat = impact.material
     nodes = dt * np.arange(n + 1, dtype=float)
@@ -179,7 +188,7 @@ def _form_b_weights(impact, dt, n):
     a[1:n] = cp[1:] + cm[:-1]
     a[n] = cm[-1]
     # sum_l a_l u_{n-l} = sum_j du_j w_{n-1-j} with w_i = sum_{l <= i} a_l (u_0 = 0)
-    return np.cumsum(a)[:n]
+    return np.cumsum(a)[:n], np.zeros(n)
 
 
 def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0):

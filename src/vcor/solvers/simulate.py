@@ -14,6 +14,8 @@ __all__ = ["simulate", "METHODS", "default_dt", "STEPS_PER_CONTACT", "MAX_STEPS"
 METHODS = ("direct", "ive", "ive-numba")
 #: default resolution: dt = (rigid-target Hertz contact-time estimate) / STEPS_PER_CONTACT
 STEPS_PER_CONTACT = 2000
+#: T_max starts at this many contact-time estimates and doubles while the impact has not separated
+T_MAX_START = 1.5
 #: hard bound on the number of steps when T_max is extended (direct is O(N^2))
 MAX_STEPS = 200_000
 
@@ -93,15 +95,15 @@ def simulate(material, v0, *, method="direct", dt=None, volterra=False, form="a"
             raise ValueError(
                 f"dt must be in (0, {tc:.4g}) s (below the estimated contact time), got {dt!r}"
             )
-    n_steps = max(int(math.ceil(4.0 * tc / dt)), 16)
+    n_steps = max(int(math.ceil(T_MAX_START * tc / dt)), 16)
     max_n = min(max_steps, max(n_steps, int(MAX_T_FACTOR * tc / dt)))
     n_steps = min(n_steps, max_n)
     if method == "direct":
         return run_direct(impact, dt, n_steps, max_steps=max_n, rule=rule, volterra=volterra, c2=c2, form=form,
                           history=history, ghost=ghost)
-    if volterra:
-        raise ValueError("volterra=True needs method='direct'")
     if method == "ive-numba":
+        if volterra:
+            raise ValueError("volterra=True needs method 'direct' or 'ive'")
         return run_ive_fixed(impact, dt, n_steps, max_steps=max_n, rule=rule, history=history, ghost=ghost)
-    return run_ive_scipy(impact, rtol=rtol, method=ive_method, t_max=4.0 * tc, max_t=MAX_T_FACTOR * tc,
-                         history=history, ghost=ghost, rule=rule)
+    return run_ive_scipy(impact, rtol=rtol, method=ive_method, t_max=T_MAX_START * tc, max_t=MAX_T_FACTOR * tc,
+                         history=history, ghost=ghost, rule=rule, volterra=volterra, c2=c2)

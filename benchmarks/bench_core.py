@@ -1,0 +1,81 @@
+"""Core solver benchmark: prints a table of medians and ratios (machine is shared: read ratios).
+
+Run: python benchmarks/bench_core.py
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import vcor
+
+
+def median_time(fn, repeat=15):
+    fn()  # JIT / cache load
+    ts = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def solver_time(material, v0, repeat=15, **kw):
+    vcor.simulate(material, v0, **kw)
+    return statistics.median(vcor.simulate(material, v0, **kw).wall_time for _ in range(repeat))
+
+
+def cold_process(env_extra):
+    code = "import time; t=time.perf_counter(); import vcor; vcor.simulate('sls', 10.0, dt=1e-6); print(time.perf_counter()-t)"
+    env = dict(os.environ, **env_extra)
+    t = time.perf_counter()
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return time.perf_counter() - t, float(out.stdout.strip())
+
+
+def main():
+    rows = []
+    t_sls = median_time(lambda: vcor.simulate("sls", 10.0, dt=1e-6))
+    rows.append(("direct, SLS, v0=10, dt=1 us, Volterra off (simulate call)", t_sls, "<= 2 ms"))
+    rows.append(("  same, solver loop only (Result.wall_time)", solver_time("sls", 10.0, dt=1e-6), ""))
+
+    def sweep():
+        for v in range(1, 51):
+            vcor.simulate("butyl-fc", float(v))
+
+    rows.append(("Butyl fractional sweep v0=1..50 (50 runs, default dt)", median_time(sweep, 5), "<= 0.1 s"))
+    for name in ("butyl-cerf", "butyl-prony3"):
+        rows.append((f"{name} sweep v0=1..50", median_time(lambda n=name: [vcor.simulate(n, float(v)) for v in range(1, 51)], 5), ""))
+    rows.append(("ive-numba, butyl-prony3 sweep v0=1..50",
+                 median_time(lambda: [vcor.simulate("butyl-prony3", float(v), method="ive-numba") for v in range(1, 51)], 5), ""))
+    rows.append(("ive (solve_ivp Radau, rtol 1e-10), SLS v0=10", median_time(lambda: vcor.simulate("sls", 10.0, method="ive"), 5), ""))
+
+    off = solver_time("sls", 10.0, dt=1e-6)
+    on = solver_time("sls", 10.0, dt=1e-6, volterra=True)
+    n1 = solver_time("butyl-fc", 10.0, dt=1e-6)
+    n2 = solver_time("butyl-fc", 10.0, dt=0.5e-6)
+    n3 = solver_time("butyl-fc", 10.0, dt=0.25e-6)
+    print(f"{'benchmark':62s} {'median':>12s}  target")
+    for name, t, target in rows:
+        print(f"{name:62s} {t * 1e3:9.3f} ms  {target}")
+    print()
+    print(f"{'ratio':62s} {'value':>12s}  target")
+    print(f"{'Volterra on / off (SLS, dt = 1 us)':62s} {on / off:12.2f}  <= 20")
+    print(f"{'doubling N: t(dt/2) / t(dt), butyl-fc, dt 1 -> 0.5 us':62s} {n2 / n1:12.2f}  <= ~4.5")
+    print(f"{'doubling N: t(dt/4) / t(dt/2), butyl-fc, 0.5 -> 0.25 us':62s} {n3 / n2:12.2f}  <= ~4.5")
+    print()
+    with tempfile.TemporaryDirectory() as d:
+        total, inner = cold_process({"NUMBA_CACHE_DIR": d})
+        print(f"{'fresh process, empty numba cache (compiles)':62s} {total:9.3f} s   (import+run {inner:.3f} s)")
+        total, inner = cold_process({"NUMBA_CACHE_DIR": d})
+        print(f"{'fresh process, numba cache filled (no compile)':62s} {total:9.3f} s   (import+run {inner:.3f} s)")
+    print(f"{'warm (same process) SLS dt=1 us':62s} {t_sls:9.6f} s")
+
+
+if __name__ == "__main__":
+    main()
