@@ -192,7 +192,8 @@ class Prony(Material):
     def complex_modulus(self, omega):
         w = 1j * np.asarray(omega, dtype=float)
         e, b = self._arrays()
-        return self.E_inf + (e * np.divide.outer(w, np.add.outer(w, b))).sum(axis=-1)
+        wc = w[..., None]
+        return self.E_inf + (e * wc / (wc + b)).sum(axis=-1)
 
     def antiderivative(self, t, order: int = 1):
         t = np.asarray(t, dtype=float)

@@ -1,0 +1,22 @@
+# vcor: viscoelastic coefficient of restitution, parameter-study workflow.
+# Table of contents only; rules live in workflow/rules, configuration in config.yaml.
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: "config.yaml"
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/sweep.smk"
+include: "workflow/rules/figures.smk"
+
+
+rule all:
+    input:
+        get_all_targets(),
+    default_target: True

@@ -1,0 +1,80 @@
+"""NetCDF output with CF-style metadata, and provenance (vcor version + git commit)."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+
+__all__ = ["provenance", "write_dataset", "REFERENCES"]
+
+REFERENCES = (
+    "Green, I. (2026) The viscoelastic coefficient of restitution: integrating the wave equation with "
+    "hereditary physics, J. Tribol., doi:10.1115/1.4071256; "
+    "Ramirez, R., Poeschel, T., Brilliantov, N. V., Schwager, T. (1999) Coefficient of restitution of "
+    "colliding viscoelastic spheres, Phys. Rev. E 60, 4465"
+)
+
+
+def _git_commit() -> str:
+    here = Path(__file__).resolve().parent
+    try:
+        out = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True, text=True, timeout=5)
+        commit = out.stdout.strip() if out.returncode == 0 else "unknown"
+        dirty = subprocess.run(["git", "-C", str(here), "status", "--porcelain", "--", str(here)],
+                               capture_output=True, text=True, timeout=5).stdout.strip()
+        return commit + ("+dirty" if dirty and commit != "unknown" else "")
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def provenance() -> str:
+    return f"vcor {__version__} (git {_git_commit()})"
+
+
+def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None):
+    """Write ``ds`` as NetCDF4 (float64, zlib level 1, no lossy packing) with global attributes
+    Conventions, title, history, source, references and ``extra_attrs`` (dicts become JSON)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    ds = ds.copy()
+    now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
+    cmd = command or " ".join(sys.argv[:1])
+    attrs = {
+        "Conventions": "CF-1.10",
+        "title": title,
+        "history": f"{now} {cmd}",
+        "source": provenance(),
+        "references": REFERENCES,
+    }
+    for k, v in (extra_attrs or {}).items():
+        attrs[k] = v if isinstance(v, (str, int, float)) else json.dumps(v, sort_keys=True, default=float)
+    ds.attrs.update(attrs)
+    encoding = {}
+    for name, var in ds.variables.items():
+        if var.dtype.kind == "f":
+            encoding[name] = {"zlib": True, "complevel": 1, "dtype": "float64"}
+        elif var.dtype.kind in "iu":
+            encoding[name] = {"zlib": True, "complevel": 1}
+        elif var.dtype.kind in "OU":
+            ds[name] = var.astype(str)
+    ds.to_netcdf(path, format="NETCDF4", engine="netcdf4", encoding=encoding)
+    return path
+
+
+def scalar_dataset_check(ds) -> None:
+    """Every variable and coordinate has units and long_name (used by tests and the writer's users)."""
+    for name, var in ds.variables.items():
+        if var.dtype.kind in "OSU" and name in ("material", "message", "run", "method"):
+            continue
+        missing = [a for a in ("units", "long_name") if a not in var.attrs]
+        if missing:
+            raise ValueError(f"variable {name!r} lacks {missing}")
+    if np.any([np.isnan(ds[c].values).any() for c in ds.coords if ds[c].dtype.kind == "f"]):
+        raise ValueError("coordinates contain NaN")

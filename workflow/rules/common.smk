@@ -1,0 +1,115 @@
+# Config validation, shard planning, and every input function. No logic inside rules.
+import re
+
+from snakemake.exceptions import WorkflowError
+from snakemake.utils import validate
+
+import vcor.plots as vplots
+import vcor.sweep as vsweep
+
+
+validate(config, schema="../schemas/config.schema.yaml")
+
+SCENES = config["scenes"]
+MATERIAL_DIR = config["material_dir"]
+FITTED = set(config.get("fits", {}))
+
+
+def _check_scenes():
+    """Semantic checks the schema cannot express; the message names the key."""
+    for name, scene in SCENES.items():
+        if not re.fullmatch(r"[A-Za-z0-9_-]+", name):
+            raise ValueError(f"config.yaml: scenes.{name}: scene names may use letters, digits, - and _")
+        figures = scene.get("figures", {})
+        need = vplots.needs(figures)
+        if "grid" in scene:
+            vsweep.validate_scene(name, scene, MATERIAL_DIR, FITTED)
+        if "sweep" in need and "grid" not in scene:
+            raise ValueError(f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid")
+        if "histories" in need and "histories" not in scene:
+            raise ValueError(f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.histories")
+        for mat, method in scene.get("histories", {}).get("runs", []):
+            if method not in ("direct", "ive", "ive-numba"):
+                raise ValueError(f"config.yaml: scenes.{name}.histories.runs: unknown method {method!r}")
+            if mat not in scene["materials"]:
+                raise ValueError(f"config.yaml: scenes.{name}.histories.runs: {mat!r} is not in scenes.{name}.materials")
+
+
+try:
+    _check_scenes()
+except ValueError as exc:
+    raise WorkflowError(str(exc))
+
+
+wildcard_constraints:
+    scene="|".join(re.escape(s) for s in SCENES),
+    shard="[0-9a-f]{10}-[0-9a-f]{12}",
+    fig="fig[1-9]",
+
+
+_PLANS = {}
+
+
+def shard_plan(scene):
+    if scene not in _PLANS:
+        _PLANS[scene] = vsweep.plan_shards(SCENES[scene], f"results/{scene}/shards", config["shard_size"])
+    return _PLANS[scene]
+
+
+def get_scene(wildcards):
+    return SCENES[wildcards.scene]
+
+
+def get_settings(wildcards):
+    return vsweep.settings_of(SCENES[wildcards.scene])
+
+
+def get_shard_points(wildcards):
+    return shard_plan(wildcards.scene)[wildcards.shard]
+
+
+def get_shard_files(wildcards):
+    return [f"results/{wildcards.scene}/shards/{s}.nc" for s in shard_plan(wildcards.scene)]
+
+
+def get_fitted_inputs(wildcards):
+    """Fitted material files a scene uses (none for presets: no fit unless needed)."""
+    used = set(SCENES[wildcards.scene]["materials"]) | set(SCENES[wildcards.scene].get("moduli", []))
+    return [f"{MATERIAL_DIR}/{m}.nc" for m in sorted(used & FITTED)]
+
+
+def get_moduli_materials(wildcards):
+    scene = SCENES[wildcards.scene]
+    return scene.get("moduli", scene["materials"])
+
+
+def get_figure_inputs(wildcards):
+    need = vplots.FIGURES[wildcards.fig][1]
+    return {n: f"results/{wildcards.scene}/{n}.nc" for n in need}
+
+
+def get_figure_options(wildcards):
+    return SCENES[wildcards.scene]["figures"][wildcards.fig]
+
+
+def get_scene_targets(wildcards):
+    return scene_targets(wildcards.scene)
+
+
+def scene_targets(scene):
+    cfg = SCENES[scene]
+    figures = cfg.get("figures", {})
+    out = []
+    if "grid" in cfg:
+        out.append(f"results/{scene}/sweep.nc")
+    need = vplots.needs(figures)
+    for n in ("moduli", "histories"):
+        if n in need:
+            out.append(f"results/{scene}/{n}.nc")
+    for fig in figures:
+        out += [f"results/{scene}/figures/{fig}.png", f"results/{scene}/figures/{fig}.pdf"]
+    return out
+
+
+def get_all_targets():
+    return [f"results/{s}/MANIFEST.txt" for s in SCENES]

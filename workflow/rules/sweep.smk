@@ -1,0 +1,68 @@
+# Sweeps: content-addressed shards of grid points, aggregated into results/<scene>/sweep.nc.
+
+
+rule sweep_shard:
+    input:
+        materials=get_fitted_inputs,
+    output:
+        nc="results/{scene}/shards/{shard}.nc",
+        index="results/{scene}/shards/{shard}.json",
+    params:
+        points=get_shard_points,
+        settings=get_settings,
+        material_dir=MATERIAL_DIR,
+    log:
+        "results/{scene}/logs/shards/{shard}.log",
+    benchmark:
+        "results/{scene}/benchmarks/shards/{shard}.tsv"
+    script:
+        "../scripts/sweep_shard.py"
+
+
+rule aggregate:
+    input:
+        shards=get_shard_files,
+        materials=get_fitted_inputs,
+    output:
+        "results/{scene}/sweep.nc",
+    params:
+        scene=get_scene,
+        material_dir=MATERIAL_DIR,
+    log:
+        "results/{scene}/logs/aggregate.log",
+    benchmark:
+        "results/{scene}/benchmarks/aggregate.tsv"
+    script:
+        "../scripts/aggregate.py"
+
+
+rule moduli:
+    input:
+        materials=get_fitted_inputs,
+    output:
+        "results/{scene}/moduli.nc",
+    params:
+        materials=get_moduli_materials,
+        material_dir=MATERIAL_DIR,
+    log:
+        "results/{scene}/logs/moduli.log",
+    benchmark:
+        "results/{scene}/benchmarks/moduli.tsv"
+    script:
+        "../scripts/moduli.py"
+
+
+rule histories:
+    input:
+        materials=get_fitted_inputs,
+    output:
+        "results/{scene}/histories.nc",
+    params:
+        scene=get_scene,
+        material_dir=MATERIAL_DIR,
+    log:
+        "results/{scene}/logs/histories.log",
+    benchmark:
+        "results/{scene}/benchmarks/histories.tsv"
+    script:
+        "../scripts/histories.py"
