@@ -184,10 +184,13 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int) -> dict[str, list
     """{shard id: points}. Existing shards with the same settings are reused as they are."""
     h = settings_hash(scene)
     todo = {point_key(p): p for p in scene_points(scene)}
+    order = ["material"] + list(scene.get("grid") or {})
     plan: dict[str, list[dict]] = {}
     for idx in sorted(Path(shard_dir).glob(f"{h}-*.json")):
         try:
             pts = json.loads(idx.read_text())["points"]
+            # same key order as scene_points, so Snakemake sees unchanged params
+            pts = [{k: p[k] for k in order if k in p} | {k: p[k] for k in sorted(p) if k not in order} for p in pts]
         except (OSError, ValueError, KeyError):
             continue
         if not idx.with_suffix(".nc").exists():

@@ -7,7 +7,6 @@ from snakemake.utils import validate
 import vcor.plots as vplots
 import vcor.sweep as vsweep
 
-
 validate(config, schema="../schemas/config.schema.yaml")
 
 SCENES = config["scenes"]
@@ -19,20 +18,30 @@ def _check_scenes():
     """Semantic checks the schema cannot express; the message names the key."""
     for name, scene in SCENES.items():
         if not re.fullmatch(r"[A-Za-z0-9_-]+", name):
-            raise ValueError(f"config.yaml: scenes.{name}: scene names may use letters, digits, - and _")
+            raise ValueError(
+                f"config.yaml: scenes.{name}: scene names may use letters, digits, - and _"
+            )
         figures = scene.get("figures", {})
         need = vplots.needs(figures)
         if "grid" in scene:
             vsweep.validate_scene(name, scene, MATERIAL_DIR, FITTED)
         if "sweep" in need and "grid" not in scene:
-            raise ValueError(f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid")
+            raise ValueError(
+                f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
+            )
         if "histories" in need and "histories" not in scene:
-            raise ValueError(f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.histories")
+            raise ValueError(
+                f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.histories"
+            )
         for mat, method in scene.get("histories", {}).get("runs", []):
             if method not in ("direct", "ive", "ive-numba"):
-                raise ValueError(f"config.yaml: scenes.{name}.histories.runs: unknown method {method!r}")
+                raise ValueError(
+                    f"config.yaml: scenes.{name}.histories.runs: unknown method {method!r}"
+                )
             if mat not in scene["materials"]:
-                raise ValueError(f"config.yaml: scenes.{name}.histories.runs: {mat!r} is not in scenes.{name}.materials")
+                raise ValueError(
+                    f"config.yaml: scenes.{name}.histories.runs: {mat!r} is not in scenes.{name}.materials"
+                )
 
 
 try:
@@ -52,12 +61,18 @@ _PLANS = {}
 
 def shard_plan(scene):
     if scene not in _PLANS:
-        _PLANS[scene] = vsweep.plan_shards(SCENES[scene], f"results/{scene}/shards", config["shard_size"])
+        _PLANS[scene] = vsweep.plan_shards(
+            SCENES[scene], f"results/{scene}/shards", config["shard_size"]
+        )
     return _PLANS[scene]
 
 
 def get_scene(wildcards):
     return SCENES[wildcards.scene]
+
+
+def get_histories_spec(wildcards):
+    return SCENES[wildcards.scene]["histories"]
 
 
 def get_settings(wildcards):
@@ -69,12 +84,16 @@ def get_shard_points(wildcards):
 
 
 def get_shard_files(wildcards):
-    return [f"results/{wildcards.scene}/shards/{s}.nc" for s in shard_plan(wildcards.scene)]
+    return [
+        f"results/{wildcards.scene}/shards/{s}.nc" for s in shard_plan(wildcards.scene)
+    ]
 
 
 def get_fitted_inputs(wildcards):
     """Fitted material files a scene uses (none for presets: no fit unless needed)."""
-    used = set(SCENES[wildcards.scene]["materials"]) | set(SCENES[wildcards.scene].get("moduli", []))
+    used = set(SCENES[wildcards.scene]["materials"]) | set(
+        SCENES[wildcards.scene].get("moduli", [])
+    )
     return [f"{MATERIAL_DIR}/{m}.nc" for m in sorted(used & FITTED)]
 
 
@@ -107,7 +126,10 @@ def scene_targets(scene):
         if n in need:
             out.append(f"results/{scene}/{n}.nc")
     for fig in figures:
-        out += [f"results/{scene}/figures/{fig}.png", f"results/{scene}/figures/{fig}.pdf"]
+        out += [
+            f"results/{scene}/figures/{fig}.png",
+            f"results/{scene}/figures/{fig}.pdf",
+        ]
     return out
 
 

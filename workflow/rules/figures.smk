@@ -11,10 +11,12 @@ rule figure:
             category="{scene}",
         ),
         pdf="results/{scene}/figures/{fig}.pdf",
-    params:
-        options=get_figure_options,
     log:
         "results/{scene}/logs/figures/{fig}.log",
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        options=get_figure_options,
     script:
         "../scripts/figure.py"
 
@@ -26,5 +28,7 @@ rule manifest:
         "results/{scene}/MANIFEST.txt",
     log:
         "results/{scene}/logs/manifest.log",
+    conda:
+        "../envs/vcor.yaml"
     script:
         "../scripts/manifest.py"

@@ -7,14 +7,16 @@ rule sweep_shard:
     output:
         nc="results/{scene}/shards/{shard}.nc",
         index="results/{scene}/shards/{shard}.json",
-    params:
-        points=get_shard_points,
-        settings=get_settings,
-        material_dir=MATERIAL_DIR,
     log:
         "results/{scene}/logs/shards/{shard}.log",
     benchmark:
         "results/{scene}/benchmarks/shards/{shard}.tsv"
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        points=get_shard_points,
+        settings=get_settings,
+        material_dir=MATERIAL_DIR,
     script:
         "../scripts/sweep_shard.py"
 
@@ -25,13 +27,15 @@ rule aggregate:
         materials=get_fitted_inputs,
     output:
         "results/{scene}/sweep.nc",
-    params:
-        scene=get_scene,
-        material_dir=MATERIAL_DIR,
     log:
         "results/{scene}/logs/aggregate.log",
     benchmark:
         "results/{scene}/benchmarks/aggregate.tsv"
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        scene=get_scene,
+        material_dir=MATERIAL_DIR,
     script:
         "../scripts/aggregate.py"
 
@@ -41,13 +45,15 @@ rule moduli:
         materials=get_fitted_inputs,
     output:
         "results/{scene}/moduli.nc",
-    params:
-        materials=get_moduli_materials,
-        material_dir=MATERIAL_DIR,
     log:
         "results/{scene}/logs/moduli.log",
     benchmark:
         "results/{scene}/benchmarks/moduli.tsv"
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        materials=get_moduli_materials,
+        material_dir=MATERIAL_DIR,
     script:
         "../scripts/moduli.py"
 
@@ -57,12 +63,15 @@ rule histories:
         materials=get_fitted_inputs,
     output:
         "results/{scene}/histories.nc",
-    params:
-        scene=get_scene,
-        material_dir=MATERIAL_DIR,
     log:
         "results/{scene}/logs/histories.log",
     benchmark:
         "results/{scene}/benchmarks/histories.tsv"
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        histories=get_histories_spec,
+        settings=get_settings,
+        material_dir=MATERIAL_DIR,
     script:
         "../scripts/histories.py"

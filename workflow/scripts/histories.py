@@ -6,12 +6,16 @@ sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
 from vcor import datasets, io, sweep  # noqa: E402
 
-scene = snakemake.params.scene  # noqa: F821
-h = scene["histories"]
-settings = sweep.settings_of(scene)
+h = snakemake.params.histories  # noqa: F821
+settings = snakemake.params.settings  # noqa: F821
+mdir = snakemake.params.material_dir  # noqa: F821
 ds = datasets.histories_dataset([tuple(r) for r in h["runs"]], h["v0"], solver=settings["solver"],
-                                geometry=settings["geometry"], ghost=h.get("ghost", 0.5),
-                                material_dir=snakemake.params.material_dir)  # noqa: F821
-attrs = sweep.dataset_attrs(snakemake.wildcards.scene, scene, snakemake.params.material_dir)  # noqa: F821
+                                geometry=settings["geometry"], ghost=h["ghost"], material_dir=mdir)
+attrs = {
+    "scene": snakemake.wildcards.scene,  # noqa: F821
+    "histories_config": h,
+    "solver_settings": settings,
+    "materials": sweep.material_params(sorted({r[0] for r in h["runs"]}), mdir),
+}
 io.write_dataset(ds, snakemake.output[0], title=f"vcor histories, scene {snakemake.wildcards.scene}",  # noqa: F821
                  extra_attrs=attrs, command="snakemake rule histories")

@@ -13,4 +13,4 @@ ds = sweep.run_points(points, settings, snakemake.params.material_dir)  # noqa: 
 io.write_dataset(ds, snakemake.output.nc, title="vcor sweep shard", extra_attrs={"settings": settings},  # noqa: F821
                  command="snakemake rule sweep_shard")
 with open(snakemake.output.index, "w") as fh:  # noqa: F821
-    json.dump({"points": points, "settings": settings}, fh, sort_keys=True, indent=1)
+    json.dump({"points": points, "settings": settings}, fh, indent=1)

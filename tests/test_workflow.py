@@ -1,0 +1,196 @@
+"""Workflow end to end on a tiny config (copied into a temporary folder), dry runs, bad configs."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+import vcor
+from vcor import sweep
+
+ROOT = Path(__file__).resolve().parents[1]
+SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+
+TINY = {
+    "shard_size": 3,
+    "material_dir": "results/materials",
+    "scenes": {
+        "tiny": {
+            "materials": ["sls"],
+            "grid": {"v0": [2.0, 10.0], "beta": [1200.0, 2400.0]},
+            "tie": {"alpha": {"to": "beta", "ratio": 0.25}},
+            "histories": {"v0": 10.0, "runs": [["sls", "direct"], ["sls", "ive"]]},
+            "figures": {"fig2": {}, "fig4": {"material": "sls"}},
+        },
+        "two": {
+            "materials": ["butyl-fc", "butyl-prony3"],
+            "grid": {"v0": [5.0, 10.0]},
+            "figures": {"fig8": {}},
+        },
+        "thin": {
+            # h = 2 mm: the plate takes all the energy, the force never returns to zero
+            "materials": ["sls"],
+            "grid": {"v0": [10.0], "h": [0.02, 0.002]},
+            "solver": {"steps_per_contact": 200},
+            "figures": {"fig8": {}},
+        },
+    },
+}
+
+
+def make_project(tmp_path, config):
+    for name in ("Snakefile", "workflow"):
+        src = ROOT / name
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, tmp_path / name)
+    (tmp_path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
+    return tmp_path
+
+
+def smk(path, *args, check=True):
+    out = subprocess.run(SNAKEMAKE + ["-d", str(path), *args], cwd=path, capture_output=True, text=True, timeout=600)
+    if check and out.returncode != 0:
+        raise AssertionError(f"snakemake {args} failed:\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}")
+    return out
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    path = make_project(tmp_path_factory.mktemp("wf"), TINY)
+    smk(path, "-j2", "--profile", str(path / "workflow/profiles/default"))
+    return path
+
+
+def test_outputs_exist(tiny_run):
+    for f in ["tiny/sweep.nc", "tiny/histories.nc", "tiny/figures/fig2.png", "tiny/figures/fig2.pdf",
+              "tiny/figures/fig4.png", "tiny/MANIFEST.txt", "thin/sweep.nc", "thin/figures/fig8.png"]:
+        assert (tiny_run / "results" / f).stat().st_size > 0, f
+    # nothing the scenes do not need: no moduli (fig1/fig5 not requested), no histories for "thin"
+    assert not (tiny_run / "results/tiny/moduli.nc").exists()
+    assert not (tiny_run / "results/thin/histories.nc").exists()
+    assert not (tiny_run / "results/materials").exists()
+
+
+def test_sweep_dataset_layout_and_values(tiny_run):
+    ds = xr.open_dataset(tiny_run / "results/tiny/sweep.nc")
+    assert ds["cor"].dims == ("material", "v0", "beta")
+    assert list(ds["v0"].values) == [2.0, 10.0] and list(ds["beta"].values) == [1200.0, 2400.0]
+    for v in ["cor", "t0", "s_max", "f_max", "s_residual", "w_h", "omega_min", "energy_residual", "wall_time",
+              "status", "v0", "beta"]:
+        assert "units" in ds[v].attrs and "long_name" in ds[v].attrs, v
+    assert ds["t0"].attrs["units"] == "s" and ds["v0"].attrs["units"] == "m s-1" and ds["f_max"].attrs["units"] == "N"
+    assert "flag_values" in ds["status"].attrs and "ok" in ds["status"].attrs["flag_meanings"]
+    for a in ["Conventions", "title", "history", "source", "references", "scene_config", "solver_settings",
+              "materials"]:
+        assert a in ds.attrs, a
+    stored = json.loads(ds.attrs["scene_config"])  # the effective scene: config + schema defaults
+    for key in ("materials", "grid", "tie", "figures"):
+        assert stored[key] == TINY["scenes"]["tiny"][key]
+    assert stored["histories"]["ghost"] == 0.5 and stored["error_estimate"] is False
+    assert ds["cor"].dtype == np.float64
+    # a few points against the API (alpha tied to beta / 4)
+    r = vcor.simulate(vcor.materials.SLS(15e6, 600.0, 2400.0), 2.0)
+    assert ds["cor"].sel(material="sls", v0=2.0, beta=2400.0).item() == r.cor
+    r = vcor.simulate("sls", 10.0)
+    assert ds["t0"].sel(material="sls", v0=10.0, beta=1200.0).item() == r.t0
+    assert np.all(ds["status"].values == 0)
+    two = xr.open_dataset(tiny_run / "results/two/sweep.nc")
+    assert list(two["material"].values) == ["butyl-fc", "butyl-prony3"]
+    assert two["cor"].sel(material="butyl-prony3", v0=5.0).item() == vcor.simulate("butyl-prony3", 5.0).cor
+
+
+def test_failed_point_kept_with_status(tiny_run):
+    ds = xr.open_dataset(tiny_run / "results/thin/sweep.nc")
+    st = ds["status"].sel(material="sls", v0=10.0)
+    assert st.sel(h=0.02).item() == 0
+    assert st.sel(h=0.002).item() == vcor.solvers.STATUS_CODES["no-separation"]
+    assert np.isnan(ds["cor"].sel(material="sls", v0=10.0, h=0.002).item())
+    assert "T_max" in str(ds["message"].sel(material="sls", v0=10.0, h=0.002).values)
+    assert ds["cor"].sel(material="sls", v0=10.0, h=0.02).item() > 0
+
+
+def test_histories_dataset(tiny_run):
+    ds = xr.open_dataset(tiny_run / "results/tiny/histories.nc")
+    assert list(ds["run"].values) == ["sls/direct", "sls/ive"]
+    assert ds["t"].attrs["units"] == "s" and ds["F"].attrs["units"] == "N"
+    assert ds["ghost"].sum() > 0
+    assert abs(ds["cor"].values[0] - ds["cor"].values[1]) < 1e-6
+
+
+def test_noop_rerun_and_extension_recomputes_only_new_points(tiny_run, tmp_path):
+    out = smk(tiny_run, "-n", "-j1")
+    assert "Nothing to be done" in out.stdout + out.stderr
+    cfg = json.loads(json.dumps(TINY))
+    cfg["scenes"]["tiny"]["grid"]["v0"] = [2.0, 10.0, 20.0]
+    (tiny_run / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    try:
+        out = smk(tiny_run, "-n", "-j1", "--quiet", "rules")
+        text = out.stdout + out.stderr
+        # 2 new points (2 beta at v0 = 20) -> 1 new shard; old shards untouched
+        plan = sweep.plan_shards(cfg["scenes"]["tiny"], tiny_run / "results/tiny/shards", 3)
+        new = [k for k in plan if not (tiny_run / f"results/tiny/shards/{k}.nc").exists()]
+        assert len(new) == 1 and sum(len(plan[k]) for k in new) == 2
+        assert all(p["v0"] == 20.0 for k in new for p in plan[k])
+        lines = {ln.split()[0]: int(ln.split()[1]) for ln in text.splitlines() if len(ln.split()) == 2
+                 and ln.split()[1].isdigit()}
+        assert lines.get("sweep_shard") == 1, text
+        assert lines.get("aggregate") == 1, text
+        assert "histories" not in lines  # unchanged
+    finally:
+        (tiny_run / "config.yaml").write_text(yaml.safe_dump(TINY, sort_keys=False))
+
+
+def test_report(tiny_run):
+    smk(tiny_run, "--report", "report.html")
+    html = (tiny_run / "report.html").read_text(errors="replace")
+    assert "fig4.png" in html
+
+
+def test_default_config_dry_run_and_scene_selection():
+    out = smk(ROOT, "-n", "-j1", "--quiet", "rules")
+    text = out.stdout + out.stderr
+    assert "figure" in text and "sweep_shard" in text
+    out = smk(ROOT, "-n", "-j1", "results/hysteresis/MANIFEST.txt", "--forceall", "--quiet", "rules")
+    text = out.stdout + out.stderr
+    assert "histories" in text and "sweep_shard" not in text and "moduli" not in text
+
+
+@pytest.mark.parametrize(
+    "mutate, words",
+    [
+        (lambda c: c["scenes"]["tiny"]["grid"].pop("v0"), ["v0"]),
+        (lambda c: c["scenes"]["tiny"]["grid"].update(v0=[-1.0, 2.0]), ["scenes.tiny.grid.v0"]),
+        (lambda c: c["scenes"]["tiny"].update(materials=["unobtainium"]), ["scenes.tiny.materials", "unobtainium"]),
+        (lambda c: c["scenes"]["tiny"]["figures"].update(fig10={}), ["fig10"]),
+        (lambda c: c["scenes"]["tiny"].update(solver={"method": "euler"}), ["euler"]),
+        (lambda c: c["scenes"]["tiny"]["geometry"].update(nu=0.7) if "geometry" in c["scenes"]["tiny"]
+         else c["scenes"]["tiny"].update(geometry={"nu": 0.7}), ["nu"]),
+        (lambda c: c["scenes"]["thin"]["grid"].update(h=[0.02, -0.1]), ["scenes.thin", "h must be in"]),
+        (lambda c: c["scenes"]["tiny"].update(materials=["butyl-fc"]), ["scenes.tiny", "no scalar parameter 'beta'"]),
+        (lambda c: c.update(shard_size=0), ["shard_size"]),
+        (lambda c: c["scenes"]["thin"].update(figures={"fig2": {}}), ["scenes.thin", "histories"]),
+    ],
+)
+def test_bad_config_fails_before_any_job(tmp_path, mutate, words):
+    cfg = json.loads(json.dumps(TINY))
+    mutate(cfg)
+    path = make_project(tmp_path, cfg)
+    out = smk(path, "-n", "-j1", check=False)
+    text = out.stdout + out.stderr
+    assert out.returncode != 0
+    for w in words:
+        assert w in text, (w, text[-2000:])
+    assert not (path / "results").exists()
+
+
+def test_lint_and_format():
+    out = smk(ROOT, "--lint", check=False)
+    assert out.returncode == 0, out.stdout[-3000:]
+    fmt = subprocess.run([sys.executable, "-m", "snakefmt", "--check", "Snakefile", "workflow/"], cwd=ROOT,
+                         capture_output=True, text=True)
+    assert fmt.returncode == 0, fmt.stderr
