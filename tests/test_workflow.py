@@ -151,11 +151,14 @@ def test_report(tiny_run):
     assert "fig4.png" in html
 
 
-def test_default_config_dry_run_and_scene_selection():
-    out = smk(ROOT, "-n", "-j1", "--quiet", "rules")
+def test_default_config_dry_run_and_scene_selection(tmp_path):
+    path = make_project(tmp_path, yaml.safe_load((ROOT / "config.yaml").read_text()))
+    out = smk(path, "-n", "-j1", "--quiet", "rules")
     text = out.stdout + out.stderr
     assert "figure" in text and "sweep_shard" in text
-    out = smk(ROOT, "-n", "-j1", "results/hysteresis/MANIFEST.txt", "--forceall", "--quiet", "rules")
+    figures = sum(len(s.get("figures", {})) for s in yaml.safe_load((ROOT / "config.yaml").read_text())["scenes"].values())
+    assert figures == 9
+    out = smk(path, "-n", "-j1", "results/hysteresis/MANIFEST.txt", "--quiet", "rules")
     text = out.stdout + out.stderr
     assert "histories" in text and "sweep_shard" not in text and "moduli" not in text
 
