@@ -27,6 +27,23 @@ def _mark_failed(ax, x, ok, label="not ok"):
     return int(bad.sum())
 
 
+def _v0_line(sweep, material):
+    """The sweep along v0 for one material (first value of any other axis)."""
+    d = sweep.sel(material=material)
+    for extra in [k for k in d.dims if k != "v0"]:
+        d = d.isel({extra: 0})
+    return d
+
+
+def _cor_line(ax, d, label):
+    """COR against v0 for the ok points; the others as red crosses. Returns how many were not ok."""
+    ok = d["status"].values == 0
+    ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, label=label)
+    ax.set_xlabel("v0 [m/s]")
+    ax.set_ylabel("COR [-]")
+    return _mark_failed(ax, d["v0"].values, ok)
+
+
 def _point(sweep, material, v0, **sel):
     """Scalars at the grid point nearest to v0 (and the given other coordinates)."""
     ds = sweep.sel(material=material)
@@ -157,12 +174,7 @@ def fig4(sweep, opts):
     ds = sweep.sel(material=mat)
     nbad = 0
     for b in ds["beta"].values:
-        d = ds.sel(beta=b)
-        ok = d["status"].values == 0
-        ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"β = {b:g} 1/s")
-        nbad += _mark_failed(ax, d["v0"].values, ok)
-    ax.set_xlabel("v0 [m/s]")
-    ax.set_ylabel("COR [-]")
+        nbad += _cor_line(ax, ds.sel(beta=b), f"β = {b:g} 1/s")
     ax.set_title("Fig. 4: COR vs impact speed, SLS, α/β fixed" + (f" ({nbad} points not ok)" if nbad else ""))
     ax.legend(fontsize=7)
     return fig
@@ -192,14 +204,7 @@ def fig8(sweep, opts):
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
     nbad = 0
     for m in sweep["material"].values:
-        d = sweep.sel(material=m)
-        for extra in [k for k in d.dims if k != "v0"]:
-            d = d.isel({extra: 0})
-        ok = d["status"].values == 0
-        ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, label=str(m))
-        nbad += _mark_failed(ax, d["v0"].values, ok)
-    ax.set_xlabel("v0 [m/s]")
-    ax.set_ylabel("COR [-]")
+        nbad += _cor_line(ax, _v0_line(sweep, m), str(m))
     ax.set_title("Fig. 8: COR vs impact speed, Butyl B252 models" + (f" ({nbad} not ok)" if nbad else ""))
     ax.legend(fontsize=8)
     return fig
@@ -208,9 +213,7 @@ def fig8(sweep, opts):
 def fig9(sweep, opts):
     """t0, omega_min, s_max, F_max and W_h vs v0 for one material (default: the fractional law)."""
     mat = opts.get("material", "butyl-fc")
-    d = sweep.sel(material=mat)
-    for extra in [k for k in d.dims if k != "v0"]:
-        d = d.isel({extra: 0})
+    d = _v0_line(sweep, mat)
     ok = d["status"].values == 0
     fig, axes = plt.subplots(1, 5, figsize=(16, 3.5), layout="constrained")
     specs = [("t0", 1e3, "t0 [ms]"), ("omega_min", 1.0, "ω_min [rad/s]"), ("s_max", 1e3, "s_max [mm]"),

@@ -107,6 +107,24 @@ def _separated(rule, loaded, F, s):
 
 
 @numba.njit(**_JIT)
+def _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
+    """Book-keeping after step n: divergence, loading, separation. True when the march must stop."""
+    state[2] = n
+    if not (ok and math.isfinite(sn) and math.isfinite(Fn) and math.isfinite(gn)):
+        state[3] = STATUS_DIVERGED
+        return True
+    if state[1] < 0:
+        if Fn > 0.0 and sn > 0.0:
+            state[0] = 1
+        if _separated(rule, state[0] == 1, Fn, sn):
+            state[1] = n
+    if state[1] >= 0 and n >= state[1] + n_extra:
+        state[3] = STATUS_SEPARATED
+        return True
+    return False
+
+
+@numba.njit(**_JIT)
 def march_direct(n_start, n_end, s, g, F, J, u, du, w, v, eta, alpha, alphad, m, v0, dt,
                  volterra, c2, Q2, S2, rule, n_extra, state):
     """March the direct (full-history) scheme from step n_start to at most n_end.
@@ -152,17 +170,7 @@ def march_direct(n_start, n_end, s, g, F, J, u, du, w, v, eta, alpha, alphad, m,
             for j in range(n - 1):
                 S2[n - 1 + j] += 2.0 * d * du[j]
             S2[2 * n - 2] += d * d
-        state[2] = n
-        if not (ok and math.isfinite(sn) and math.isfinite(Fn) and math.isfinite(gn)):
-            state[3] = STATUS_DIVERGED
-            return
-        if state[1] < 0:
-            if Fn > 0.0 and sn > 0.0:
-                state[0] = 1
-            if _separated(rule, state[0] == 1, Fn, sn):
-                state[1] = n
-        if state[1] >= 0 and n >= state[1] + n_extra:
-            state[3] = STATUS_SEPARATED
+        if _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
             return
     state[3] = STATUS_END
 
@@ -197,17 +205,7 @@ def march_prony(n_start, n_end, s, g, F, J, u, Q, G_inf, G, decay, weight, eta, 
         F[n] = Fn
         u[n] = un
         J[n] = Jn
-        state[2] = n
-        if not (ok and math.isfinite(sn) and math.isfinite(Fn) and math.isfinite(gn)):
-            state[3] = STATUS_DIVERGED
-            return
-        if state[1] < 0:
-            if Fn > 0.0 and sn > 0.0:
-                state[0] = 1
-            if _separated(rule, state[0] == 1, Fn, sn):
-                state[1] = n
-        if state[1] >= 0 and n >= state[1] + n_extra:
-            state[3] = STATUS_SEPARATED
+        if _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
             return
     state[3] = STATUS_END
 
