@@ -119,3 +119,16 @@ def test_round_trip_dict(tmp_path):
     p = tmp_path / "m.json"
     p.write_text(M.get("butyl-prony3").describe())
     assert M.from_file(p) == M.get("butyl-prony3")
+
+
+def test_cerf_rate_accurate_for_large_argument():
+    """x erfcx(x) - 1/sqrt(pi) cancels for large x (the paper's Appendix problem, one derivative
+    further): the asymptotic branch keeps dE/dt accurate, which the plate mobility alpha'(t) needs."""
+    c = M.Cerf(2.28e6, 6.45e16, 7.29e10)  # a CERF set indistinguishable from the fractional law
+    for t in (1e-7, 1e-5, 1e-3):
+        ref = mp.diff(lambda s: mp.mpf(c.E1) * mp.exp(mp.mpf(c.b1) ** 2 * s) * mp.erfc(mp.mpf(c.b1) * mp.sqrt(s)),
+                      mp.mpf(t))
+        assert float(c.relaxation_rate(t)) == pytest.approx(float(ref), rel=1e-12)
+    # and it is the fractional law's rate
+    fc = M.FractionalPower(2.28e6, 6.45e16 / 7.29e10)
+    assert float(c.relaxation_rate(1e-4)) == pytest.approx(float(fc.relaxation_rate(1e-4)), rel=1e-9)

@@ -20,6 +20,7 @@ SNAKEMAKE = [sys.executable, "-m", "snakemake"]
 TINY = {
     "shard_size": 3,
     "material_dir": "results/materials",
+    "fits": {"tiny-prony": {"model": "prony", "n_terms": 3}, "unused-cerf": {"model": "cerf"}},
     "scenes": {
         "tiny": {
             "materials": ["sls"],
@@ -29,7 +30,7 @@ TINY = {
             "figures": {"fig2": {}, "fig4": {"material": "sls"}},
         },
         "two": {
-            "materials": ["butyl-fc", "butyl-prony3"],
+            "materials": ["butyl-fc", "butyl-prony3", "tiny-prony"],
             "grid": {"v0": [5.0, 10.0]},
             "figures": {"fig8": {}},
         },
@@ -70,10 +71,27 @@ def test_outputs_exist(tiny_run):
     for f in ["tiny/sweep.nc", "tiny/histories.nc", "tiny/figures/fig2.png", "tiny/figures/fig2.pdf",
               "tiny/figures/fig4.png", "tiny/MANIFEST.txt", "thin/sweep.nc", "thin/figures/fig8.png"]:
         assert (tiny_run / "results" / f).stat().st_size > 0, f
-    # nothing the scenes do not need: no moduli (fig1/fig5 not requested), no histories for "thin"
+    # nothing the scenes do not need: no moduli (fig1/fig5 not requested), no histories for "thin",
+    # only the fit a scene uses
     assert not (tiny_run / "results/tiny/moduli.nc").exists()
     assert not (tiny_run / "results/thin/histories.nc").exists()
-    assert not (tiny_run / "results/materials").exists()
+    assert (tiny_run / "results/materials/tiny-prony.nc").exists()
+    assert not (tiny_run / "results/materials/unused-cerf.nc").exists()
+    table = (tiny_run / "results/two/fit_metrics.txt").read_text()
+    assert "tiny-prony" in table and "butyl-prony3" in table
+
+
+def test_fit_rule_deterministic_and_used(tiny_run):
+    import hashlib
+
+    path = tiny_run / "results/materials/tiny-prony.nc"
+    first = hashlib.sha256(path.read_bytes()).hexdigest()
+    smk(tiny_run, "-j1", "--forcerun", "fit_material", "--until", "fit_material")
+    assert hashlib.sha256(path.read_bytes()).hexdigest() == first
+    mat = vcor.materials.from_file(path)
+    assert len(mat.E) == 3
+    ds = xr.open_dataset(tiny_run / "results/two/sweep.nc")
+    assert ds["cor"].sel(material="tiny-prony", v0=10.0).item() == vcor.simulate(mat, 10.0).cor
 
 
 def test_sweep_dataset_layout_and_values(tiny_run):
@@ -100,7 +118,7 @@ def test_sweep_dataset_layout_and_values(tiny_run):
     assert ds["t0"].sel(material="sls", v0=10.0, beta=1200.0).item() == r.t0
     assert np.all(ds["status"].values == 0)
     two = xr.open_dataset(tiny_run / "results/two/sweep.nc")
-    assert list(two["material"].values) == ["butyl-fc", "butyl-prony3"]
+    assert list(two["material"].values) == ["butyl-fc", "butyl-prony3", "tiny-prony"]
     assert two["cor"].sel(material="butyl-prony3", v0=5.0).item() == vcor.simulate("butyl-prony3", 5.0).cor
 
 
@@ -156,8 +174,9 @@ def test_default_config_dry_run_and_scene_selection(tmp_path):
     out = smk(path, "-n", "-j1", "--quiet", "rules")
     text = out.stdout + out.stderr
     assert "figure" in text and "sweep_shard" in text
-    figures = sum(len(s.get("figures", {})) for s in yaml.safe_load((ROOT / "config.yaml").read_text())["scenes"].values())
-    assert figures == 9
+    scenes = yaml.safe_load((ROOT / "config.yaml").read_text())["scenes"].values()
+    figures = [f for s in scenes for f in s.get("figures", {})]
+    assert {f"fig{i}" for i in range(1, 10)} <= set(figures)
     out = smk(path, "-n", "-j1", "results/hysteresis/MANIFEST.txt", "--quiet", "rules")
     text = out.stdout + out.stderr
     assert "histories" in text and "sweep_shard" not in text and "moduli" not in text

@@ -38,9 +38,11 @@ def provenance() -> str:
     return f"vcor {__version__} (git {_git_commit()})"
 
 
-def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None):
+def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None,
+                  timestamp: bool = True):
     """Write ``ds`` as NetCDF4 (float64, zlib level 1, no lossy packing) with global attributes
-    Conventions, title, history, source, references and ``extra_attrs`` (dicts become JSON)."""
+    Conventions, title, history, source, references and ``extra_attrs`` (dicts become JSON).
+    ``timestamp=False`` leaves the time out of ``history`` so that the same inputs give the same bytes."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     ds = ds.copy()
@@ -49,7 +51,7 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
     attrs = {
         "Conventions": "CF-1.10",
         "title": title,
-        "history": f"{now} {cmd}",
+        "history": f"{now} {cmd}" if timestamp else cmd,
         "source": provenance(),
         "references": REFERENCES,
     }

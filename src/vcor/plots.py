@@ -227,6 +227,50 @@ def fig9(sweep, opts):
     return fig
 
 
+def prony_terms(sweep, opts):
+    """COR at v0 (default 10 m/s) against the number of Prony terms N, beside the reference law;
+    right: COR(v0) for the reference, a few N, the paper's 3-term set and the automatic fit."""
+    import re
+
+    ref = opts.get("reference", "butyl-fc")
+    v0 = float(opts.get("v0", 10.0))
+    pat = re.compile("^" + re.escape(opts.get("pattern", "butyl-prony-n{n}")).replace(r"\{n\}", r"(\d+)") + "$")
+    mats = [str(m) for m in sweep["material"].values]
+    ns = sorted((int(pat.match(m).group(1)), m) for m in mats if pat.match(m))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")
+    c_ref = float(_point(sweep, ref, v0)["cor"])
+    cors = [float(_point(sweep, m, v0)["cor"]) for _, m in ns]
+    ax.plot([n for n, _ in ns], cors, "o-", label="Prony fit with N terms")
+    ax.axhline(c_ref, color="k", label=f"{ref} (solved directly): {c_ref:.4f}")
+    for other, style in (("butyl-prony3", "s"), ("butyl-prony-fit", "D")):
+        if other in mats:
+            n_other = len(json_materials(sweep)[other]["E"])
+            ax.plot([n_other], [float(_point(sweep, other, v0)["cor"])], style, ms=8, label=f"{other} (N = {n_other})")
+    for other, style in (("butyl-cerf", "--"), ("butyl-cerf-fit", ":")):
+        if other in mats:
+            ax.axhline(float(_point(sweep, other, v0)["cor"]), ls=style, color="grey", label=other)
+    ax.set_xlabel("number of Prony terms N")
+    ax.set_ylabel(f"COR at v0 = {v0:g} m/s [-]")
+    ax.legend(fontsize=7, loc="lower right")
+    ax_in = ax.inset_axes([0.33, 0.6, 0.3, 0.32])
+    ax_in.semilogy([n for n, _ in ns], np.abs(np.array(cors) / c_ref - 1), "o-")
+    ax_in.set_title("|COR/COR_ref - 1|", fontsize=7)
+    ax_in.tick_params(labelsize=6)
+    show = [ref] + [m for m in ("butyl-prony3", "butyl-prony-fit") if m in mats] + [m for n, m in ns if n in (3, 12)]
+    for m in show:
+        _cor_line(ax2, _v0_line(sweep, m), m)
+    ax2.legend(fontsize=7)
+    fig.suptitle("Prony class or 3-term fit? COR against the number of Prony terms")
+    return fig
+
+
+def json_materials(ds) -> dict:
+    """The material parameter dicts stored in a sweep dataset's attributes."""
+    import json
+
+    return json.loads(ds.attrs["materials"])
+
+
 FIGURES = {
     "fig1": (fig1, ("sweep", "moduli")),
     "fig2": (fig2, ("histories",)),
@@ -237,6 +281,7 @@ FIGURES = {
     "fig7": (fig7, ("histories",)),
     "fig8": (fig8, ("sweep",)),
     "fig9": (fig9, ("sweep",)),
+    "prony_terms": (prony_terms, ("sweep",)),
 }
 
 

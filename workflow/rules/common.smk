@@ -4,6 +4,7 @@ import re
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+import vcor.fit as vfit
 import vcor.plots as vplots
 import vcor.sweep as vsweep
 
@@ -11,7 +12,11 @@ validate(config, schema="../schemas/config.schema.yaml")
 
 SCENES = config["scenes"]
 MATERIAL_DIR = config["material_dir"]
-FITTED = set(config.get("fits", {}))
+try:
+    FITS = vfit.expand_fits(config.get("fits", {}))
+except ValueError as exc:
+    raise WorkflowError(f"config.yaml: {exc}")
+FITTED = set(FITS)
 
 
 def _check_scenes():
@@ -52,8 +57,9 @@ except ValueError as exc:
 
 wildcard_constraints:
     scene="|".join(re.escape(s) for s in SCENES),
+    material="|".join(re.escape(m) for m in sorted(FITTED)) or "no-fitted-material",
     shard="[0-9a-f]{10}-[0-9a-f]{12}",
-    fig="fig[1-9]",
+    fig="fig[1-9]|prony_terms",
 
 
 _PLANS = {}
@@ -97,6 +103,18 @@ def get_fitted_inputs(wildcards):
     return [f"{MATERIAL_DIR}/{m}.nc" for m in sorted(used & FITTED)]
 
 
+def get_fit_spec(wildcards):
+    return FITS[wildcards.material]
+
+
+def get_scene_fitted_names(wildcards):
+    return [m for m in SCENES[wildcards.scene]["materials"] if m in FITTED]
+
+
+def get_scene_fit_files(wildcards):
+    return [f"{MATERIAL_DIR}/{m}.nc" for m in get_scene_fitted_names(wildcards)]
+
+
 def get_moduli_materials(wildcards):
     scene = SCENES[wildcards.scene]
     return scene.get("moduli", scene["materials"])
@@ -130,6 +148,8 @@ def scene_targets(scene):
             f"results/{scene}/figures/{fig}.png",
             f"results/{scene}/figures/{fig}.pdf",
         ]
+    if set(cfg["materials"]) & FITTED:
+        out.append(f"results/{scene}/fit_metrics.txt")
     return out
 
 

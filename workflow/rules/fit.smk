@@ -1,0 +1,33 @@
+# Material fits: built only when a scene names a fitted material.
+
+
+rule fit_material:
+    output:
+        nc=f"{MATERIAL_DIR}/{{material}}.nc",
+        table=f"{MATERIAL_DIR}/{{material}}.txt",
+    log:
+        f"{MATERIAL_DIR}/logs/{{material}}.log",
+    benchmark:
+        f"{MATERIAL_DIR}/benchmarks/{{material}}.tsv"
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        spec=get_fit_spec,
+    script:
+        "../scripts/fit_material.py"
+
+
+rule fit_metrics:
+    input:
+        get_scene_fit_files,
+    output:
+        "results/{scene}/fit_metrics.txt",
+    log:
+        "results/{scene}/logs/fit_metrics.log",
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        names=get_scene_fitted_names,
+        material_dir=MATERIAL_DIR,
+    script:
+        "../scripts/fit_metrics.py"

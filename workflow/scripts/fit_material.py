@@ -1,0 +1,18 @@
+"""Fit one material to its data and write <name>.nc and a text table (thin; deterministic bytes)."""
+
+import sys
+
+sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
+
+from vcor import fit, io  # noqa: E402
+
+spec = snakemake.params.spec  # noqa: F821
+data = fit.data_from_spec(spec)
+result = fit.fit(spec, data)
+print(f"fit {snakemake.wildcards.material}: {result.fit_time:.3f} s, {result.settings}", file=sys.stderr)  # noqa: F821
+ds = fit.result_dataset(result, data, spec)
+io.write_dataset(ds, snakemake.output.nc, title=f"vcor fitted material {snakemake.wildcards.material}",  # noqa: F821
+                 command="vcor.fit (deterministic: no time stamp)", timestamp=False)
+with open(snakemake.output.table, "w") as fh:  # noqa: F821
+    fh.write(f"# {snakemake.wildcards.material}: {result.material.to_dict()}\n")  # noqa: F821
+    fh.write(fit.metrics_table([(snakemake.wildcards.material, result.material, result.metrics)]))  # noqa: F821
