@@ -34,6 +34,10 @@ TINY = {
             "grid": {"v0": [5.0, 10.0]},
             "figures": {"fig8": {}},
         },
+        "balls": {
+            "spheres": {"b": [0.01, 0.1, 1.0], "tau_ratio": [0.1]},
+            "figures": {"spheres_eps": {}, "spheres_hereditary": {}},
+        },
         "thin": {
             # h = 2 mm: the plate takes all the energy, the force never returns to zero
             "materials": ["sls"],
@@ -130,6 +134,17 @@ def test_failed_point_kept_with_status(tiny_run):
     assert np.isnan(ds["cor"].sel(material="sls", v0=10.0, h=0.002).item())
     assert "T_max" in str(ds["message"].sel(material="sls", v0=10.0, h=0.002).values)
     assert ds["cor"].sel(material="sls", v0=10.0, h=0.02).item() > 0
+
+
+def test_spheres_dataset(tiny_run):
+    from vcor import spheres as S
+
+    ds = xr.open_dataset(tiny_run / "results/balls/spheres.nc")
+    assert ds["eps_numeric"].dims == ("rule", "b") and list(ds["rule"].values) == ["overlap", "force"]
+    assert ds["eps_numeric"].sel(rule="force", b=0.1).item() == pytest.approx(S.cor_numeric(0.1, "force"), abs=1e-12)
+    assert ds["eps_sls"].dims == ("tau_ratio", "rule", "b") and np.all(np.isfinite(ds["eps_sls"]))
+    assert (tiny_run / "results/balls/figures/spheres_hereditary.png").stat().st_size > 0
+    assert not (tiny_run / "results/balls/sweep.nc").exists()
 
 
 def test_histories_dataset(tiny_run):

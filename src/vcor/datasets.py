@@ -112,3 +112,55 @@ def histories_dataset(runs, v0, *, solver=None, geometry=None, ghost=0.5, n_samp
     ds.attrs["v0"] = float(v0)
     ds.attrs["v0_units"] = "m s-1"
     return ds
+
+
+def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), steps_per_contact=2000):
+    """Viscoelastic spheres: eps(b) numerically (Kelvin-Voigt, both rules; SLS variants with
+    relaxation time tau = tau_ratio * t_c), the series at orders 1..4, both Pades and the root of
+    Ramirez Eq. 27. A failed point is stored as NaN with its message in ``message`` (never raised)."""
+    import xarray as xr
+
+    from . import spheres as S
+
+    b = np.array(sorted(float(x) for x in b_values))
+    rules = list(rules)
+    num = np.full((len(rules), b.size), np.nan)
+    msg = np.full((len(rules), b.size), "", dtype=object)
+    her = np.full((len(tau_ratios), len(rules), b.size), np.nan)
+    her_msg = np.full((len(tau_ratios), len(rules), b.size), "", dtype=object)
+    for i, rule in enumerate(rules):
+        for j, x in enumerate(b):
+            try:
+                num[i, j] = S.cor_numeric(x, rule, steps_per_contact=steps_per_contact)
+            except (RuntimeError, ValueError) as exc:
+                msg[i, j] = str(exc)
+            for k, tr in enumerate(tau_ratios):
+                try:
+                    her[k, i, j] = S.cor_numeric_sls(x, tr, rule, steps_per_contact=steps_per_contact)
+                except (RuntimeError, ValueError) as exc:
+                    her_msg[k, i, j] = str(exc)
+    eps = ("1", "coefficient of restitution")
+    ds = xr.Dataset(
+        {
+            "eps_numeric": (("rule", "b"), num, {"units": eps[0], "long_name": "eps, direct solver, Kelvin-Voigt"}),
+            "message": (("rule", "b"), msg.astype(str), {"long_name": "solver message (empty when ok)"}),
+            "eps_series": (("order", "b"), np.array([S.cor_series(b, k) for k in (1, 2, 3, 4)]),
+                           {"units": "1", "long_name": "truncated series 1 + sum C_k b^k (Ramirez Eq. 65)"}),
+            "eps_pade": ("b", S.cor_pade(b), {"units": "1", "long_name": "Ramirez [1/4] Pade (Eq. 35)"}),
+            "eps_pade_force": ("b", S.cor_pade_force(b),
+                               {"units": "1", "long_name": "Mueller & Poeschel 2011 Pade (force rule)"}),
+            "eps_root": ("b", S.cor_root(b), {"units": "1", "long_name": "root of Ramirez Eq. 27"}),
+            "eps_sls": (("tau_ratio", "rule", "b"), her,
+                        {"units": "1", "long_name": "eps, SLS with the Kelvin-Voigt viscosity, tau = tau_ratio t_c"}),
+            "message_sls": (("tau_ratio", "rule", "b"), her_msg.astype(str), {"long_name": "solver message"}),
+        },
+        coords={
+            "b": ("b", b, {"units": "1", "long_name": "b = 3/2 A (rho/m_eff)^(2/5) g^(1/5)"}),
+            "rule": ("rule", np.array(rules, dtype=str), {"long_name": "separation rule"}),
+            "order": ("order", np.arange(1, 5), {"units": "1", "long_name": "series order"}),
+            "tau_ratio": ("tau_ratio", np.array(tau_ratios, dtype=float),
+                          {"units": "1", "long_name": "relaxation time / elastic contact time"}),
+        },
+    )
+    ds.attrs.update(C=list(S.C), pade_d=list(S.pade_coefficients()), C1_closed_form=S.C1_CLOSED_FORM)
+    return ds

@@ -497,6 +497,15 @@ class KelvinVoigt(Material):
     def viscosity(self) -> float:  # type: ignore[override]
         return self.E * self.tau
 
+    @property
+    def is_prony(self) -> bool:
+        """A Prony series with no relaxing terms plus the Dirac term: the internal-variable solvers
+        take it (the viscous force is treated with the local, implicit term)."""
+        return True
+
+    def prony_terms(self):
+        return float(self.E), np.zeros(0), np.zeros(0)
+
     def relaxation_modulus(self, t):
         """Regular part of E(t) (the Dirac term is ``viscosity``)."""
         return np.full_like(np.asarray(t, dtype=float), self.E)

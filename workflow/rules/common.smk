@@ -34,6 +34,10 @@ def _check_scenes():
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
             )
+        if "spheres" in need and "spheres" not in scene:
+            raise ValueError(
+                f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.spheres"
+            )
         if "histories" in need and "histories" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.histories"
@@ -59,7 +63,7 @@ wildcard_constraints:
     scene="|".join(re.escape(s) for s in SCENES),
     material="|".join(re.escape(m) for m in sorted(FITTED)) or "no-fitted-material",
     shard="[0-9a-f]{10}-[0-9a-f]{12}",
-    fig="fig[1-9]|prony_terms",
+    fig="|".join(vplots.FIGURES),
 
 
 _PLANS = {}
@@ -79,6 +83,10 @@ def get_scene(wildcards):
 
 def get_histories_spec(wildcards):
     return SCENES[wildcards.scene]["histories"]
+
+
+def get_spheres_spec(wildcards):
+    return SCENES[wildcards.scene]["spheres"]
 
 
 def get_settings(wildcards):
@@ -108,7 +116,7 @@ def get_fit_spec(wildcards):
 
 
 def get_scene_fitted_names(wildcards):
-    return [m for m in SCENES[wildcards.scene]["materials"] if m in FITTED]
+    return [m for m in SCENES[wildcards.scene].get("materials", []) if m in FITTED]
 
 
 def get_scene_fit_files(wildcards):
@@ -140,7 +148,7 @@ def scene_targets(scene):
     if "grid" in cfg:
         out.append(f"results/{scene}/sweep.nc")
     need = vplots.needs(figures)
-    for n in ("moduli", "histories"):
+    for n in ("moduli", "histories", "spheres"):
         if n in need:
             out.append(f"results/{scene}/{n}.nc")
     for fig in figures:
@@ -148,7 +156,7 @@ def scene_targets(scene):
             f"results/{scene}/figures/{fig}.png",
             f"results/{scene}/figures/{fig}.pdf",
         ]
-    if set(cfg["materials"]) & FITTED:
+    if set(cfg.get("materials", [])) & FITTED:
         out.append(f"results/{scene}/fit_metrics.txt")
     return out
 

@@ -1,0 +1,16 @@
+# Viscoelastic spheres (Ramirez et al. 1999): eps(b), series, Pade approximants, hereditary variant.
+
+
+rule spheres:
+    output:
+        "results/{scene}/spheres.nc",
+    log:
+        "results/{scene}/logs/spheres.log",
+    benchmark:
+        "results/{scene}/benchmarks/spheres.tsv"
+    conda:
+        "../envs/vcor.yaml"
+    params:
+        spec=get_spheres_spec,
+    script:
+        "../scripts/spheres.py"
