@@ -15,6 +15,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/fit.smk"
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/spheres.smk"
+include: "workflow/rules/convergence.smk"
 include: "workflow/rules/figures.smk"
 
 

@@ -34,6 +34,15 @@ def _check_scenes():
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
             )
+        if "convergence" in need and "convergence" not in scene:
+            raise ValueError(
+                f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.convergence"
+            )
+        for mat in scene.get("convergence", {}).get("materials", []):
+            if mat not in vsweep._materials.PRESETS and mat not in FITTED:
+                raise ValueError(
+                    f"config.yaml: scenes.{name}.convergence.materials: unknown material {mat!r}"
+                )
         if "spheres" in need and "spheres" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.spheres"
@@ -62,6 +71,8 @@ except ValueError as exc:
 wildcard_constraints:
     scene="|".join(re.escape(s) for s in SCENES),
     material="|".join(re.escape(m) for m in sorted(FITTED)) or "no-fitted-material",
+    material_case="[A-Za-z0-9_.-]+?",
+    vi="[0-9]+",
     shard="[0-9a-f]{10}-[0-9a-f]{12}",
     fig="|".join(vplots.FIGURES),
 
@@ -89,6 +100,23 @@ def get_spheres_spec(wildcards):
     return SCENES[wildcards.scene]["spheres"]
 
 
+def get_convergence_spec(wildcards):
+    return SCENES[wildcards.scene]["convergence"]
+
+
+def get_convergence_v0(wildcards):
+    return SCENES[wildcards.scene]["convergence"]["v0"][int(wildcards.vi)]
+
+
+def get_convergence_cases(wildcards):
+    spec = SCENES[wildcards.scene]["convergence"]
+    return [
+        f"results/{wildcards.scene}/convergence/{m}-v{i}.nc"
+        for m in spec["materials"]
+        for i in range(len(spec["v0"]))
+    ]
+
+
 def get_settings(wildcards):
     return vsweep.settings_of(SCENES[wildcards.scene])
 
@@ -105,8 +133,11 @@ def get_shard_files(wildcards):
 
 def get_fitted_inputs(wildcards):
     """Fitted material files a scene uses (none for presets: no fit unless needed)."""
-    used = set(SCENES[wildcards.scene]["materials"]) | set(
-        SCENES[wildcards.scene].get("moduli", [])
+    scene = SCENES[wildcards.scene]
+    used = (
+        set(scene.get("materials", []))
+        | set(scene.get("moduli", []))
+        | set(scene.get("convergence", {}).get("materials", []))
     )
     return [f"{MATERIAL_DIR}/{m}.nc" for m in sorted(used & FITTED)]
 
@@ -148,7 +179,7 @@ def scene_targets(scene):
     if "grid" in cfg:
         out.append(f"results/{scene}/sweep.nc")
     need = vplots.needs(figures)
-    for n in ("moduli", "histories", "spheres"):
+    for n in ("moduli", "histories", "spheres", "convergence"):
         if n in need:
             out.append(f"results/{scene}/{n}.nc")
     for fig in figures:
@@ -156,6 +187,8 @@ def scene_targets(scene):
             f"results/{scene}/figures/{fig}.png",
             f"results/{scene}/figures/{fig}.pdf",
         ]
+    if "convergence" in cfg:
+        out.append(f"results/{scene}/orders.txt")
     if set(cfg.get("materials", [])) & FITTED:
         out.append(f"results/{scene}/fit_metrics.txt")
     return out

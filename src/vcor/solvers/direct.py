@@ -14,7 +14,7 @@ import numpy as np
 from . import _kernels as K
 from .common import Histories, Result, separation
 
-__all__ = ["run_direct", "run_ive_fixed", "MAX_T_FACTOR"]
+__all__ = ["run_direct", "run_ive_fixed", "run_paper", "MAX_T_FACTOR"]
 
 #: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
 MAX_T_FACTOR = 64.0
@@ -213,3 +213,23 @@ def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False
     arr, state, n_done = _march(impact, dt, n_steps, max_steps, rule, ghost if history else 0.0, step_fn)
     wall = time.perf_counter() - t_start
     return _finish(impact, dt, arr, state, n_done, rule, history, wall, "ive-numba", max_steps)
+
+
+def run_paper(impact, dt, n_steps, *, max_steps, rule="force"):
+    """The paper-like explicit baseline (see ``_kernels.march_paper``); for benchmarks only."""
+    t_start = time.perf_counter()
+    n = n_steps
+    while True:
+        t = dt * np.arange(n + 1)
+        kc = impact.kernel(np.maximum(t, dt))  # clamped kernel, k(max(sigma, dt))
+        if impact.material.viscosity > 0:
+            raise ValueError("method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'")
+        arr = _Arrays(n)
+        state = K.empty_state()
+        K.march_paper(n, arr.s, arr.g, arr.J, arr.F, kc, impact.alpha(t), impact.alpha_rate(t), impact.m, impact.v0, dt,
+                      0 if rule == "force" else 1, 2, state)
+        if state[3] != K.STATUS_END or n >= max_steps:
+            break
+        n = min(2 * n, max_steps)
+    wall = time.perf_counter() - t_start
+    return _finish(impact, dt, arr, state, int(state[2]), rule, False, wall, "paper-explicit", max_steps)

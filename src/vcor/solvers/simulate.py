@@ -6,12 +6,12 @@ import math
 
 from .. import materials as _materials
 from ..impact import GEOMETRY_DEFAULTS, Geometry, Impact
-from .direct import MAX_T_FACTOR, run_direct, run_ive_fixed
+from .direct import MAX_T_FACTOR, run_direct, run_ive_fixed, run_paper
 from .ive import run_ive_scipy
 
 __all__ = ["simulate", "METHODS", "default_dt", "STEPS_PER_CONTACT", "MAX_STEPS"]
 
-METHODS = ("direct", "ive", "ive-numba")
+METHODS = ("direct", "ive", "ive-numba", "paper")
 #: default resolution: dt = (rigid-target Hertz contact-time estimate) / STEPS_PER_CONTACT
 STEPS_PER_CONTACT = 2000
 #: T_max starts at this many contact-time estimates and doubles while the impact has not separated
@@ -53,7 +53,8 @@ def simulate(material, v0, *, method="direct", dt=None, volterra=False, form="a"
     method : {"direct", "ive", "ive-numba"}
         ``direct``: full-history product integration (any kernel). ``ive``: internal variables
         with scipy ``solve_ivp`` (Prony kernels). ``ive-numba``: internal variables with the
-        fixed-step exponential update (Prony kernels, O(N)).
+        fixed-step exponential update (Prony kernels, O(N)). ``paper``: an explicit baseline in the
+        spirit of the paper's scheme (clamped kernel, Adams-Bashforth), for benchmarks only.
     dt : float, optional
         Time step, s (direct and ive-numba). ``None``: contact-time estimate / steps_per_contact.
     volterra : bool
@@ -101,6 +102,10 @@ def simulate(material, v0, *, method="direct", dt=None, volterra=False, form="a"
     if method == "direct":
         return run_direct(impact, dt, n_steps, max_steps=max_n, rule=rule, volterra=volterra, c2=c2, form=form,
                           history=history, ghost=ghost)
+    if method == "paper":
+        if volterra or history:
+            raise ValueError("method 'paper' (benchmark baseline) has no volterra or history option")
+        return run_paper(impact, dt, n_steps, max_steps=max_n, rule=rule)
     if method == "ive-numba":
         if volterra:
             raise ValueError("volterra=True needs method 'direct' or 'ive'")

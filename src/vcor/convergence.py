@@ -1,0 +1,159 @@
+"""Work-precision study: COR error against solver wall time for every method (issue: accuracy).
+
+For one material and impact speed, each method runs on a ladder (steps per contact time for the
+fixed-step methods, rtol for solve_ivp). The reference is Richardson-extrapolated ``direct`` (form a)
+from the two finest steps, cross-checked against ``ive`` (Radau, rtol 1e-12) for Prony kernels.
+The Volterra-on ladder has its own reference (the same extrapolation with the term on).
+Wall times are medians of ``repeat`` runs of the solver alone (``Result.wall_time``).
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+
+import numpy as np
+
+from .solvers import simulate
+from .sweep import resolve_material
+
+__all__ = ["LADDER", "RTOLS", "methods_for", "study", "observed_order"]
+
+LADDER = (250, 500, 1000, 2000, 4000, 8000)
+RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
+REF_STEPS = (8000, 16000)
+
+
+def methods_for(material) -> list[tuple[str, dict, tuple]]:
+    """(name, simulate keywords, ladder) of the methods that apply to ``material``."""
+    out = [("direct-a", {}, LADDER)]
+    if math.isfinite(material.glassy):
+        out.append(("direct-b", {"form": "b"}, LADDER))
+    out.append(("direct-a+volterra", {"volterra": True}, LADDER[:-1]))
+    if material.is_prony:
+        out += [("ive-Radau", {"method": "ive", "ive_method": "Radau"}, RTOLS),
+                ("ive-BDF", {"method": "ive", "ive_method": "BDF"}, RTOLS),
+                ("ive-numba", {"method": "ive-numba"}, LADDER)]
+    out.append(("paper-explicit", {"method": "paper"}, LADDER))
+    return out
+
+
+def _run(material, v0, kw, level, repeat):
+    if "method" in kw and kw["method"] == "ive":
+        args = {**kw, "rtol": level}
+        repeat = 1  # slow and not noisy at this scale
+    else:
+        args = {**kw, "steps_per_contact": int(level)}
+    runs = [simulate(material, v0, **args) for _ in range(repeat)]
+    r = runs[-1]
+    return r, statistics.median(x.wall_time for x in runs)
+
+
+def _reference(material, v0, **kw):
+    a = simulate(material, v0, steps_per_contact=REF_STEPS[0], **kw)
+    b = simulate(material, v0, steps_per_contact=REF_STEPS[1], **kw)
+    if not (a.ok and b.ok):
+        return math.nan, math.nan
+    return b.cor + (b.cor - a.cor) / 3.0, b.t0 + (b.t0 - a.t0) / 3.0
+
+
+def study(name, v0, *, material_dir="results/materials", repeat=3):
+    """Dataset with dims (solver, level): cor, t0, wall_time, param, err_cor, err_t0, status."""
+    import xarray as xr
+
+    material = resolve_material(name, material_dir=material_dir)
+    simulate(material, v0)  # JIT / cache load outside the timings
+    ref_cor, ref_t0 = _reference(material, v0)
+    ref_v_cor, ref_v_t0 = _reference(material, v0, volterra=True)
+    cross = simulate(material, v0, method="ive", rtol=1e-12).cor if material.is_prony else math.nan
+    methods = methods_for(material)
+    n_level = max(len(m[2]) for m in methods)
+    shape = (len(methods), n_level)
+    cor, t0, wall, param, status = (np.full(shape, np.nan) for _ in range(5))
+    status[:] = -1
+    for i, (mname, kw, ladder) in enumerate(methods):
+        for j, level in enumerate(ladder):
+            r, w = _run(material, v0, kw, level, repeat)
+            cor[i, j], t0[i, j], wall[i, j] = r.cor, r.t0, w
+            param[i, j] = level
+            status[i, j] = 0 if r.ok else 1
+    volt = np.array(["volterra" in m[0] for m in methods])[:, None]
+    rc = np.where(volt, ref_v_cor, ref_cor)
+    rt = np.where(volt, ref_v_t0, ref_t0)
+    ds = xr.Dataset(
+        {
+            "cor": (("solver", "level"), cor, {"units": "1", "long_name": "coefficient of restitution"}),
+            "t0": (("solver", "level"), t0, {"units": "s", "long_name": "separation time"}),
+            "wall_time": (("solver", "level"), wall, {"units": "s", "long_name": "solver wall time (median)"}),
+            "param": (("solver", "level"), param,
+                      {"units": "1", "long_name": "steps per contact time (fixed step) or rtol (ive)"}),
+            "err_cor": (("solver", "level"), np.abs(cor - rc), {"units": "1", "long_name": "|COR - reference|"}),
+            "err_t0": (("solver", "level"), np.abs(t0 - rt), {"units": "s", "long_name": "|t0 - reference|"}),
+            "status": (("solver", "level"), status.astype(np.int8),
+                       {"units": "1", "long_name": "0 ok, 1 not ok, -1 not run",
+                        "flag_values": np.array([-1, 0, 1], dtype=np.int8), "flag_meanings": "not_run ok not_ok"}),
+            "cor_ref": ((), ref_cor, {"units": "1", "long_name": "reference COR (Richardson, direct-a)"}),
+            "cor_ref_volterra": ((), ref_v_cor, {"units": "1", "long_name": "reference COR with Volterra"}),
+            "cor_ive_1e12": ((), cross, {"units": "1", "long_name": "ive Radau rtol 1e-12 (Prony only)"}),
+        },
+        coords={
+            "solver": ("solver", np.array([m[0] for m in methods], dtype=str), {"long_name": "solver and options"}),
+            "level": ("level", np.arange(n_level), {"units": "1", "long_name": "ladder index"}),
+        },
+    )
+    return ds
+
+
+def observed_order(ds, solver):
+    """Slope of log err_cor against log(1/steps) (fixed-step methods), over the finite points."""
+    d = ds.sel(solver=solver)
+    p, e = d["param"].values, d["err_cor"].values
+    ok = np.isfinite(p) & np.isfinite(e) & (e > 0)
+    if ok.sum() < 3:
+        return math.nan
+    return float(np.polyfit(np.log(1.0 / p[ok]), np.log(e[ok]), 1)[0])
+
+
+def combine(cases, materials, v0s):
+    """Stack per-case datasets into dims (material, v0, solver, level); solvers missing for a
+    material (e.g. ive for the fractional law) are NaN with status -1 (not run)."""
+    import xarray as xr
+
+    solvers = []
+    for ds in cases.values():
+        for s in ds["solver"].values:
+            if str(s) not in solvers:
+                solvers.append(str(s))
+    rows = []
+    for m in materials:
+        cols = []
+        for i, v in enumerate(v0s):
+            ds = cases[(m, i)].reindex(solver=solvers)
+            ds["status"] = ds["status"].fillna(-1).astype(np.int8)
+            cols.append(ds.expand_dims(v0=[float(v)]))
+        rows.append(xr.concat(cols, dim="v0"))
+    out = xr.concat(rows, dim="material").assign_coords(material=("material", np.array(materials, dtype=str)))
+    out["v0"].attrs.update(units="m s-1", long_name="impact speed")
+    out["material"].attrs["long_name"] = "material"
+    for name in ("status",):
+        out[name].attrs.update(cases[(materials[0], 0)][name].attrs)
+    return out
+
+
+def orders_table(ds) -> str:
+    """Observed orders (slope of log COR error vs log dt) for the fixed-step solvers, and the
+    errors reached by solve_ivp at each rtol."""
+    lines = ["# observed order of the COR error in dt (fixed-step solvers); '-' where not applicable",
+             f"{'material':14s} {'v0 [m/s]':>8s} " + " ".join(f"{s:>18s}" for s in ds["solver"].values)]
+    for m in ds["material"].values:
+        for v in ds["v0"].values:
+            d = ds.sel(material=m, v0=v)
+            vals = []
+            for s in ds["solver"].values:
+                if str(s).startswith("ive-") and str(s) != "ive-numba":
+                    vals.append("-")
+                else:
+                    o = observed_order(d, str(s))
+                    vals.append("-" if not math.isfinite(o) else f"{o:.2f}")
+            lines.append(f"{str(m):14s} {v:8g} " + " ".join(f"{x:>18s}" for x in vals))
+    return "\n".join(lines) + "\n"
