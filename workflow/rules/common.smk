@@ -83,7 +83,9 @@ _PLANS = {}
 def shard_plan(scene):
     if scene not in _PLANS:
         _PLANS[scene] = vsweep.plan_shards(
-            SCENES[scene], f"results/{scene}/shards", config["shard_size"]
+            SCENES[scene],
+            f"results/{scene}/shards",
+            SCENES[scene].get("shard_size", config["shard_size"]),
         )
     return _PLANS[scene]
 

@@ -17,7 +17,7 @@ from .common import Histories, Result, separation
 __all__ = ["run_direct", "run_ive_fixed", "run_paper", "MAX_T_FACTOR"]
 
 #: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
-MAX_T_FACTOR = 64.0
+MAX_T_FACTOR = 32.0
 
 
 def _kernel_weights(impact, dt, n):

@@ -31,12 +31,20 @@ def make_impact(material, v0, geometry: dict) -> Impact:
 
 
 def default_dt(impact: Impact, steps_per_contact: int = STEPS_PER_CONTACT) -> float:
-    """dt = t_c / steps_per_contact, t_c the rigid-target Hertz contact time (a lower bound).
+    """dt = min(t_c / N, t_g / (N / 10)), N = steps_per_contact.
 
-    Fast relaxation does not limit dt: kernels are integrated exactly over each step, and the
-    error of a relaxation time tau << dt enters only as O(tau dt / t_c^2) (see README).
+    t_c is the rigid-target Hertz contact time with k at t_c/4 (a lower bound on the contact);
+    t_g the same with the glassy k(0) (where finite). The second bound resolves the early,
+    glassy phase when the modulus relaxes by orders of magnitude during the contact (rubbery/glassy
+    = 1e-4 needs it); for ordinary materials t_c/N is the smaller. A fast relaxation rate alone does
+    not limit dt: kernels are integrated exactly over each step, and a relaxation time tau << dt
+    enters only as O(tau dt / t_c^2) times the relaxing fraction (see README).
     """
-    return impact.contact_time_estimate() / steps_per_contact
+    dt = impact.contact_time_estimate() / steps_per_contact
+    t_g = impact.contact_time_estimate(glassy=True)
+    if math.isfinite(t_g) and t_g > 0:
+        dt = min(dt, 10.0 * t_g / steps_per_contact)
+    return dt
 
 
 def simulate(material, v0, *, method="direct", dt=None, volterra=False, form="a", c2=1.0, rule="force",
