@@ -154,16 +154,11 @@ class Impact:
             out = -0.5 * self._mobility_scale * deb / eb**1.5
         return np.where(t > 0, out, 0.0)
 
-    def contact_time_estimate(self, glassy: bool = False) -> float:
+    def contact_time_estimate(self) -> float:
         """Hertz contact time on a rigid target, t_c = 2.9432 s_max / v0, s_max = (5 m v0^2 / (4 k))^(2/5),
-        with k evaluated at a quarter of that time (fixed point), or with the glassy k(0) when
-        ``glassy`` (``nan`` if k(0) is unbounded). The plate's compliance only lengthens the contact,
-        so this is a lower bound used to choose dt and T_max."""
-        if glassy:
-            k0 = self.kappa * self.material.glassy
-            if not math.isfinite(k0):
-                return math.nan
-            return 2.9432 * (5.0 * self.m * self.v0**2 / (4.0 * k0)) ** 0.4 / self.v0
+        with k evaluated at a quarter of that time (fixed point). The plate's compliance only
+        lengthens the contact, so this is a lower bound used to choose dt and T_max (it can be
+        long when the modulus relaxes by orders of magnitude; simulate() then refines dt)."""
         t = 1e-3
         for _ in range(8):
             k = float(self.kernel(np.array([t / 4]))[0])

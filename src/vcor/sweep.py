@@ -396,5 +396,5 @@ def aggregate(shards, scene):
         flag_values=np.array([c for _, c in codes], dtype=np.int8),
         flag_meanings=" ".join(k.replace("-", "_") for k, _ in codes),
     )
-    ds["message"].attrs["long_name"] = "solver message (empty when ok)"
+    ds["message"].attrs["long_name"] = "solver message (failure reason, or a note such as a refined dt)"
     return ds
