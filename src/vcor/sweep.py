@@ -50,8 +50,8 @@ __all__ = [
 ]
 
 #: scalar outputs stored per point
-SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "energy_residual",
-           "steps", "dt", "wall_time")
+SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",
+           "energy_residual", "steps", "dt", "wall_time")
 
 AXIS_UNITS = {
     "v0": ("m s-1", "impact speed"),

@@ -21,6 +21,7 @@ UNITS = {
     "w_h": "J",
     "w_plate": "J",
     "omega_min": "rad s-1",
+    "sphere_velocity": "m s-1",
     "energy_residual": "1",
     "steps": "1",
     "wall_time": "s",
@@ -36,6 +37,7 @@ LONG_NAMES = {
     "w_h": "hysteretic loss int_0^t0 F s' dt",
     "w_plate": "work done on the plate int_0^t0 F U' dt",
     "omega_min": "minimum frequency of relevance 2 pi / t0",
+    "sphere_velocity": "sphere velocity z'(t0) at separation (negative: rebound)",
     "energy_residual": "relative energy balance residual (see README)",
     "steps": "time steps taken",
     "wall_time": "solver wall time",
@@ -76,6 +78,7 @@ class Result:
     w_h: float = math.nan
     w_plate: float = math.nan
     omega_min: float = math.nan
+    sphere_velocity: float = math.nan
     energy_residual: float = math.nan
     steps: int = 0
     wall_time: float = math.nan
@@ -187,6 +190,7 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
         "w_h": float(w_h),
         "w_plate": float(w_z - w_h),
         "omega_min": float(2 * math.pi / t0),
+        "sphere_velocity": float(z0),
         "energy_residual": float(energy_residual),
         "s_max": peak(t[: n + 1], s[: n + 1]),
         "f_max": peak(t[: n + 1], F[: n + 1]),

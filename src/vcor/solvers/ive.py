@@ -129,6 +129,7 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", t_max, max_t, history=F
     res.w_h = float(w_h)
     res.w_plate = float(w_z - w_h)
     res.omega_min = 2 * math.pi / t0
+    res.sphere_velocity = float(z0)
     res.energy_residual = float((e_in - 0.5 * m * z0 * z0 - w_z) / e_in)
     res.s_max = s_max
     res.f_max = f_max
