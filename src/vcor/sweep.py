@@ -351,31 +351,35 @@ def aggregate(shards, scene):
     mats = list(scene["materials"])
     names = list(axes)
     shape = (len(mats),) + tuple(len(axes[a]) for a in names)
-    index = {point_key(p): None for p in scene_points(scene)}
-    lookup = {}
-    for ds in shards:
-        for i in range(ds.sizes["point"]):
-            p = {"material": str(ds["material"].values[i])}
-            for a in names:
-                p[a] = _canon(ds[a].values[i])
-            k = point_key(p)
-            if k in index:
-                lookup[k] = (ds, i)
-    missing = [k for k in index if k not in lookup]
-    if missing:
-        raise ValueError(f"{len(missing)} grid points missing from the shards, e.g. {missing[0]}")
+    # position of every requested point in the output arrays
+    pos_of = {}
+    for p in scene_points(scene):
+        pos = (mats.index(p["material"]),) + tuple(axes[a].index(p[a]) for a in names)
+        pos_of[point_key(p)] = pos
     first = shards[0]
     var_names = [v for v in first.data_vars if v not in ("status", "message")]
     out = {v: np.full(shape, np.nan) for v in var_names}
     status = np.zeros(shape, dtype=np.int8)
     message = np.empty(shape, dtype=object)
-    for pos in itertools.product(*(range(s) for s in shape)):
-        p = {"material": mats[pos[0]], **{a: axes[a][j] for a, j in zip(names, pos[1:])}}
-        ds, i = lookup[point_key(p)]
-        for v in var_names:
-            out[v][pos] = ds[v].values[i]
-        status[pos] = ds["status"].values[i]
-        message[pos] = ds["message"].values[i]
+    filled = np.zeros(shape, dtype=bool)
+    for ds in shards:
+        cols = {v: ds[v].values for v in var_names}
+        st, ms = ds["status"].values, ds["message"].values
+        mat_col = ds["material"].values
+        ax_cols = {a: ds[a].values for a in names}
+        for i in range(ds.sizes["point"]):
+            p = {"material": str(mat_col[i])}
+            for a in names:
+                p[a] = _canon(ax_cols[a][i])
+            pos = pos_of.get(point_key(p))
+            if pos is None:
+                continue  # a reused shard may hold points no longer in the grid
+            for v in var_names:
+                out[v][pos] = cols[v][i]
+            status[pos], message[pos] = st[i], ms[i]
+            filled[pos] = True
+    if not filled.all():
+        raise ValueError(f"{int((~filled).sum())} grid points missing from the shards")
     dims = ("material",) + tuple(names)
     data = {v: (dims, out[v]) for v in var_names}
     data["status"] = (dims, status)
