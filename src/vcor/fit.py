@@ -27,6 +27,17 @@ from . import materials as _materials
 __all__ = ["FitData", "FitResult", "bagley_torvik_data", "fit_prony", "fit_cerf", "metrics", "fit"]
 
 
+def _axis_and_values(axis_name, unit, axis, values_name, values, dtype):
+    """Validated (axis, values): 1-D, equal length >= 3, axis finite, > 0 and strictly increasing."""
+    x = np.asarray(axis, float)
+    v = np.asarray(values, dtype)
+    if x.shape != v.shape or x.ndim != 1 or x.size < 3:
+        raise ValueError(f"{axis_name} and {values_name} must be 1-D arrays of equal length >= 3")
+    if not (np.all(np.isfinite(x)) and np.all(x > 0) and np.all(np.diff(x) > 0)):
+        raise ValueError(f"{axis_name} must be finite, > 0 {unit} and strictly increasing")
+    return x, v
+
+
 @dataclass(frozen=True)
 class FitData:
     """Relaxation data E(t) (Pa at s) and/or complex-modulus data E*(omega) (Pa at rad/s)."""
@@ -43,12 +54,7 @@ class FitData:
         if not (has_t or has_w):
             raise ValueError("FitData needs relaxation data (t, E_t) and/or frequency data (omega, E_star)")
         if has_t:
-            t = np.asarray(self.t, float)
-            e = np.asarray(self.E_t, float)
-            if t.shape != e.shape or t.ndim != 1 or t.size < 3:
-                raise ValueError("t and E_t must be 1-D arrays of equal length >= 3")
-            if not (np.all(np.isfinite(t)) and np.all(t > 0) and np.all(np.diff(t) > 0)):
-                raise ValueError("t must be finite, > 0 s and strictly increasing")
+            t, e = _axis_and_values("t", "s", self.t, "E_t", self.E_t, float)
             if not (np.all(np.isfinite(e)) and np.all(e > 0)):
                 raise ValueError("E_t must be finite and > 0 Pa")
             if np.any(np.diff(e) > 1e-12 * e[:-1]):
@@ -59,12 +65,7 @@ class FitData:
             object.__setattr__(self, "t", t)
             object.__setattr__(self, "E_t", e)
         if has_w:
-            w = np.asarray(self.omega, float)
-            es = np.asarray(self.E_star, complex)
-            if w.shape != es.shape or w.ndim != 1 or w.size < 3:
-                raise ValueError("omega and E_star must be 1-D arrays of equal length >= 3")
-            if not (np.all(np.isfinite(w)) and np.all(w > 0) and np.all(np.diff(w) > 0)):
-                raise ValueError("omega must be finite, > 0 rad/s and strictly increasing")
+            w, es = _axis_and_values("omega", "rad/s", self.omega, "E_star", self.E_star, complex)
             if not (np.all(np.isfinite(es)) and np.all(es.real > 0) and np.all(es.imag >= 0)):
                 raise ValueError("E_star must be finite with storage > 0 Pa and loss >= 0 Pa")
             if np.any(np.diff(es.real) < -1e-12 * es.real[:-1]):
