@@ -72,7 +72,6 @@ wildcard_constraints:
     scene="|".join(re.escape(s) for s in SCENES),
     material="|".join(re.escape(m) for m in sorted(FITTED)) or "no-fitted-material",
     material_case="[A-Za-z0-9_.-]+?",
-    vi="[0-9]+",
     shard="[0-9a-f]{10}-[0-9a-f]{12}",
     fig="|".join(vplots.FIGURES),
 
@@ -106,17 +105,13 @@ def get_convergence_spec(wildcards):
     return SCENES[wildcards.scene]["convergence"]
 
 
-def get_convergence_v0(wildcards):
-    return SCENES[wildcards.scene]["convergence"]["v0"][int(wildcards.vi)]
+def get_convergence_v0s(wildcards):
+    return SCENES[wildcards.scene]["convergence"]["v0"]
 
 
 def get_convergence_cases(wildcards):
     spec = SCENES[wildcards.scene]["convergence"]
-    return [
-        f"results/{wildcards.scene}/convergence/{m}-v{i}.nc"
-        for m in spec["materials"]
-        for i in range(len(spec["v0"]))
-    ]
+    return [f"results/{wildcards.scene}/convergence/{m}.nc" for m in spec["materials"]]
 
 
 def get_settings(wildcards):

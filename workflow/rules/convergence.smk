@@ -1,20 +1,20 @@
-# Work-precision study: every solver on a ladder of steps/tolerances, one job per (material, v0).
+# Work-precision study: every solver on a ladder of steps/tolerances, one job per material.
 
 
 rule convergence_case:
     input:
         materials=get_fitted_inputs,
     output:
-        "results/{scene}/convergence/{material_case}-v{vi}.nc",
+        "results/{scene}/convergence/{material_case}.nc",
     log:
-        "results/{scene}/logs/convergence/{material_case}-v{vi}.log",
+        "results/{scene}/logs/convergence/{material_case}.log",
     benchmark:
-        "results/{scene}/benchmarks/convergence/{material_case}-v{vi}.tsv"
+        "results/{scene}/benchmarks/convergence/{material_case}.tsv"
     conda:
         "../envs/vcor.yaml"
     params:
         material="{material_case}",
-        v0=get_convergence_v0,
+        v0=get_convergence_v0s,
         material_dir=MATERIAL_DIR,
     script:
         "../scripts/convergence_case.py"
