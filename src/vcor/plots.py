@@ -108,7 +108,6 @@ def fig1(sweep, moduli, opts):
 
 def _responses(hist, runs, title):
     fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
-    styles = ["-", "--", "-.", ":"]
     for i, run in enumerate(runs):
         h = hist.sel(run=run)
         if str(h["status"].values) != "ok":
@@ -124,8 +123,13 @@ def _responses(hist, runs, title):
             "F/F_max": h["F"].values / float(h["f_max"]),
         }
         for (name, y), color in zip(curves.items(), ["C0", "C1", "C2"]):
-            ax.plot(t[~ghost], y[~ghost], styles[i % 4], color=color, label=f"{name} {run}")
-            ax.plot(t[ghost], y[ghost], ":", color=color, alpha=0.6)
+            if i == 0:  # first run: solid line
+                ax.plot(t[~ghost], y[~ghost], "-", color=color, label=f"{name} {run}")
+            else:  # further runs: open markers on top, so that overlaid solutions stay visible
+                every = max(1, int((~ghost).sum()) // 25)
+                ax.plot(t[~ghost][i::every], y[~ghost][i::every], ["o", "s", "^"][(i - 1) % 3], mfc="none",
+                        color=color, ms=4, label=f"{name} {run}")
+            ax.plot(t[ghost], y[ghost], "--", color=color, alpha=0.6)
         t0 = float(h["t0"]) * 1e3
         ax.axvline(t0, color="k", lw=0.8)
         ax.annotate(f"{run}: t0={t0:.4g} ms, COR={float(h['cor']):.4f},\nresidual s/s_max={float(h['s_residual'] / h['s_max']):.4f}",
@@ -133,7 +137,7 @@ def _responses(hist, runs, title):
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("t [ms]")
     ax.set_ylabel("normalised response [-]")
-    ax.set_title(title + " (dotted: ghost solution after separation)")
+    ax.set_title(title + "\n(dashed: ghost solution after separation)", fontsize=10)
     ax.legend(fontsize=6, ncol=2, loc="lower left")
     return fig
 
