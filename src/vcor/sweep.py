@@ -279,17 +279,23 @@ def _solve(point, settings, material_dir):
     out = {k: getattr(res, k) for k in SCALARS}
     out["status"], out["message"] = res.status, res.message
     if settings.get("error_estimate"):
-        # Richardson from dt and dt/2 (order 2): err ~ (x_h - x_{h/2}) / 3; the reported values stay
-        # those of dt (not extrapolated), so cor_err is an estimate of *their* error.
-        if res.ok and s["method"] != "ive":
-            fine = simulate(mat, v0, **{**kw, "dt": res.dt / 2}, **geometry)
-            ok = fine.ok
-            out["cor_err"] = abs(res.cor - fine.cor) * 4 / 3 if ok else math.nan
-            out["t0_err"] = abs(res.t0 - fine.t0) * 4 / 3 if ok else math.nan
-            if not ok:
-                out["status"], out["message"] = fine.status, "error estimate run (dt/2): " + fine.message
-        else:
-            out["cor_err"] = out["t0_err"] = math.nan
+        # Fixed step: Richardson from dt and dt/2 (order 2), err ~ |x_dt - x_dt/2| * 4/3. solve_ivp:
+        # the difference to a run at rtol/100. The stored values stay those of the first run, so the
+        # estimate is an estimate of *their* error.
+        out["cor_err"] = out["t0_err"] = math.nan
+        if res.ok:
+            if s["method"] == "ive":
+                fine = simulate(mat, v0, **{**kw, "rtol": s["rtol"] / 100}, **geometry)
+                factor = 1.0
+            else:
+                fine = simulate(mat, v0, **{**kw, "dt": res.dt / 2}, **geometry)
+                factor = 4.0 / 3.0
+            if fine.ok:
+                out["cor_err"] = abs(res.cor - fine.cor) * factor
+                out["t0_err"] = abs(res.t0 - fine.t0) * factor
+            else:
+                out["status"] = fine.status
+                out["message"] = "error estimate run: " + fine.message
     return out
 
 
