@@ -217,3 +217,13 @@ def test_four_cases_run(case):
     mat = "elastic" if case == 1 else "sls"
     r = vcor.simulate(mat, 5.0, case=case)
     assert r.status == "ok" and 0 < r.cor <= 1.0 + 1e-9
+
+
+@pytest.mark.parametrize("name", ["sls", "butyl-prony3", "elastic", "kelvin-voigt", "butyl-fc"])
+@pytest.mark.parametrize("case", [2, 3, 4])
+def test_scalar_mobility_equals_array_version(name, case):
+    imp = make_impact(name, 10.0, {"case": case})
+    for t in (1e-7, 1e-5, 1e-3):
+        a, ad = imp.mobility(t)
+        assert a == pytest.approx(float(imp.alpha(t)), rel=1e-14)
+        assert ad == pytest.approx(float(imp.alpha_rate(t)), rel=1e-12, abs=1e-300)

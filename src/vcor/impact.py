@@ -154,6 +154,25 @@ class Impact:
             out = -0.5 * self._mobility_scale * deb / eb**1.5
         return np.where(t > 0, out, 0.0)
 
+    def mobility(self, t: float) -> tuple[float, float]:
+        """(alpha(t), alpha'(t)) at one time, as floats; a fast scalar path for Prony plates (the
+        internal-variable solver calls this in every right-hand-side evaluation)."""
+        g = self.geometry
+        if g.rigid:
+            return 0.0, 0.0
+        if g.case == 4:
+            return float(self.alpha(t)), 0.0
+        mat = self.material
+        if not mat.is_prony:
+            return float(self.alpha(t)), float(self.alpha_rate(t))
+        e_inf, e, b = mat.prony_terms()
+        c = 1.0 / (1.0 - g.nu**2)
+        ex = e * np.exp(-b * t) if e.size else e
+        eb = c * (e_inf + float(ex.sum()))
+        deb = -c * float((ex * b).sum())
+        a = self._mobility_scale / math.sqrt(eb)
+        return a, (-0.5 * a * deb / eb if t > 0 else 0.0)
+
     def contact_time_estimate(self) -> float:
         """Hertz contact time on a rigid target, t_c = 2.9432 s_max / v0, s_max = (5 m v0^2 / (4 k))^(2/5),
         with k evaluated at a quarter of that time (fixed point). The plate's compliance only

@@ -53,7 +53,7 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", t_max, max_t, history=F
     nq = e.size
     inv_G = np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0)
     alpha = impact.alpha
-    alpha_rate = impact.alpha_rate
+    mobility = impact.mobility
 
     def parts(t, y):
         s, J = y[0], y[1]
@@ -62,8 +62,7 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", t_max, max_t, history=F
         sq = math.sqrt(a)
         u = math.copysign(a * sq, s)
         p = 1.5 * sq
-        al = float(alpha(t))
-        ald = float(alpha_rate(t))
+        al, ald = mobility(t)
         A = G_inf * u + Q.sum()
         if volterra:
             A += c2 * (G_inf * u * u + (Q * Q * inv_G).sum())
