@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from .solvers import simulate
+from .solvers.common import LONG_NAMES, UNITS
 from .sweep import SOLVER_DEFAULTS, resolve_material
 
 __all__ = ["moduli_dataset", "histories_dataset"]
@@ -99,9 +100,8 @@ def histories_dataset(runs, v0, *, solver=None, geometry=None, ghost=0.5, n_samp
         if k == "ghost":
             arr = arr.astype(np.int8)
         data[k] = (("run", "sample"), arr, {"units": u, "long_name": ln})
-    units = {"cor": "1", "t0": "s", "s_max": "m", "f_max": "N", "s_residual": "m", "w_h": "J", "wall_time": "s"}
     for k, v in scal.items():
-        data[k] = ("run", np.array(v, dtype=float), {"units": units[k], "long_name": k})
+        data[k] = ("run", np.array(v, dtype=float), {"units": UNITS[k], "long_name": LONG_NAMES[k]})
     data["status"] = ("run", np.array(status, dtype=str), {"long_name": "solver status"})
     data["message"] = ("run", np.array(message, dtype=str), {"long_name": "solver message"})
     coords = {

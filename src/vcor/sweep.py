@@ -219,12 +219,8 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
         axes = _scene_axes(scene)
     except (ValueError, KeyError, TypeError) as exc:
         raise ValueError(f"{where}.grid: {exc}") from None
-    geom_keys = set(GEOMETRY_DEFAULTS)
-    for key, vals in axes.items():
-        if key != "v0" and key in geom_keys:
-            continue
-        if key == "v0" and vals[0] <= 0:
-            raise ValueError(f"{where}.grid.v0: impact speeds must be > 0 m/s, got {vals[0]}")
+    if axes["v0"][0] <= 0:
+        raise ValueError(f"{where}.grid.v0: impact speeds must be > 0 m/s, got {axes['v0'][0]}")
     tie = scene.get("tie") or {}
     for target, spec in tie.items():
         if spec["to"] not in axes:

@@ -6,6 +6,7 @@ import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
+from scipy.optimize import brentq
 
 __all__ = ["Result", "STATUS_CODES", "UNITS", "LONG_NAMES", "separation", "peak", "Histories"]
 
@@ -120,15 +121,6 @@ def _lagrange(tn, yn, t):
     return total
 
 
-def _root_bracket(f, a, b, fa, fb, tol):
-    """Brent's method on a cubic interpolant (bracketed: fa > 0 >= fb)."""
-    from scipy.optimize import brentq
-
-    if fb == 0.0:
-        return b
-    return brentq(f, a, b, xtol=tol, rtol=4 * np.finfo(float).eps, maxiter=200)
-
-
 def peak(t, y):
     """Maximum of sampled y, refined by the parabola through the largest sample and its neighbours."""
     i = int(np.argmax(y))
@@ -168,7 +160,8 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
         y0, y1 = target[n - 1], target[n]
         t0 = a + (b - a) * y0 / (y0 - y1)
     else:
-        t0 = _root_bracket(f, a, b, fa, fb, tol=1e-15 * max(b, 1e-300))
+        # Brent's method on the cubic interpolant, bracketed by fa > 0 >= fb
+        t0 = b if fb == 0.0 else brentq(f, a, b, xtol=1e-15 * max(b, 1e-300), rtol=4 * np.finfo(float).eps, maxiter=200)
     s0 = _lagrange(tn, s[idx], t0)
     g0 = _lagrange(tn, g[idx], t0)
     J0 = _lagrange(tn, J[idx], t0)

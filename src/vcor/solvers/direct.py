@@ -29,11 +29,6 @@ def _kernel_weights(impact, dt, n):
     return wt, v
 
 
-def _linear_weights(impact, dt, n):
-    """Linear product integration only (the internal-variable march's scheme), as (w, 0)."""
-    return impact.kappa * impact.material.step_integrals(dt, n) / dt, np.zeros(n)
-
-
 def _volterra_weights(impact, dt, n):
     """Q_c = double cell integrals of k: K2((c+1)dt) - 2 K2(c dt) + K2((c-1)dt), c = 0..2n."""
     nodes = dt * np.arange(2 * n + 2, dtype=float)

@@ -33,7 +33,7 @@ def _peak(ts, ys, f):
     return float(max(-r.fun, ys[i]))
 
 
-def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", t_max, max_t, history=False, ghost=0.0, rule="force",
+def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",
                   volterra=False, c2=1.0):
     """Internal-variable solver. With ``volterra`` the second-order term for the Prony kernel is
     separable, c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing
@@ -87,7 +87,6 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", t_max, max_t, history=F
     event.terminal = True
     event.direction = -1
 
-    tc = impact.contact_time_estimate()
     f_scale = impact.m * v0 / tc
     s_scale = v0 * tc
     atol = np.concatenate([[s_scale, m * v0], np.full(nq, f_scale), [0.5 * m * v0**2] * 2]) * rtol * 1e-2

@@ -30,7 +30,7 @@ def make_impact(material, v0, geometry: dict) -> Impact:
     return Impact(mat, v0, Geometry(**geometry))
 
 
-def default_dt(impact: Impact, steps_per_contact: int = STEPS_PER_CONTACT) -> float:
+def default_dt(impact: Impact, steps_per_contact: int = STEPS_PER_CONTACT, tc: float | None = None) -> float:
     """dt = t_c / N, t_c the rigid-target Hertz contact time with k at t_c/4 (a lower bound on the
     contact for ordinary materials), N = steps_per_contact.
 
@@ -39,7 +39,7 @@ def default_dt(impact: Impact, steps_per_contact: int = STEPS_PER_CONTACT) -> fl
     When the modulus relaxes by orders of magnitude during the contact, t_c can overestimate the
     contact; ``simulate`` then refines dt from the measured t0 (see ``MIN_STEPS_FRACTION``).
     """
-    return impact.contact_time_estimate() / steps_per_contact
+    return (impact.contact_time_estimate() if tc is None else tc) / steps_per_contact
 
 
 #: with automatic dt, a run that separates in fewer than this fraction of steps_per_contact steps is
@@ -105,7 +105,7 @@ def simulate(material, v0, *, method="direct", dt=None, volterra=False, form="a"
             )
     auto_dt = dt is None
     if auto_dt:
-        dt = default_dt(impact, steps_per_contact)
+        dt = default_dt(impact, steps_per_contact, tc)
     res = _dispatch(impact, method, dt, tc, max_steps, rule, volterra, c2, form, history, ghost, rtol, ive_method)
     if (auto_dt and method != "ive" and res.ok and res.steps < MIN_STEPS_FRACTION * steps_per_contact):
         dt = res.t0 / (0.8 * steps_per_contact)
@@ -131,5 +131,5 @@ def _dispatch(impact, method, dt, tc, max_steps, rule, volterra, c2, form, histo
         if volterra:
             raise ValueError("volterra=True needs method 'direct' or 'ive'")
         return run_ive_fixed(impact, dt, n_steps, max_steps=max_n, rule=rule, history=history, ghost=ghost)
-    return run_ive_scipy(impact, rtol=rtol, method=ive_method, t_max=T_MAX_START * tc, max_t=MAX_T_FACTOR * tc,
+    return run_ive_scipy(impact, rtol=rtol, method=ive_method, tc=tc, t_max=T_MAX_START * tc, max_t=MAX_T_FACTOR * tc,
                          history=history, ghost=ghost, rule=rule, volterra=volterra, c2=c2)
