@@ -17,7 +17,7 @@ from pathlib import Path
 
 import yaml
 
-from vcor import sweep
+from vcor import runner, scene
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = {
@@ -32,15 +32,15 @@ def main():
     ap.add_argument("--points-per-job", type=int, default=2500)
     ap.add_argument("--cores", type=int, default=2)
     args = ap.parse_args()
-    points = sweep.scene_points(SCENE)
+    points = scene.scene_points(SCENE)
     n = len(points)
-    settings = sweep.settings_of(SCENE)
-    sweep.run_points(points[:5], settings)  # JIT / cache load
+    settings = scene.settings_of(SCENE)
+    runner.run_points(points[:5], settings)  # JIT / cache load
     sample = points[:: max(1, n // 500)]
     times = []
     for _ in range(3):
         t = time.perf_counter()
-        sweep.run_points(sample, settings)
+        runner.run_points(sample, settings)
         times.append((time.perf_counter() - t) / len(sample))
     per_point = statistics.median(times)
     with tempfile.TemporaryDirectory() as d:
@@ -60,7 +60,7 @@ def main():
     print(f"{'quantity':58s} {'value':>14s}")
     print(f"{'grid points':58s} {n:14d}")
     print(f"{'shard jobs (points per job)':58s} {len(jobs):8d} ({args.points_per_job})")
-    print(f"{'in-process cost per point (sweep.run_points, median)':58s} {per_point * 1e3:11.2f} ms")
+    print(f"{'in-process cost per point (runner.run_points, median)':58s} {per_point * 1e3:11.2f} ms")
     print(f"{'workflow wall time, -j' + str(args.cores) + ' (DAG, shards, aggregation)':58s} {wall:12.1f} s")
     print(f"{'shard jobs, summed job wall time':58s} {job_s:12.1f} s")
     print(f"{'workflow cost per point (wall x cores / points)':58s} {wf_point * 1e3:11.2f} ms")

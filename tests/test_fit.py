@@ -79,26 +79,3 @@ def test_expand_fits():
     assert set(out) == {"p-n1", "p-n3", "c"} and out["p-n3"]["n_terms"] == 3
     with pytest.raises(ValueError, match="needs a list"):
         fit.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
-
-
-@pytest.mark.parametrize(
-    "kwargs, word",
-    [
-        (dict(t=[1e-3, 2e-3, 3e-3], E_t=[1e6, 2e6, 1.5e6]), "increases"),
-        (dict(t=[1e-3, 2e-3, 3e-3], E_t=[1e6, -2e6, -3e6]), "> 0 Pa"),
-        (dict(t=[3e-3, 2e-3, 1e-3], E_t=[3e6, 2e6, 1e6]), "strictly increasing"),
-        (dict(omega=[1.0, 2.0, 3.0], E_star=[1 + 1j, 1 - 1j, 1 + 0j]), "loss >= 0"),
-        (dict(omega=[1.0, 2.0, 3.0], E_star=[3 + 1j, 2 + 1j, 1 + 1j]), "storage modulus decreases"),
-        (dict(), "needs relaxation data"),
-    ],
-)
-def test_invalid_data_rejected(kwargs, word):
-    with pytest.raises(ValueError, match=word):
-        fit.FitData(**kwargs)
-
-
-def test_bad_fit_spec():
-    with pytest.raises(ValueError, match="model"):
-        fit.fit({"model": "maxwell"})
-    with pytest.raises(ValueError, match="n_terms"):
-        fit.fit_prony(fit.bagley_torvik_data(), 0)

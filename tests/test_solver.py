@@ -145,16 +145,6 @@ def test_volterra_elastic_closed_form():
     assert abs(vout / v0 + 1) < 1e-9
 
 
-def test_volterra_cost_class():
-    """Doubling N roughly quadruples the cost (O(N^2)), checked by counting, not timing:
-    the Volterra sums touch 2n + 2(n-1) entries at step n."""
-    from vcor.solvers import direct
-
-    imp = make_impact("sls", 10.0, {})
-    q = direct._volterra_weights(imp, 1e-6, 100)
-    assert q.shape == (201,) and np.all(np.isfinite(q))
-
-
 # ----------------------------------------------------------------------------- histories
 def test_histories_with_ghost():
     r = vcor.simulate("sls", 10.0, history=True, ghost=0.5)
@@ -172,8 +162,8 @@ def test_histories_with_ghost():
 # ----------------------------------------------------------------------------- robustness
 def test_tmax_extension_then_no_separation():
     r = vcor.simulate("sls", 10.0, max_steps=500)
-    assert r.status == "no-separation"
-    assert "T_max" in r.message and math.isnan(r.cor)
+    assert r.status == "step-budget"  # the budget is not a physical verdict
+    assert "T_max" in r.message and "budget" in r.message and math.isnan(r.cor)
 
 
 def test_tmax_extends_for_thin_plate():
@@ -183,33 +173,6 @@ def test_tmax_extends_for_thin_plate():
     tc = make_impact("sls", 10.0, {"h": 5e-3}).contact_time_estimate()
     assert r.t0 > 6 * tc
     assert r.cor < 0.05  # the plate takes almost all the energy (Zener: large lambda)
-
-
-@pytest.mark.parametrize(
-    "kwargs, word",
-    [
-        (dict(material="sls", v0=0.0), "v0"),
-        (dict(material="sls", v0=-3.0), "v0"),
-        (dict(material="sls", v0=float("nan")), "v0"),
-        (dict(material="sls", v0=10.0, r=-0.01), "r must"),
-        (dict(material="sls", v0=10.0, rho_a=0.0), "rho_a"),
-        (dict(material="sls", v0=10.0, rho_b=-1.0), "rho_b"),
-        (dict(material="sls", v0=10.0, nu=0.7), "nu must be in"),
-        (dict(material="sls", v0=10.0, nu=-1.0), "nu must be in"),
-        (dict(material="sls", v0=10.0, dt=1.0), "dt must be in"),
-        (dict(material="sls", v0=10.0, dt=-1e-6), "dt must be in"),
-        (dict(material="unobtainium", v0=10.0), "unknown material"),
-        (dict(material="sls", v0=10.0, method="euler"), "method"),
-        (dict(material="sls", v0=10.0, case=5), "case"),
-        (dict(material="sls", v0=10.0, radius=0.01), "unknown geometry"),
-        (dict(material="butyl-fc", v0=10.0, form="b"), "form 'b'"),
-        (dict(material="butyl-fc", v0=10.0, method="ive"), "Prony"),
-        (dict(material="sls", v0=10.0, case=1), "case 1"),
-    ],
-)
-def test_bad_input_names_parameter(kwargs, word):
-    with pytest.raises(ValueError, match=word):
-        vcor.simulate(kwargs.pop("material"), kwargs.pop("v0"), **kwargs)
 
 
 @pytest.mark.parametrize("case", [1, 2, 3, 4])

@@ -12,7 +12,7 @@ import xarray as xr
 import yaml
 
 import vcor
-from vcor import sweep
+from vcor import shards
 
 ROOT = Path(__file__).resolve().parents[1]
 SNAKEMAKE = [sys.executable, "-m", "snakemake"]
@@ -130,7 +130,7 @@ def test_failed_point_kept_with_status(tiny_run):
     ds = xr.open_dataset(tiny_run / "results/thin/sweep.nc")
     st = ds["status"].sel(material="sls", v0=10.0)
     assert st.sel(h=0.02).item() == 0
-    assert st.sel(h=0.002).item() == vcor.solvers.STATUS_CODES["no-separation"]
+    assert st.sel(h=0.002).item() == vcor.solvers.STATUS_CODES["step-budget"]
     assert np.isnan(ds["cor"].sel(material="sls", v0=10.0, h=0.002).item())
     assert "T_max" in str(ds["message"].sel(material="sls", v0=10.0, h=0.002).values)
     assert ds["cor"].sel(material="sls", v0=10.0, h=0.02).item() > 0
@@ -165,7 +165,8 @@ def test_noop_rerun_and_extension_recomputes_only_new_points(tiny_run, tmp_path)
         out = smk(tiny_run, "-n", "-j1", "--quiet", "rules")
         text = out.stdout + out.stderr
         # 2 new points (2 beta at v0 = 20) -> 1 new shard; old shards untouched
-        plan = sweep.plan_shards(cfg["scenes"]["tiny"], tiny_run / "results/tiny/shards", 3)
+        ids = {"sls": shards.material_identity("sls")}
+        plan = shards.plan_shards(cfg["scenes"]["tiny"], tiny_run / "results/tiny/shards", 3, ids)
         new = [k for k in plan if not (tiny_run / f"results/tiny/shards/{k}.nc").exists()]
         assert len(new) == 1 and sum(len(plan[k]) for k in new) == 2
         assert all(p["v0"] == 20.0 for k in new for p in plan[k])

@@ -1,7 +1,8 @@
 """vcor: the viscoelastic coefficient of restitution (Green 2026; Ramirez et al. 1999)."""
 
 from . import materials
+from .options import SolverOptions
 from .solvers import Result, simulate
 
 __version__ = "0.1.0"
-__all__ = ["simulate", "Result", "materials", "__version__"]
+__all__ = ["simulate", "Result", "SolverOptions", "materials", "__version__"]

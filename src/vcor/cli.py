@@ -8,8 +8,11 @@ import sys
 
 from . import materials
 from .impact import GEOMETRY_DEFAULTS
-from .solvers import METHODS, simulate
+from .options import OPTION_HELP, SolverOptions
+from .solvers import simulate
 from .solvers.common import UNITS
+
+_INTEGER_OPTIONS = ("steps_per_contact", "max_steps")
 
 
 def _parser():
@@ -19,11 +22,20 @@ def _parser():
     imp.add_argument("--material", default="sls",
                      help=f"preset ({', '.join(sorted(materials.PRESETS))}) or a fitted material file")
     imp.add_argument("--v0", type=float, required=True, help="impact speed, m/s")
-    imp.add_argument("--method", choices=METHODS, default="direct")
-    imp.add_argument("--dt", type=float, default=None, help="time step, s (default: automatic)")
-    imp.add_argument("--volterra", action="store_true", help="add the second-order Volterra term")
-    imp.add_argument("--form", choices=("a", "b"), default="a")
-    imp.add_argument("--rule", choices=("force", "overlap"), default="force")
+    # solver options: names, allowed values and help from vcor.options (unset ones keep their defaults)
+    for name in SolverOptions.names():
+        if name == "ghost":
+            continue  # histories only; the command prints scalars
+        flag = f"--{name.replace('_', '-')}"
+        default = SolverOptions.default_of(name)
+        help_text = f"{OPTION_HELP[name]} (default {default})"
+        if name == "volterra":
+            imp.add_argument(flag, action="store_true", default=None, help=help_text)
+        elif SolverOptions.allowed_of(name) is not None:
+            imp.add_argument(flag, dest=name, choices=SolverOptions.allowed_of(name), default=None, help=help_text)
+        else:
+            kind = int if name in _INTEGER_OPTIONS else float
+            imp.add_argument(flag, dest=name, type=kind, default=None, help=help_text)
     for key in ("r", "rho_a", "rho_b", "h", "nu", "E_plate", "nu_plate"):
         imp.add_argument(f"--{key}", type=float, default=None, help=f"geometry (default {GEOMETRY_DEFAULTS[key]})")
     imp.add_argument("--case", type=int, default=None, choices=(1, 2, 3, 4))
@@ -38,11 +50,11 @@ def main(argv=None) -> int:
     if args.rigid:
         geometry["rigid"] = True
     material = args.material
-    if material not in materials.PRESETS and (material.endswith(".nc") or material.endswith(".json")):
-        material = materials.from_file(material)
+    options = {k: getattr(args, k) for k in SolverOptions.names() if getattr(args, k, None) is not None}
     try:
-        res = simulate(material, args.v0, method=args.method, dt=args.dt, volterra=args.volterra,
-                       form=args.form, rule=args.rule, **geometry)
+        if material not in materials.PRESETS and (material.endswith(".nc") or material.endswith(".json")):
+            material = materials.from_file(material)
+        res = simulate(material, args.v0, options=options, **geometry)
     except ValueError as exc:
         print(f"vcor: error: {exc}", file=sys.stderr)
         return 2

@@ -14,8 +14,10 @@ import statistics
 
 import numpy as np
 
+from . import status as _status
+from .scene import resolve_material
 from .solvers import simulate
-from .sweep import resolve_material
+from .solvers.common import richardson
 
 __all__ = ["LADDER", "RTOLS", "methods_for", "study", "observed_order"]
 
@@ -54,7 +56,7 @@ def _reference(material, v0, **kw):
     b = simulate(material, v0, steps_per_contact=REF_STEPS[1], **kw)
     if not (a.ok and b.ok):
         return math.nan, math.nan
-    return b.cor + (b.cor - a.cor) / 3.0, b.t0 + (b.t0 - a.t0) / 3.0
+    return richardson(a.cor, b.cor)[0], richardson(a.t0, b.t0)[0]
 
 
 def study(name, v0, *, material_dir="results/materials", repeat=3):
@@ -69,14 +71,15 @@ def study(name, v0, *, material_dir="results/materials", repeat=3):
     methods = methods_for(material)
     n_level = max(len(m[2]) for m in methods)
     shape = (len(methods), n_level)
-    cor, t0, wall, param, status = (np.full(shape, np.nan) for _ in range(5))
-    status[:] = -1
+    cor, t0, wall, param = (np.full(shape, np.nan) for _ in range(4))
+    status = np.full(shape, _status.code("invalid-input"), dtype=np.int8)
+    message = np.full(shape, "not on this solver's ladder", dtype=object)
     for i, (mname, kw, ladder) in enumerate(methods):
         for j, level in enumerate(ladder):
             r, w = _run(material, v0, kw, level, repeat)
             cor[i, j], t0[i, j], wall[i, j] = r.cor, r.t0, w
             param[i, j] = level
-            status[i, j] = 0 if r.ok else 1
+            status[i, j], message[i, j] = _status.code(r.status), r.message
     volt = np.array(["volterra" in m[0] for m in methods])[:, None]
     rc = np.where(volt, ref_v_cor, ref_cor)
     rt = np.where(volt, ref_v_t0, ref_t0)
@@ -89,9 +92,8 @@ def study(name, v0, *, material_dir="results/materials", repeat=3):
                       {"units": "1", "long_name": "steps per contact time (fixed step) or rtol (ive)"}),
             "err_cor": (("solver", "level"), np.abs(cor - rc), {"units": "1", "long_name": "|COR - reference|"}),
             "err_t0": (("solver", "level"), np.abs(t0 - rt), {"units": "s", "long_name": "|t0 - reference|"}),
-            "status": (("solver", "level"), status.astype(np.int8),
-                       {"units": "1", "long_name": "0 ok, 1 not ok, -1 not run",
-                        "flag_values": np.array([-1, 0, 1], dtype=np.int8), "flag_meanings": "not_run ok not_ok"}),
+            "status": (("solver", "level"), status, _status.cf_attrs()),
+            "message": (("solver", "level"), message.astype(str), {"long_name": "solver message"}),
             "cor_ref": ((), ref_cor, {"units": "1", "long_name": "reference COR (Richardson, direct-a)"}),
             "cor_ref_volterra": ((), ref_v_cor, {"units": "1", "long_name": "reference COR with Volterra"}),
             "cor_ive_1e12": ((), cross, {"units": "1", "long_name": "ive Radau rtol 1e-12 (Prony only)"}),
@@ -115,8 +117,8 @@ def observed_order(ds, solver):
 
 
 def combine(cases, materials, v0s):
-    """Stack per-case datasets into dims (material, v0, solver, level); solvers missing for a
-    material (e.g. ive for the fractional law) are NaN with status -1 (not run)."""
+    """Stack per-case datasets into dims (material, v0, solver, level); solvers that do not apply to
+    a material (e.g. ive for the fractional law) are NaN with status invalid-input and a message."""
     import xarray as xr
 
     solvers = []
@@ -129,13 +131,15 @@ def combine(cases, materials, v0s):
         cols = []
         for i, v in enumerate(v0s):
             ds = cases[(m, i)].reindex(solver=solvers)
-            ds["status"] = ds["status"].fillna(-1).astype(np.int8)
+            missing = ~np.isin(solvers, cases[(m, i)]["solver"].values)
+            ds["status"] = ds["status"].fillna(_status.code("invalid-input")).astype(np.int8)
+            ds["message"] = ds["message"].where(~missing[:, None], f"solver does not apply to material {m}")
             cols.append(ds.expand_dims(v0=[float(v)]))
         rows.append(xr.concat(cols, dim="v0"))
     out = xr.concat(rows, dim="material").assign_coords(material=("material", np.array(materials, dtype=str)))
     out["v0"].attrs.update(units="m s-1", long_name="impact speed")
     out["material"].attrs["long_name"] = "material"
-    for name in ("status",):
+    for name in ("status", "message"):
         out[name].attrs.update(cases[(materials[0], 0)][name].attrs)
     return out
 

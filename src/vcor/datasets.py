@@ -4,9 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import status as _status
+from .options import solver_options
+from .scene import resolve_material
 from .solvers import simulate
 from .solvers.common import LONG_NAMES, UNITS
-from .sweep import SOLVER_DEFAULTS, resolve_material
 
 __all__ = ["moduli_dataset", "histories_dataset"]
 
@@ -47,37 +49,38 @@ def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e
     return ds
 
 
-def histories_dataset(runs, v0, *, solver=None, geometry=None, ghost=0.5, n_samples=600,
+def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_samples=600,
                       material_dir="results/materials"):
     """Time histories of ``runs`` = [(material, method), ...] at impact speed v0 (m/s).
 
-    Each run is resampled (linear interpolation of its own solution) onto ``n_samples`` uniform
-    times from 0 to (1 + ghost) t0; ``t`` is therefore a (run, sample) variable. ``ghost`` marks
-    the samples after separation. Scalars of each run are stored per run.
+    ``options`` are the scene's solver options (``SolverOptions`` or a dict); each run uses its own
+    method with those of the options that apply to it (the separation ``rule`` always), and
+    ``ghost`` (default: the options' ghost). Each run is resampled (linear interpolation of its own
+    solution) onto ``n_samples`` uniform times from 0 to (1 + ghost) t0; ``t`` is therefore a
+    (run, sample) variable. ``ghost`` marks the samples after separation. Scalars of each run are
+    stored per run. A run that is not ok is stored as NaN with its status and message.
     """
     import xarray as xr
 
-    solver = {**SOLVER_DEFAULTS, **(solver or {})}
+    base = solver_options(options or {})
+    if ghost is not None:
+        base = base.replace(ghost=ghost)
     geometry = dict(geometry or {})
     labels, cols = [], {k: [] for k in ("t", "s", "sdot", "F", "U", "zdot", "ghost")}
     scal = {k: [] for k in ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "wall_time")}
     status, message = [], []
     for material, method in runs:
         mat = resolve_material(material, material_dir=material_dir)
-        res = simulate(mat, float(v0), method=method, dt=solver["dt"], volterra=solver["volterra"],
-                       form=solver["form"], rtol=solver["rtol"], ive_method=solver["ive_method"],
-                       steps_per_contact=int(solver["steps_per_contact"]), history=True, ghost=ghost, **geometry)
+        res = simulate(mat, float(v0), options=base.replace(method=method), history=True, **geometry)
         labels.append(f"{material}/{method}")
         status.append(res.status)
         message.append(res.message)
         for k in scal:
             scal[k].append(getattr(res, k))
         h = res.history
-        if h is None:
-            tt = np.zeros(n_samples)
+        if not res.ok or h is None:
             for k in cols:
-                cols[k].append(np.zeros(n_samples, dtype=bool if k == "ghost" else float))
-            cols["t"][-1] = tt
+                cols[k].append(np.zeros(n_samples, bool) if k == "ghost" else np.full(n_samples, np.nan))
             continue
         t_end = h.t[-1]
         tt = np.linspace(0.0, t_end, n_samples)
@@ -102,13 +105,14 @@ def histories_dataset(runs, v0, *, solver=None, geometry=None, ghost=0.5, n_samp
         data[k] = (("run", "sample"), arr, {"units": u, "long_name": ln})
     for k, v in scal.items():
         data[k] = ("run", np.array(v, dtype=float), {"units": UNITS[k], "long_name": LONG_NAMES[k]})
-    data["status"] = ("run", np.array(status, dtype=str), {"long_name": "solver status"})
+    data["status"] = ("run", _status.codes_of(status), _status.cf_attrs())
     data["message"] = ("run", np.array(message, dtype=str), {"long_name": "solver message"})
     coords = {
         "run": ("run", np.array(labels, dtype=str), {"long_name": "material/method"}),
         "sample": ("sample", np.arange(n_samples), {"units": "1", "long_name": "sample index"}),
     }
     ds = xr.Dataset(data, coords=coords)
+    ds.attrs["solver_options"] = base.to_dict()
     ds.attrs["v0"] = float(v0)
     ds.attrs["v0_units"] = "m s-1"
     return ds
@@ -126,23 +130,31 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
     rules = list(rules)
     num = np.full((len(rules), b.size), np.nan)
     msg = np.full((len(rules), b.size), "", dtype=object)
+    st = np.zeros((len(rules), b.size), dtype=np.int8)
     her = np.full((len(tau_ratios), len(rules), b.size), np.nan)
     her_msg = np.full((len(tau_ratios), len(rules), b.size), "", dtype=object)
+    her_st = np.zeros((len(tau_ratios), len(rules), b.size), dtype=np.int8)
+
+    def solve(fn, *args):
+        try:
+            return fn(*args, steps_per_contact=steps_per_contact), "ok", ""
+        except S.SolverFailure as exc:
+            return np.nan, exc.status, str(exc)
+        except ValueError as exc:
+            return np.nan, "invalid-input", str(exc)
+
     for i, rule in enumerate(rules):
         for j, x in enumerate(b):
-            try:
-                num[i, j] = S.cor_numeric(x, rule, steps_per_contact=steps_per_contact)
-            except (RuntimeError, ValueError) as exc:
-                msg[i, j] = str(exc)
+            num[i, j], name, msg[i, j] = solve(S.cor_numeric, x, rule)
+            st[i, j] = _status.code(name)
             for k, tr in enumerate(tau_ratios):
-                try:
-                    her[k, i, j] = S.cor_numeric_sls(x, tr, rule, steps_per_contact=steps_per_contact)
-                except (RuntimeError, ValueError) as exc:
-                    her_msg[k, i, j] = str(exc)
+                her[k, i, j], name, her_msg[k, i, j] = solve(S.cor_numeric_sls, x, tr, rule)
+                her_st[k, i, j] = _status.code(name)
     eps = ("1", "coefficient of restitution")
     ds = xr.Dataset(
         {
             "eps_numeric": (("rule", "b"), num, {"units": eps[0], "long_name": "eps, direct solver, Kelvin-Voigt"}),
+            "status": (("rule", "b"), st, _status.cf_attrs()),
             "message": (("rule", "b"), msg.astype(str), {"long_name": "solver message (empty when ok)"}),
             "eps_series": (("order", "b"), np.array([S.cor_series(b, k) for k in (1, 2, 3, 4)]),
                            {"units": "1", "long_name": "truncated series 1 + sum C_k b^k (Ramirez Eq. 65)"}),
@@ -152,6 +164,7 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
             "eps_root": ("b", S.cor_root(b), {"units": "1", "long_name": "root of Ramirez Eq. 27"}),
             "eps_sls": (("tau_ratio", "rule", "b"), her,
                         {"units": "1", "long_name": "eps, SLS with the Kelvin-Voigt viscosity, tau = tau_ratio t_c"}),
+            "status_sls": (("tau_ratio", "rule", "b"), her_st, _status.cf_attrs()),
             "message_sls": (("tau_ratio", "rule", "b"), her_msg.astype(str), {"long_name": "solver message"}),
         },
         coords={

@@ -1,18 +1,17 @@
-"""NetCDF output with CF-style metadata, and provenance (vcor version + git commit)."""
+"""NetCDF output with CF-style metadata (provenance from :mod:`vcor.provenance`)."""
 
 from __future__ import annotations
 
 import datetime as _dt
 import json
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
 
-from . import __version__
+from . import provenance as _provenance
 
-__all__ = ["provenance", "write_dataset", "REFERENCES"]
+__all__ = ["write_dataset", "REFERENCES", "scalar_dataset_check"]
 
 REFERENCES = (
     "Green, I. (2026) The viscoelastic coefficient of restitution: integrating the wave equation with "
@@ -22,26 +21,11 @@ REFERENCES = (
 )
 
 
-def _git_commit() -> str:
-    here = Path(__file__).resolve().parent
-    try:
-        out = subprocess.run(["git", "-C", str(here), "rev-parse", "HEAD"], capture_output=True, text=True, timeout=5)
-        commit = out.stdout.strip() if out.returncode == 0 else "unknown"
-        dirty = subprocess.run(["git", "-C", str(here), "status", "--porcelain", "--", str(here)],
-                               capture_output=True, text=True, timeout=5).stdout.strip()
-        return commit + ("+dirty" if dirty and commit != "unknown" else "")
-    except (OSError, subprocess.SubprocessError):
-        return "unknown"
-
-
-def provenance() -> str:
-    return f"vcor {__version__} (git {_git_commit()})"
-
-
 def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None,
                   timestamp: bool = True):
     """Write ``ds`` as NetCDF4 (float64, zlib level 1, no lossy packing) with global attributes
-    Conventions, title, history, source, references and ``extra_attrs`` (dicts become JSON).
+    Conventions, title, history, source (vcor version, code fingerprint, git commit),
+    ``code_fingerprint``, references and ``extra_attrs`` (dicts become JSON).
     ``timestamp=False`` leaves the time out of ``history`` so that the same inputs give the same bytes."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -52,7 +36,8 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
         "Conventions": "CF-1.10",
         "title": title,
         "history": f"{now} {cmd}" if timestamp else cmd,
-        "source": provenance(),
+        "source": _provenance.source(),
+        "code_fingerprint": _provenance.code_fingerprint(),
         "references": REFERENCES,
     }
     for k, v in (extra_attrs or {}).items():

@@ -20,11 +20,14 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 from scipy.special import erfcx, gamma
+
+from .checks import positive as _positive
 
 __all__ = [
     "Material",
@@ -43,13 +46,9 @@ __all__ = [
 _SQRT_PI = math.sqrt(math.pi)
 
 
-def _positive(name: str, value: float, *, allow_zero: bool = False) -> float:
-    value = float(value)
-    ok = value >= 0 if allow_zero else value > 0
-    if not (math.isfinite(value) and ok):
-        rng = "[0, inf)" if allow_zero else "(0, inf)"
-        raise ValueError(f"{name} must be finite and in {rng}, got {value!r}")
-    return value
+#: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
+#: the only singularity, t = 0, is at least one step away, so 12 nodes are exact to rounding)
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
 
 
 class Material:
@@ -94,21 +93,44 @@ class Material:
         """Largest relaxation rate in 1/s (0 for rate-free models)."""
         return 0.0
 
+    @property
+    def is_elastic(self) -> bool:
+        """True when E(t) is constant (no relaxation, no viscosity)."""
+        return False
+
+    def _gauss_steps(self, dt: float, n: int, fn):
+        """int over steps i = 1..n-1 of fn(t, x) dt, x = t - t_mid (12-point Gauss-Legendre)."""
+        h = 0.5 * dt
+        mid = dt * (np.arange(1, n, dtype=float) + 0.5)
+        x = h * _GL_X
+        return h * (fn(np.add.outer(mid, x), x) @ _GL_W)
+
     def step_integrals(self, dt: float, n: int) -> np.ndarray:
-        """W_i = int_{i dt}^{(i+1) dt} E_reg(t) dt for i = 0..n-1, in Pa s (exact)."""
-        nodes = dt * np.arange(n + 1, dtype=float)
-        return np.diff(self.antiderivative(nodes, 1))
+        """W_i = int_{i dt}^{(i+1) dt} E_reg(t) dt for i = 0..n-1, in Pa s.
+
+        Step 0 from the antiderivative (it holds any singularity at t = 0); the others by
+        Gauss-Legendre on the positive integrand E (no differences of growing antiderivatives,
+        so no cancellation however many steps)."""
+        out = np.empty(n)
+        out[0] = float(self.antiderivative(dt, 1))
+        if n > 1:
+            out[1:] = self._gauss_steps(dt, n, lambda t, x: self.relaxation_modulus(t))
+        return out
 
     def step_moments(self, dt: float, n: int) -> np.ndarray:
         """V_i = int_{i dt}^{(i+1) dt} E_reg(t) (t - (i + 1/2) dt) dt for i = 0..n-1, in Pa s^2.
 
         Used by the second-order (quadratic-in-u) product integration of the direct solver.
-        Generic form from the antiderivatives: dt/2 (K1(b) + K1(a)) - (K2(b) - K2(a)).
-        """
-        nodes = dt * np.arange(n + 1, dtype=float)
-        k1 = self.antiderivative(nodes, 1)
-        k2 = self.antiderivative(nodes, 2)
-        return 0.5 * dt * (k1[1:] + k1[:-1]) - np.diff(k2)
+        Step 0 from the antiderivatives, dt/2 K1(dt) - K2(dt). For i >= 1, by parts,
+        V_i = 1/2 int E'(t) ((dt/2)^2 - (t - t_mid)^2) dt: the integrand has one sign, so Gauss-Legendre
+        loses no digits (the difference form dt/2 (K1(b) + K1(a)) - (K2(b) - K2(a)) loses them all by
+        step ~1e5)."""
+        out = np.empty(n)
+        out[0] = 0.5 * dt * float(self.antiderivative(dt, 1)) - float(self.antiderivative(dt, 2))
+        if n > 1:
+            h2 = 0.25 * dt * dt
+            out[1:] = 0.5 * self._gauss_steps(dt, n, lambda t, x: self.relaxation_rate(t) * (h2 - x * x))
+        return out
 
     def storage_loss(self, omega):
         """(E', E'', tan delta) at angular frequency omega [rad/s]."""
@@ -120,6 +142,14 @@ class Material:
 
     def describe(self) -> str:
         return json.dumps(self.to_dict())
+
+
+def _term(name, value, unit):
+    """One Prony modulus or rate: a finite number >= 0 (a negative modulus would make E(t) increase)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool) and value < 0:
+        why = " (a negative term makes the relaxation modulus increase)" if "E[" in name else ""
+        raise ValueError(f"{name} must be in [0, inf) {unit}{why}, got {value!r}")
+    return _positive(name, value, allow_zero=True, unit=unit)
 
 
 @dataclass(frozen=True)
@@ -144,20 +174,12 @@ class Prony(Material):
     kind: str = field(default="prony", init=False)
 
     def __post_init__(self):
-        _positive("E_inf", self.E_inf, allow_zero=True)
-        e = tuple(float(x) for x in np.atleast_1d(np.asarray(self.E, dtype=float)))
-        b = tuple(float(x) for x in np.atleast_1d(np.asarray(self.beta, dtype=float)))
+        _positive("E_inf", self.E_inf, allow_zero=True, unit="Pa")
+        e = tuple(_term(f"Prony E[{i}]", x, "Pa") for i, x in enumerate(np.atleast_1d(np.asarray(self.E, dtype=object))))
+        b = tuple(_term(f"Prony beta[{i}]", x, "1/s")
+                  for i, x in enumerate(np.atleast_1d(np.asarray(self.beta, dtype=object))))
         if len(e) != len(b):
             raise ValueError(f"Prony: E and beta must have equal length, got {len(e)} and {len(b)}")
-        for i, x in enumerate(e):
-            if not (math.isfinite(x) and x >= 0):
-                raise ValueError(
-                    f"Prony E[{i}] must be in [0, inf) (a negative term makes the "
-                    f"relaxation modulus increase), got {x!r}"
-                )
-        for i, x in enumerate(b):
-            if not (math.isfinite(x) and x >= 0):
-                raise ValueError(f"Prony beta[{i}] must be in [0, inf) 1/s, got {x!r}")
         object.__setattr__(self, "E", e)
         object.__setattr__(self, "beta", b)
         if self.E_inf + sum(e) <= 0:
@@ -166,6 +188,10 @@ class Prony(Material):
     @property
     def is_prony(self) -> bool:
         return True
+
+    @property
+    def is_elastic(self) -> bool:
+        return all(e == 0 or b == 0 for e, b in zip(self.E, self.beta))
 
     @property
     def fastest_rate(self) -> float:
@@ -263,9 +289,9 @@ class SLS(Prony):
     alpha: float = 0.0
 
     def __init__(self, E_glassy: float, alpha: float, beta: float):
-        eg = _positive("E_glassy", E_glassy)
-        a = _positive("alpha", alpha, allow_zero=True)
-        b = _positive("beta", beta, allow_zero=True)
+        eg = _positive("E_glassy", E_glassy, unit="Pa")
+        a = _positive("alpha", alpha, allow_zero=True, unit="1/s")
+        b = _positive("beta", beta, allow_zero=True, unit="1/s")
         if a > b:
             raise ValueError(
                 f"SLS alpha must be in [0, beta] = [0, {b}] 1/s (alpha > beta makes the "
@@ -289,7 +315,7 @@ class Elastic(Prony):
     """Elastic solid, E(t) = E (Pa)."""
 
     def __init__(self, E: float):
-        object.__setattr__(self, "E_inf", _positive("E", E))
+        object.__setattr__(self, "E_inf", _positive("E", E, unit="Pa"))
         object.__setattr__(self, "E", ())
         object.__setattr__(self, "beta", ())
         object.__setattr__(self, "kind", "elastic")
@@ -318,8 +344,8 @@ class FractionalPower(Material):
     kind: str = field(default="fractional", init=False)
 
     def __post_init__(self):
-        _positive("E0", self.E0, allow_zero=True)
-        _positive("E1", self.E1, allow_zero=True)
+        _positive("E0", self.E0, allow_zero=True, unit="Pa")
+        _positive("E1", self.E1, allow_zero=True, unit="Pa s^0.5")
         if self.E0 + self.E1 <= 0:
             raise ValueError("FractionalPower: E0 + E1 must be > 0")
 
@@ -349,12 +375,24 @@ class FractionalPower(Material):
             return 0.5 * self.E0 * t**2 + (4.0 / 3.0) * self.E1 * t**1.5 / _SQRT_PI
         raise ValueError(f"order must be 1 or 2, got {order}")
 
+    @property
+    def is_elastic(self) -> bool:
+        return self.E1 == 0
+
+    def _sqrt_steps(self, dt, n):
+        """sqrt(b) - sqrt(a) = dt / (sqrt(a) + sqrt(b)) for the steps [a, b] (no cancellation)."""
+        r = np.sqrt(dt * np.arange(n + 1, dtype=float))
+        return dt / (r[1:] + r[:-1])
+
+    def step_integrals(self, dt: float, n: int) -> np.ndarray:
+        # E0 dt + 2 E1/sqrt(pi) (sqrt(b) - sqrt(a)), the difference taken without cancellation
+        return self.E0 * dt + 2.0 * self.E1 / _SQRT_PI * self._sqrt_steps(dt, n)
+
     def step_moments(self, dt: float, n: int) -> np.ndarray:
-        # the E0 part integrates to zero; only the singular part contributes
-        x = dt * np.arange(n + 1, dtype=float)
-        k1 = 2.0 * self.E1 * np.sqrt(x / math.pi)
-        k2 = (4.0 / 3.0) * self.E1 * x**1.5 / _SQRT_PI
-        return 0.5 * dt * (k1[1:] + k1[:-1]) - np.diff(k2)
+        # int_a^b (t - m) dt/sqrt(pi t) = (2/3)(b^1.5 - a^1.5) - 2 m (sqrt b - sqrt a)
+        #   = (sqrt b - sqrt a) (2/3) (sqrt(a) sqrt(b) - (a + b)/2) = -(sqrt b - sqrt a)^3 / 3;
+        # the E0 part integrates to zero
+        return -self.E1 / (3.0 * _SQRT_PI) * self._sqrt_steps(dt, n) ** 3
 
     def params(self) -> dict:
         return {"E0": self.E0, "E1": self.E1}
@@ -411,9 +449,9 @@ class Cerf(Material):
     kind: str = field(default="cerf", init=False)
 
     def __post_init__(self):
-        _positive("E0", self.E0, allow_zero=True)
-        _positive("E1", self.E1, allow_zero=True)
-        _positive("b1", self.b1)
+        _positive("E0", self.E0, allow_zero=True, unit="Pa")
+        _positive("E1", self.E1, allow_zero=True, unit="Pa")
+        _positive("b1", self.b1, unit="s^-1/2")
         if self.E0 + self.E1 <= 0:
             raise ValueError("Cerf: E0 + E1 must be > 0")
 
@@ -460,11 +498,9 @@ class Cerf(Material):
             return 0.5 * self.E0 * t**2 + self.E1 * _erfcx_tail(x, 4) / self.b1**4
         raise ValueError(f"order must be 1 or 2, got {order}")
 
-    def step_moments(self, dt: float, n: int) -> np.ndarray:
-        x = self.b1 * np.sqrt(dt * np.arange(n + 1, dtype=float))
-        k1 = self.E1 * _erfcx_tail(x, 2) / self.b1**2
-        k2 = self.E1 * _erfcx_tail(x, 4) / self.b1**4
-        return 0.5 * dt * (k1[1:] + k1[:-1]) - np.diff(k2)
+    @property
+    def is_elastic(self) -> bool:
+        return self.E1 == 0
 
     def params(self) -> dict:
         return {"E0": float(self.E0), "E1": float(self.E1), "b1": float(self.b1)}
@@ -490,12 +526,16 @@ class KelvinVoigt(Material):
     kind: str = field(default="kelvin-voigt", init=False)
 
     def __post_init__(self):
-        _positive("E", self.E)
-        _positive("tau", self.tau, allow_zero=True)
+        _positive("E", self.E, unit="Pa")
+        _positive("tau", self.tau, allow_zero=True, unit="s")
 
     @property
     def viscosity(self) -> float:  # type: ignore[override]
         return self.E * self.tau
+
+    @property
+    def is_elastic(self) -> bool:
+        return self.tau == 0
 
     @property
     def is_prony(self) -> bool:

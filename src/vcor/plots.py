@@ -27,6 +27,12 @@ def _mark_failed(ax, x, ok, label="not ok"):
     return int(bad.sum())
 
 
+def _status_name(var) -> str:
+    """Status name of a scalar status variable (CF flag_meanings)."""
+    codes = dict(zip(var.attrs["flag_values"].tolist(), var.attrs["flag_meanings"].split()))
+    return codes.get(int(var), "unknown").replace("_", "-")
+
+
 def _v0_line(sweep, material):
     """The sweep along v0 for one material (first value of any other axis)."""
     d = sweep.sel(material=material)
@@ -110,8 +116,8 @@ def _responses(hist, runs, title):
     fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
     for i, run in enumerate(runs):
         h = hist.sel(run=run)
-        if str(h["status"].values) != "ok":
-            ax.text(0.02, 0.02 + 0.05 * i, f"{run}: {h['status'].values} ({h['message'].values})", color="red",
+        if int(h["status"]) != 0:
+            ax.text(0.02, 0.02 + 0.05 * i, f"{run}: {_status_name(h['status'])} ({h['message'].values})", color="red",
                     transform=ax.transAxes, fontsize=7)
             continue
         t = h["t"].values * 1e3
@@ -156,9 +162,11 @@ def fig2(hist, opts):
 def fig3(hist, opts):
     """Hysteresis loops F(s) up to separation with W_h."""
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-    for run in _runs(hist, opts, ["sls", "butyl-fc"]):
+    for i, run in enumerate(_runs(hist, opts, ["sls", "butyl-fc"])):
         h = hist.sel(run=run)
-        if str(h["status"].values) != "ok":
+        if int(h["status"]) != 0:
+            ax.text(0.02, 0.95 - 0.05 * i, f"{run}: {_status_name(h['status'])} ({h['message'].values})",
+                    color="red", transform=ax.transAxes, fontsize=7)
             continue
         ghost = h["ghost"].values.astype(bool)
         ax.plot(h["s"].values[~ghost] * 1e3, h["F"].values[~ghost],

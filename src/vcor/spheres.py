@@ -26,13 +26,23 @@ from scipy.optimize import brentq
 from scipy.special import gamma
 
 from . import materials as _materials
+from .checks import positive
 from .solvers import simulate
+from .solvers.common import richardson
 
 __all__ = [
     "C", "C1_CLOSED_FORM", "A_COEFFS", "TABLE_I", "MP_NUM", "MP_DEN",
     "pade_coefficients", "cor_series", "cor_pade", "cor_pade_force", "cor_root", "cor_numeric",
-    "cor_numeric_sls", "b_group", "g_star", "dissipative_constant", "cor_spheres",
+    "cor_numeric_sls", "b_group", "g_star", "dissipative_constant", "cor_spheres", "SolverFailure",
 ]
+
+
+class SolverFailure(RuntimeError):
+    """The solver did not return an ok result; ``status`` holds its status (vcor.status)."""
+
+    def __init__(self, status: str, message: str):
+        super().__init__(f"spheres: solver status {status}: {message}")
+        self.status = status
 
 #: series coefficients of eps = 1 + sum_k C_k b^k (Ramirez Eqs. 6, 65, 67; Schwager & Poeschel 1998)
 C = (-1.153449, 0.798267, -0.483582, 0.285279)
@@ -114,19 +124,19 @@ _UNIT = dict(r=1.0, nu=0.0, rho_a=3.0 / (4.0 * math.pi), rigid=True)
 T_C_UNIT = 2.9432 * 1.25**0.4
 
 
-def _numeric(material, rule, steps_per_contact, richardson):
+def _numeric(material, rule, steps_per_contact, extrapolate):
     # Kelvin-Voigt and SLS kernels are Prony kernels: the fixed-step internal-variable march is the
     # same second-order scheme in O(N), which matters for the long, creeping contacts at large b.
     kw = dict(rule=rule, method="ive-numba", **_UNIT)
     r1 = simulate(material, 1.0, steps_per_contact=steps_per_contact, **kw)
     if r1.status != "ok":
-        raise RuntimeError(f"spheres: solver status {r1.status}: {r1.message}")
-    if not richardson:
+        raise SolverFailure(r1.status, r1.message)
+    if not extrapolate:
         return r1.cor
     r2 = simulate(material, 1.0, steps_per_contact=2 * steps_per_contact, **kw)
     if r2.status != "ok":
-        raise RuntimeError(f"spheres: solver status {r2.status}: {r2.message}")
-    return r2.cor + (r2.cor - r1.cor) / 3.0  # second order -> Richardson
+        raise SolverFailure(r2.status, r2.message)
+    return richardson(r1.cor, r2.cor)[0]  # second order
 
 
 def cor_numeric(b, rule: str = "overlap", *, steps_per_contact: int = 2000, richardson: bool = True):
@@ -162,13 +172,6 @@ def cor_numeric_sls(b, tau_ratio, rule: str = "overlap", *, steps_per_contact: i
 
 
 # ----------------------------------------------------------------------------- dimensional
-def _positive(name, v):
-    v = float(v)
-    if not (math.isfinite(v) and v > 0):
-        raise ValueError(f"{name} must be finite and > 0, got {v!r}")
-    return v
-
-
 def dissipative_constant(eta1, eta2, E, nu):
     """Ramirez Eq. 4: A = (3 eta2 - eta1)^2 / (3 (3 eta2 + 2 eta1)) (1 - nu^2)(1 - 2 nu) / (E nu^2), in s.
     eta1, eta2 are the viscous constants (Pa s), E the Young modulus (Pa), nu in (0, 0.5)."""
@@ -176,7 +179,7 @@ def dissipative_constant(eta1, eta2, E, nu):
     eta2 = float(eta2)
     if eta1 < 0 or eta2 < 0 or not (3 * eta2 + 2 * eta1 > 0):
         raise ValueError("viscosities eta1, eta2 must be >= 0 Pa s and not both 0")
-    E = _positive("E", E)
+    E = positive("E", E)
     if not (0 < nu < 0.5):
         raise ValueError(f"nu must be in (0, 0.5) for Eq. 4, got {nu!r}")
     return (3 * eta2 - eta1) ** 2 / (3 * (3 * eta2 + 2 * eta1)) * (1 - nu**2) * (1 - 2 * nu) / (E * nu**2)
@@ -185,9 +188,9 @@ def dissipative_constant(eta1, eta2, E, nu):
 def _pair(R1, R2, m1, m2, E, nu):
     """(R_eff, m_eff, rho) for two spheres of one material; R2 = m2 = inf is a sphere on an immovable
     half-space of the same material (rho = 2 E sqrt(R_eff) / (3 (1 - nu^2)), Ramirez Eq. 2)."""
-    R1, m1, E = _positive("R1", R1), _positive("m1", m1), _positive("E", E)
-    R2 = math.inf if R2 == math.inf else _positive("R2", R2)
-    m2 = math.inf if m2 == math.inf else _positive("m2", m2)
+    R1, m1, E = positive("R1", R1), positive("m1", m1), positive("E", E)
+    R2 = math.inf if R2 == math.inf else positive("R2", R2)
+    m2 = math.inf if m2 == math.inf else positive("m2", m2)
     if not (-1 < nu <= 0.5):
         raise ValueError(f"nu must be in (-1, 0.5], got {nu!r}")
     r_eff = R1 * R2 / (R1 + R2) if math.isfinite(R2) else R1
@@ -202,13 +205,13 @@ def b_group(*, R1, R2, m1, m2, E, nu, A, g):
     _, m_eff, rho = _pair(R1, R2, m1, m2, E, nu)
     if not (A >= 0):
         raise ValueError(f"A must be >= 0 s, got {A!r}")
-    return 1.5 * A * (rho / m_eff) ** 0.4 * _positive("g", g) ** 0.2
+    return 1.5 * A * (rho / m_eff) ** 0.4 * positive("g", g) ** 0.2
 
 
 def g_star(*, R1, R2, m1, m2, E, nu, A):
     """Characteristic velocity g* (m/s) of Ramirez Eq. 31: (g*)^(-1/5) = C1 (3/2) A (rho/m_eff)^(2/5)."""
     _, m_eff, rho = _pair(R1, R2, m1, m2, E, nu)
-    return (C1_CLOSED_FORM * 1.5 * _positive("A", A) * (rho / m_eff) ** 0.4) ** -5
+    return (C1_CLOSED_FORM * 1.5 * positive("A", A) * (rho / m_eff) ** 0.4) ** -5
 
 
 def cor_spheres(*, R1, R2, m1, m2, E, nu, A, g, rule="overlap", steps_per_contact=2000):
@@ -218,8 +221,8 @@ def cor_spheres(*, R1, R2, m1, m2, E, nu, A, g, rule="overlap", steps_per_contac
     r_eff, m_eff, _ = _pair(R1, R2, m1, m2, E, nu)
     if not (A >= 0):
         raise ValueError(f"A must be >= 0 s, got {A!r}")
-    res = simulate(_materials.KelvinVoigt(E, A), _positive("g", g), rule=rule, steps_per_contact=steps_per_contact,
+    res = simulate(_materials.KelvinVoigt(E, A), positive("g", g), rule=rule, steps_per_contact=steps_per_contact,
                    r=r_eff, rho_a=m_eff / (4.0 / 3.0 * math.pi * r_eff**3), nu=nu, case=2, rigid=True)
     if res.status != "ok":
-        raise RuntimeError(f"spheres: solver status {res.status}: {res.message}")
+        raise SolverFailure(res.status, res.message)
     return res.cor

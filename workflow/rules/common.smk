@@ -6,9 +6,17 @@ from snakemake.utils import validate
 
 import vcor.fit as vfit
 import vcor.plots as vplots
-import vcor.sweep as vsweep
+import vcor.provenance as vprovenance
+import vcor.scene as vscene
+import vcor.shards as vshards
+from vcor.options import METHODS
 
 validate(config, schema="../schemas/config.schema.yaml")
+
+# fingerprints of the code that computes (every computing rule takes it as a param, so changed code
+# re-runs those jobs; shard names contain it) and of the figure code (figure rule)
+CODE = vprovenance.code_fingerprint()
+PLOTS_CODE = vprovenance.plots_fingerprint()
 
 SCENES = config["scenes"]
 MATERIAL_DIR = config["material_dir"]
@@ -29,7 +37,7 @@ def _check_scenes():
         figures = scene.get("figures", {})
         need = vplots.needs(figures)
         if "grid" in scene:
-            vsweep.validate_scene(name, scene, MATERIAL_DIR, FITTED)
+            vscene.validate_scene(name, scene, MATERIAL_DIR, FITTED)
         if "sweep" in need and "grid" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
@@ -39,10 +47,9 @@ def _check_scenes():
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.convergence"
             )
         for mat in scene.get("convergence", {}).get("materials", []):
-            if mat not in vsweep._materials.PRESETS and mat not in FITTED:
-                raise ValueError(
-                    f"config.yaml: scenes.{name}.convergence.materials: unknown material {mat!r}"
-                )
+            vscene.check_material_name(
+                mat, FITTED, f"config.yaml: scenes.{name}.convergence.materials"
+            )
         if "spheres" in need and "spheres" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.spheres"
@@ -52,7 +59,7 @@ def _check_scenes():
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.histories"
             )
         for mat, method in scene.get("histories", {}).get("runs", []):
-            if method not in ("direct", "ive", "ive-numba"):
+            if method not in METHODS or method == "paper":
                 raise ValueError(
                     f"config.yaml: scenes.{name}.histories.runs: unknown method {method!r}"
                 )
@@ -72,21 +79,37 @@ wildcard_constraints:
     scene="|".join(re.escape(s) for s in SCENES),
     material="|".join(re.escape(m) for m in sorted(FITTED)) or "no-fitted-material",
     material_case="[A-Za-z0-9_.-]+?",
-    shard="[0-9a-f]{10}-[0-9a-f]{12}",
+    shard=vshards.SHARD_PATTERN,
     fig="|".join(vplots.FIGURES),
 
 
 _PLANS = {}
+_IDENTITIES = {}
+
+
+def material_identities(scene):
+    """{material name: content identity} of a scene's materials (see vcor.shards)."""
+    if scene not in _IDENTITIES:
+        _IDENTITIES[scene] = {
+            m: vshards.material_identity(m, fits=FITS, material_dir=MATERIAL_DIR)
+            for m in SCENES[scene]["materials"]
+        }
+    return _IDENTITIES[scene]
 
 
 def shard_plan(scene):
     if scene not in _PLANS:
-        _PLANS[scene] = vsweep.plan_shards(
+        _PLANS[scene] = vshards.plan_shards(
             SCENES[scene],
             f"results/{scene}/shards",
             SCENES[scene].get("shard_size", config["shard_size"]),
+            material_identities(scene),
         )
     return _PLANS[scene]
+
+
+def get_identities(wildcards):
+    return material_identities(wildcards.scene)
 
 
 def get_scene(wildcards):
@@ -115,7 +138,7 @@ def get_convergence_cases(wildcards):
 
 
 def get_settings(wildcards):
-    return vsweep.settings_of(SCENES[wildcards.scene])
+    return vscene.settings_of(SCENES[wildcards.scene])
 
 
 def get_shard_points(wildcards):

@@ -10,9 +10,8 @@ rule convergence_case:
         "results/{scene}/logs/convergence/{material_case}.log",
     benchmark:
         "results/{scene}/benchmarks/convergence/{material_case}.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         material="{material_case}",
         v0=get_convergence_v0s,
         material_dir=MATERIAL_DIR,
@@ -28,9 +27,8 @@ rule convergence:
         orders="results/{scene}/orders.txt",
     log:
         "results/{scene}/logs/convergence.log",
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         spec=get_convergence_spec,
     script:
         "../scripts/convergence.py"

@@ -13,9 +13,8 @@ rule figure:
         pdf="results/{scene}/figures/{fig}.pdf",
     log:
         "results/{scene}/logs/figures/{fig}.log",
-    conda:
-        "../envs/vcor.yaml"
     params:
+        plots_code=PLOTS_CODE,
         options=get_figure_options,
     script:
         "../scripts/figure.py"
@@ -28,7 +27,5 @@ rule manifest:
         "results/{scene}/MANIFEST.txt",
     log:
         "results/{scene}/logs/manifest.log",
-    conda:
-        "../envs/vcor.yaml"
     script:
         "../scripts/manifest.py"

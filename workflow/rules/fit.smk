@@ -9,9 +9,8 @@ rule fit_material:
         f"{MATERIAL_DIR}/logs/{{material}}.log",
     benchmark:
         f"{MATERIAL_DIR}/benchmarks/{{material}}.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         spec=get_fit_spec,
     script:
         "../scripts/fit_material.py"
@@ -24,9 +23,8 @@ rule fit_metrics:
         "results/{scene}/fit_metrics.txt",
     log:
         "results/{scene}/logs/fit_metrics.log",
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         names=get_scene_fitted_names,
         material_dir=MATERIAL_DIR,
     script:

@@ -8,9 +8,8 @@ rule spheres:
         "results/{scene}/logs/spheres.log",
     benchmark:
         "results/{scene}/benchmarks/spheres.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         spec=get_spheres_spec,
     script:
         "../scripts/spheres.py"

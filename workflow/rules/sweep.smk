@@ -11,8 +11,6 @@ rule sweep_shard:
         "results/{scene}/logs/shards/{shard}.log",
     benchmark:
         "results/{scene}/benchmarks/shards/{shard}.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
         points=get_shard_points,
         settings=get_settings,
@@ -31,9 +29,9 @@ rule aggregate:
         "results/{scene}/logs/aggregate.log",
     benchmark:
         "results/{scene}/benchmarks/aggregate.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
+        identities=get_identities,
+        code=CODE,
         scene=get_scene,
         material_dir=MATERIAL_DIR,
     script:
@@ -49,9 +47,8 @@ rule moduli:
         "results/{scene}/logs/moduli.log",
     benchmark:
         "results/{scene}/benchmarks/moduli.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         materials=get_moduli_materials,
         material_dir=MATERIAL_DIR,
     script:
@@ -67,9 +64,8 @@ rule histories:
         "results/{scene}/logs/histories.log",
     benchmark:
         "results/{scene}/benchmarks/histories.tsv"
-    conda:
-        "../envs/vcor.yaml"
     params:
+        code=CODE,
         histories=get_histories_spec,
         settings=get_settings,
         material_dir=MATERIAL_DIR,

@@ -4,12 +4,12 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import fit, sweep  # noqa: E402
+from vcor import fit, scene  # noqa: E402
 
 data = fit.bagley_torvik_data()
 rows = []
 for name in ["butyl-cerf", "butyl-prony3", *snakemake.params.names]:  # noqa: F821
-    mat = sweep.resolve_material(name, material_dir=snakemake.params.material_dir)  # noqa: F821
+    mat = scene.resolve_material(name, material_dir=snakemake.params.material_dir)  # noqa: F821
     rows.append((name, mat, fit.metrics(mat, data)))
 with open(snakemake.output[0], "w") as fh:  # noqa: F821
     fh.write(fit.metrics_table(rows))

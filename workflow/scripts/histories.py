@@ -4,18 +4,18 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import datasets, io, sweep  # noqa: E402
+from vcor import datasets, io, scene  # noqa: E402
 
 h = snakemake.params.histories  # noqa: F821
 settings = snakemake.params.settings  # noqa: F821
 mdir = snakemake.params.material_dir  # noqa: F821
-ds = datasets.histories_dataset([tuple(r) for r in h["runs"]], h["v0"], solver=settings["solver"],
-                                geometry=settings["geometry"], ghost=h["ghost"], material_dir=mdir)
+ds = datasets.histories_dataset([tuple(r) for r in h["runs"]], h["v0"], options=settings["solver"],
+                                geometry=settings["geometry"], material_dir=mdir)
 attrs = {
     "scene": snakemake.wildcards.scene,  # noqa: F821
     "histories_config": h,
     "solver_settings": settings,
-    "materials": sweep.material_params(sorted({r[0] for r in h["runs"]}), mdir),
+    "materials": scene.material_params(sorted({r[0] for r in h["runs"]}), mdir),
 }
 io.write_dataset(ds, snakemake.output[0], title=f"vcor histories, scene {snakemake.wildcards.scene}",  # noqa: F821
                  extra_attrs=attrs, command="snakemake rule histories")

@@ -4,10 +4,10 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import datasets, io, sweep  # noqa: E402
+from vcor import datasets, io, scene  # noqa: E402
 
 spec = snakemake.params.spec  # noqa: F821
-ds = datasets.spheres_dataset(sweep.axis_values(spec["b"]), rules=spec["rules"], tau_ratios=spec["tau_ratio"],
+ds = datasets.spheres_dataset(scene.axis_values(spec["b"]), rules=spec["rules"], tau_ratios=spec["tau_ratio"],
                               steps_per_contact=spec["steps_per_contact"])
 io.write_dataset(ds, snakemake.output[0], title=f"vcor viscoelastic spheres, scene {snakemake.wildcards.scene}",  # noqa: F821
                  extra_attrs={"spheres_config": spec}, command="snakemake rule spheres")

@@ -1,16 +1,18 @@
-"""Solve one shard of grid points (thin: vcor.sweep does the work)."""
+"""Solve one shard of grid points (thin: vcor.runner does the work)."""
 
 import json
 import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import io, sweep  # noqa: E402
+from vcor import io, runner, scene  # noqa: E402
 
 points = snakemake.params.points  # noqa: F821
 settings = snakemake.params.settings  # noqa: F821
-ds = sweep.run_points(points, settings, snakemake.params.material_dir)  # noqa: F821
-io.write_dataset(ds, snakemake.output.nc, title="vcor sweep shard", extra_attrs={"settings": settings},  # noqa: F821
+mdir = snakemake.params.material_dir  # noqa: F821
+ds = runner.run_points(points, settings, mdir)
+attrs = {"settings": settings, "materials": scene.material_params(sorted({p["material"] for p in points}), mdir)}
+io.write_dataset(ds, snakemake.output.nc, title="vcor sweep shard", extra_attrs=attrs,  # noqa: F821
                  command="snakemake rule sweep_shard")
 with open(snakemake.output.index, "w") as fh:  # noqa: F821
     json.dump({"points": points, "settings": settings}, fh, indent=1)

@@ -1,6 +1,8 @@
 """Impact solvers: ``direct`` (numba, any kernel), ``ive`` (scipy solve_ivp) and ``ive-numba``."""
 
-from .common import STATUS_CODES, Histories, Result
+from ..options import SolverOptions
+from ..status import STATUS_CODES
+from .common import Histories, Result
 from .simulate import METHODS, default_dt, simulate
 
-__all__ = ["simulate", "Result", "Histories", "STATUS_CODES", "METHODS", "default_dt"]
+__all__ = ["simulate", "Result", "Histories", "STATUS_CODES", "METHODS", "default_dt", "SolverOptions"]

@@ -6,12 +6,11 @@ import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
-__all__ = ["Result", "STATUS_CODES", "UNITS", "LONG_NAMES", "separation", "peak", "Histories"]
+from ..status import STATUS_CODES
 
-#: status name -> small integer code (stored in datasets with flag_values/flag_meanings)
-STATUS_CODES = {"ok": 0, "no-separation": 1, "diverged": 2, "invalid-input": 3, "failed": 4}
+__all__ = ["Result", "STATUS_CODES", "UNITS", "LONG_NAMES", "separation", "peak", "richardson", "Histories"]
 
 UNITS = {
     "cor": "1",
@@ -121,11 +120,17 @@ def _lagrange(tn, yn, t):
     return total
 
 
-def peak(t, y):
-    """Maximum of sampled y, refined by the parabola through the largest sample and its neighbours."""
+def peak(t, y, f=None):
+    """Maximum of sampled y(t). Refined by the parabola through the largest sample and its neighbours
+    (uniform samples), or, when ``f`` (a callable y(t), e.g. a dense output) is given, by a bounded
+    scalar search for the maximum of f between the neighbouring samples."""
     i = int(np.argmax(y))
     if i == 0 or i == y.size - 1:
         return float(y[i])
+    if f is not None:
+        lo, hi = t[i - 1], t[i + 1]
+        r = minimize_scalar(lambda x: -f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * hi})
+        return float(max(-r.fun, y[i]))
     a, b, c = y[i - 1], y[i], y[i + 1]
     den = a - 2.0 * b + c
     if den >= 0.0:
@@ -139,7 +144,9 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
     is found as the root of the cubic
     Lagrange interpolant through the four nodes around it (third-order interpolation, error
-    O(dt^4)); s, s', J are interpolated the same way. Returns a dict of the scalars.
+    O(dt^4)); s, s', J are interpolated the same way. Where the cubic does not bracket the root
+    (a kink of F inside the step), the root of the linear interpolant is used instead and the
+    returned ``message`` says so. Returns a dict of the scalars and ``message``.
     """
     n = int(n_sep)
     lo = max(0, min(n - 2, len(t) - 4))
@@ -156,9 +163,12 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
 
     a, b = t[n - 1], t[n]
     fa, fb = f(a), f(b)
+    message = ""
     if not (fa > 0 >= fb):  # interpolant does not bracket: fall back to linear on the nodes
         y0, y1 = target[n - 1], target[n]
         t0 = a + (b - a) * y0 / (y0 - y1)
+        message = ("separation located by linear interpolation (the cubic interpolant of "
+                   f"{'s' if by_overlap else 'F'} does not bracket its root in the last step): t0 is O(dt^2) accurate")
     else:
         # Brent's method on the cubic interpolant, bracketed by fa > 0 >= fb
         t0 = b if fb == 0.0 else brentq(f, a, b, xtol=1e-15 * max(b, 1e-300), rtol=4 * np.finfo(float).eps, maxiter=200)
@@ -187,4 +197,13 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
         "energy_residual": float(energy_residual),
         "s_max": peak(t[: n + 1], s[: n + 1]),
         "f_max": peak(t[: n + 1], F[: n + 1]),
+        "message": message,
     }
+
+
+def richardson(coarse: float, fine: float, order: float = 2.0) -> tuple[float, float]:
+    """Richardson extrapolation from runs at dt (``coarse``) and dt/2 (``fine``) of a method of the
+    given order: (extrapolated value, error estimate of the coarse value |coarse - extrapolated|)."""
+    f = 2.0**order
+    extrapolated = fine + (fine - coarse) / (f - 1.0)
+    return extrapolated, abs(coarse - extrapolated)

@@ -1,7 +1,8 @@
-"""Direct (full-history) solver and the fixed-step internal-variable variant, both numba.
+"""Direct (full-history) solver, numba, any kernel; and the paper-like explicit baseline.
 
-See ``_kernels`` for the discretisation. This module prepares the arrays (exact kernel step
-integrals, plate mobility), runs the march, extends T_max when needed and post-processes.
+See ``_kernels`` for the discretisation. This module prepares the weights (exact kernel step
+integrals and first moments) and runs the march through :mod:`.march` (T_max extension, ghost
+continuation, post-processing).
 """
 
 from __future__ import annotations
@@ -12,15 +13,15 @@ import time
 import numpy as np
 
 from . import _kernels as K
-from .common import Histories, Result, separation
+from .march import Arrays, drive, finish
 
-__all__ = ["run_direct", "run_ive_fixed", "run_paper", "MAX_T_FACTOR"]
+__all__ = ["run_direct", "run_paper", "kernel_weights", "volterra_weights", "MAX_T_FACTOR"]
 
 #: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
 MAX_T_FACTOR = 32.0
 
 
-def _kernel_weights(impact, dt, n):
+def kernel_weights(impact, dt, n):
     """Folded weights (wt, v) of the quadratic product integration (see ``_kernels``), N m^-1.5."""
     w = impact.kappa * impact.material.step_integrals(dt, n) / dt
     v = -impact.kappa * impact.material.step_moments(dt, n) / dt**2
@@ -29,96 +30,13 @@ def _kernel_weights(impact, dt, n):
     return wt, v
 
 
-def _volterra_weights(impact, dt, n):
+def volterra_weights(impact, dt, n):
     """Q_c = double cell integrals of k: K2((c+1)dt) - 2 K2(c dt) + K2((c-1)dt), c = 0..2n."""
     nodes = dt * np.arange(2 * n + 2, dtype=float)
     k2 = impact.kappa * impact.material.antiderivative(nodes, 2)
     q = np.zeros(2 * n + 1)
     q[1:] = k2[2:] - 2.0 * k2[1:-1] + k2[:-2]
     return q
-
-
-class _Arrays:
-    """Growable solution arrays."""
-
-    names = ("s", "g", "F", "J", "u", "du")
-
-    def __init__(self, n):
-        for k in self.names:
-            setattr(self, k, np.zeros(n + 1))
-        self.n = n
-
-    def grow(self, n):
-        for k in self.names:
-            old = getattr(self, k)
-            new = np.zeros(n + 1)
-            new[: old.size] = old
-            setattr(self, k, new)
-        self.n = n
-
-
-def _march(impact, dt, n_steps, max_steps, rule, ghost, step_fn):
-    """Common driver: initial conditions, T_max extension, ghost continuation."""
-    v0 = impact.v0
-    arr = _Arrays(n_steps)
-    arr.g[0] = v0
-    state = K.empty_state()
-    n_done = 0
-    n_cap = n_steps
-    while True:
-        t = dt * np.arange(n_cap + 1)
-        alpha = impact.alpha(t)
-        alphad = impact.alpha_rate(t)
-        step_fn(n_done + 1, n_cap, arr, alpha, alphad, state, n_extra=2)
-        n_done = int(state[2])
-        if state[3] != K.STATUS_END:
-            break
-        if n_cap >= max_steps:
-            break
-        n_cap = min(2 * n_cap, max_steps)
-        arr.grow(n_cap)
-    if state[3] == K.STATUS_SEPARATED and ghost > 0:
-        n_sep = int(state[1])
-        n_ghost = min(int(math.ceil(n_sep * (1.0 + ghost))), max(n_cap, n_sep + 3))
-        if n_ghost > n_cap:
-            arr.grow(n_ghost)
-            n_cap = n_ghost
-        t = dt * np.arange(n_cap + 1)
-        if n_ghost > n_done:
-            st = state.copy()
-            step_fn(n_done + 1, n_ghost, arr, impact.alpha(t), impact.alpha_rate(t), st, n_extra=n_ghost)
-            n_done = int(st[2])
-    return arr, state, n_done
-
-
-def _finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_steps):
-    m, v0 = impact.m, impact.v0
-    t = dt * np.arange(n_done + 1)
-    s, g, F, J = arr.s[: n_done + 1], arr.g[: n_done + 1], arr.F[: n_done + 1], arr.J[: n_done + 1]
-    res = Result(steps=n_done, wall_time=wall, dt=dt, method=method)
-    status = int(state[3])
-    if status == K.STATUS_SEPARATED:
-        res.__dict__.update(separation(t, s, g, F, J, int(state[1]), rule, m, v0))
-        res.steps = int(state[1])
-    elif status == K.STATUS_DIVERGED:
-        res.status = "diverged"
-        res.message = (
-            f"Newton iteration failed or a non-finite value appeared at step {n_done} "
-            f"(t = {t[-1]:.6g} s, dt = {dt:.3g} s); try a smaller dt"
-        )
-    else:
-        res.status = "no-separation"
-        res.message = (
-            f"contact force did not return to zero within T_max = {t[-1]:.6g} s "
-            f"({n_done} steps, bound max_steps = {max_steps}); s_max, f_max are over that window"
-        )
-        res.s_max = float(np.max(s))
-        res.f_max = float(np.max(F))
-    if history:
-        zd = v0 - J / m
-        h = Histories(t=t, s=s.copy(), sdot=g.copy(), F=F.copy(), J=J.copy(), zdot=zd, U=impact.alpha(t) * J)
-        res.history = h.mark(res.t0 if res.ok else math.inf)
-    return res
 
 
 def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, c2=1.0, form="a",
@@ -139,9 +57,9 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
     def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
         if cache.get("n") != arr.n:
             cache["n"] = arr.n
-            cache["w"], cache["v"] = (_form_b_weights if form == "b" else _kernel_weights)(impact, dt, arr.n)
+            cache["w"], cache["v"] = (_form_b_weights if form == "b" else kernel_weights)(impact, dt, arr.n)
             if volterra:
-                q2 = _volterra_weights(impact, dt, arr.n)
+                q2 = volterra_weights(impact, dt, arr.n)
                 s2 = np.zeros(2 * arr.n + 1)
                 if "S2" in cache:
                     s2[: cache["S2"].size] = cache["S2"]
@@ -153,10 +71,10 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
                        0 if rule == "force" else 1, n_extra, state)
 
     t_start = time.perf_counter()
-    arr, state, n_done = _march(impact, dt, n_steps, max_steps, rule, ghost if history else 0.0, step_fn)
+    arr, state, n_done, note = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
     wall = time.perf_counter() - t_start
     name = f"direct-{form}" + ("+volterra" if volterra else "")
-    return _finish(impact, dt, arr, state, n_done, rule, history, wall, name, max_steps)
+    return finish(impact, dt, arr, state, n_done, rule, history, wall, name, max_steps, note)
 
 
 def _form_b_weights(impact, dt, n):
@@ -186,30 +104,6 @@ def _form_b_weights(impact, dt, n):
     return np.cumsum(a)[:n], np.zeros(n)
 
 
-def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0):
-    """Internal variables with the fixed-step exponential update (numba, O(N)); Prony kernels."""
-    mat = impact.material
-    if not mat.is_prony:
-        raise ValueError(f"method 'ive' needs a Prony kernel (sls, butyl-prony3, prony, elastic); got {mat.kind!r}")
-    g_inf, e, b = mat.prony_terms()
-    kap = impact.kappa
-    bdt = b * dt
-    decay = np.exp(-bdt)
-    frac = np.where(b > 0, -np.expm1(-bdt) / np.where(bdt > 0, bdt, 1.0), 1.0)
-    weight = kap * e * frac
-    Q = np.zeros(e.size)
-    eta = kap * mat.viscosity
-
-    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
-        K.march_prony(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, Q, kap * g_inf, kap * e, decay, weight, eta,
-                      alpha, alphad, impact.m, impact.v0, dt, 0 if rule == "force" else 1, n_extra, state)
-
-    t_start = time.perf_counter()
-    arr, state, n_done = _march(impact, dt, n_steps, max_steps, rule, ghost if history else 0.0, step_fn)
-    wall = time.perf_counter() - t_start
-    return _finish(impact, dt, arr, state, n_done, rule, history, wall, "ive-numba", max_steps)
-
-
 def run_paper(impact, dt, n_steps, *, max_steps, rule="force"):
     """The paper-like explicit baseline (see ``_kernels.march_paper``); for benchmarks only."""
     t_start = time.perf_counter()
@@ -219,7 +113,7 @@ def run_paper(impact, dt, n_steps, *, max_steps, rule="force"):
         kc = impact.kernel(np.maximum(t, dt))  # clamped kernel, k(max(sigma, dt))
         if impact.material.viscosity > 0:
             raise ValueError("method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'")
-        arr = _Arrays(n)
+        arr = Arrays(n)
         state = K.empty_state()
         K.march_paper(n, arr.s, arr.g, arr.J, arr.F, kc, impact.alpha(t), impact.alpha_rate(t), impact.m, impact.v0, dt,
                       0 if rule == "force" else 1, 2, state)
@@ -227,4 +121,4 @@ def run_paper(impact, dt, n_steps, *, max_steps, rule="force"):
             break
         n = min(2 * n, max_steps)
     wall = time.perf_counter() - t_start
-    return _finish(impact, dt, arr, state, int(state[2]), rule, False, wall, "paper-explicit", max_steps)
+    return finish(impact, dt, arr, state, int(state[2]), rule, False, wall, "paper-explicit", max_steps)

@@ -1,4 +1,5 @@
-"""Internal-variable evolution (IVE) solver with scipy's ``solve_ivp`` (Green 2026 Eqs. 18-22).
+"""Internal-variable evolution (IVE) solvers (Green 2026 Eqs. 18-22): scipy's ``solve_ivp``
+(``ive``) and the fixed-step exponential update in numba (``ive-numba``, O(N)).
 
 For a Prony kernel k(t) = G_inf + sum_k G_k exp(-b_k t) the force is F = G_inf u + sum_k Q_k with
 Q_k' = -b_k Q_k + G_k u', u = s^{3/2}. With s' = v0 - J/m - alpha' J - alpha F and J' = F this is a
@@ -14,38 +15,51 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .common import Histories, Result
+from . import _kernels as K
+from .common import Histories, Result, peak
+from .march import drive, finish
 
-__all__ = ["run_ive_scipy", "STIFF_METHODS"]
-
-STIFF_METHODS = ("Radau", "BDF", "LSODA")
+__all__ = ["run_ive_scipy", "run_ive_fixed"]
 
 
-def _peak(ts, ys, f):
-    """Maximum of f near the largest sample ys (bounded scalar search between the neighbours)."""
-    from scipy.optimize import minimize_scalar
+def prony_terms(impact, method):
+    """(E_inf, E[], beta[]) of the impact's kernel; ValueError naming the method for other kernels."""
+    mat = impact.material
+    if not mat.is_prony:
+        raise ValueError(f"method {method!r} needs a Prony kernel (sls, butyl-prony3, prony, elastic, "
+                         f"kelvin-voigt); got {mat.kind!r}: use method 'direct'")
+    return mat.prony_terms()
 
-    i = int(np.argmax(ys))
-    lo, hi = ts[max(i - 1, 0)], ts[min(i + 1, ts.size - 1)]
-    if hi <= lo:
-        return float(ys[i])
-    r = minimize_scalar(lambda x: -f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * hi})
-    return float(max(-r.fun, ys[i]))
+
+def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0):
+    """Internal variables with the fixed-step exponential update (numba, O(N)); Prony kernels."""
+    g_inf, e, b = prony_terms(impact, "ive-numba")
+    kap = impact.kappa
+    bdt = b * dt
+    decay = np.exp(-bdt)
+    frac = np.where(b > 0, -np.expm1(-bdt) / np.where(bdt > 0, bdt, 1.0), 1.0)
+    weight = kap * e * frac
+    Q = np.zeros(e.size)
+    eta = kap * impact.material.viscosity
+
+    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
+        K.march_prony(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, Q, kap * g_inf, kap * e, decay, weight, eta,
+                      alpha, alphad, impact.m, impact.v0, dt, 0 if rule == "force" else 1, n_extra, state)
+
+    t_start = time.perf_counter()
+    arr, state, n_done, note = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
+    wall = time.perf_counter() - t_start
+    return finish(impact, dt, arr, state, n_done, rule, history, wall, "ive-numba", max_steps, note)
 
 
 def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",
                   volterra=False, c2=1.0):
-    """Internal-variable solver. With ``volterra`` the second-order term for the Prony kernel is
-    separable, c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing
-    and is an independent check of the direct solver's O(N^2) Volterra sums."""
+    """Internal-variable solver with ``solve_ivp`` (options validated by ``SolverOptions``). With
+    ``volterra`` the second-order term for the Prony kernel is separable,
+    c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing and is an
+    independent check of the direct solver's O(N^2) Volterra sums."""
     mat = impact.material
-    if not mat.is_prony:
-        raise ValueError(f"method 'ive' needs a Prony kernel (sls, butyl-prony3, prony, elastic); got {mat.kind!r}")
-    if method not in STIFF_METHODS + ("RK45", "DOP853"):
-        raise ValueError(f"ive_method must be one of {STIFF_METHODS + ('RK45', 'DOP853')}, got {method!r}")
-    if not (0 < rtol < 1):
-        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}")
-    g_inf, e, b = mat.prony_terms()
+    g_inf, e, b = prony_terms(impact, "ive")
     kap = impact.kappa
     G_inf, G = kap * g_inf, kap * e
     eta = kap * mat.viscosity
@@ -110,8 +124,9 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
         res.message = f"solve_ivp({method}) failed: {sol.message}" if not sol.success else "non-finite state"
         return res
     if sol.status != 1:
-        res.status = "no-separation"
-        res.message = f"contact force did not return to zero within T_max = {t_end:.6g} s"
+        res.status = "step-budget"
+        res.message = (f"stopped by the time budget before a verdict: the contact force had not returned to zero "
+                       f"at T_max = {t_end:.6g} s")
         return res
     t0 = float(sol.t_events[0][0])
     y = sol.y_events[0][0]
@@ -122,8 +137,8 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
     # s_max, F_max: the accepted steps bracket the peak, the dense output refines it
     ts = sol.t
     Fs = np.array([parts(tt, yy)[0] for tt, yy in zip(ts, sol.y.T)])
-    s_max = _peak(ts, sol.y[0], lambda x: sol.sol(x)[0])
-    f_max = _peak(ts, Fs, lambda x: parts(x, sol.sol(x))[0])
+    s_max = peak(ts, sol.y[0], lambda x: sol.sol(x)[0])
+    f_max = peak(ts, Fs, lambda x: parts(x, sol.sol(x))[0])
     res.t0 = t0
     res.cor = abs(g0) / v0
     res.s_residual = float(y[0])
@@ -144,9 +159,14 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
             with np.errstate(over="ignore", invalid="ignore"):
                 sol2 = solve_ivp(rhs, (t0, t1), y, method=method, rtol=rtol, atol=atol, dense_output=True,
                                  max_step=tc / 20)
+            if not sol2.success:
+                t1 = float(sol2.t[-1])
+                res.message = (f"ghost continuation stopped at t = {t1:.6g} s (requested {t0 * (1 + ghost):.6g} s): "
+                               f"solve_ivp({method}): {sol2.message}")
             tg = np.linspace(t0, t1, max(2, int(n * ghost)))[1:]
             tt = np.concatenate([tt, tg])
-            Y = np.concatenate([Y, sol2.sol(tg)], axis=1)
+            Y = np.concatenate([Y, sol2.sol(tg) if sol2.sol is not None else np.full((y.size, tg.size), np.nan)],
+                               axis=1)
         PF = np.array([parts(a, yy) for a, yy in zip(tt, Y.T)])
         F, g, J = PF[:, 0], PF[:, 1], Y[1]
         res.history = Histories(t=tt, s=Y[0], sdot=g, F=F, J=J, zdot=v0 - J / m, U=alpha(tt) * J).mark(t0)

@@ -1,0 +1,36 @@
+"""Validation of scalar inputs: one place for "a finite number in this interval" checks.
+
+Every public entry point (materials, geometry, impact speed, spheres, fits) validates its numbers
+here, so a boolean, a string or a NaN where a number is expected gets the same clear
+``ValueError`` that names the parameter and the allowed range, before any work is done.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+__all__ = ["number", "positive"]
+
+
+def _interval(lo, hi, lo_open, hi_open) -> str:
+    return f"{'(' if lo_open else '['}{lo:g}, {hi:g}{')' if hi_open else ']'}"
+
+
+def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_open: bool = True,
+           hi_open: bool = True, unit: str = "") -> float:
+    """``value`` as a float if it is a real number (not a bool) in the interval, else ValueError
+    naming ``name`` and the interval (with ``unit``)."""
+    where = _interval(lo, hi, lo_open, hi_open) + (f" {unit}" if unit else "")
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be in {where} (a number), got {value!r}")
+    v = float(value)
+    inside = (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi)
+    if not (math.isfinite(v) and inside):
+        raise ValueError(f"{name} must be in {where}, got {value!r}")
+    return v
+
+
+def positive(name: str, value, *, allow_zero: bool = False, unit: str = "") -> float:
+    """A finite number > 0 (or >= 0 with ``allow_zero``)."""
+    return number(name, value, 0.0, math.inf, lo_open=not allow_zero, unit=unit)

@@ -1,0 +1,181 @@
+"""Solver options: the one table of solver defaults and allowed values.
+
+``SolverOptions`` is a frozen, keyword-only, validated dataclass. ``simulate``, sweeps, histories,
+the convergence study, the CLI and the workflow's JSON schema all take their defaults and allowed
+values from here (a test compares the schema with this table).
+
+Options that only some methods use default to ``None`` ("not set"). Setting one that the chosen
+method ignores is an error that names the option (``dt`` with ``method="ive"``, ``rtol`` with
+``method="direct"``): nothing is silently dropped. After validation every option the method uses
+holds its value (``None`` is replaced by the method's default), every other one is ``None``, so
+``to_dict()`` is the complete, canonical description of a run's settings (it enters the shard
+identity).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+__all__ = ["SolverOptions", "METHODS", "FIXED_STEP_METHODS", "OPTION_HELP", "solver_options"]
+
+#: solver methods; ``paper`` is the explicit baseline of the work-precision study
+METHODS = ("direct", "ive", "ive-numba", "paper")
+#: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
+FIXED_STEP_METHODS = ("direct", "ive-numba", "paper")
+IVE_METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853")
+
+
+def _spec(default, methods, help_text, allowed=None, bounds=None):
+    """Field metadata: the value used when the option is not set (``default``), the methods that use
+    it, the allowed values (a tuple) and a help text with units."""
+    return {"default": default, "methods": tuple(methods), "help": help_text, "allowed": allowed, "bounds": bounds}
+
+
+_SPEC = {
+    "method": _spec("direct", METHODS, "solver: direct (full-history product integration, any kernel), ive "
+                    "(internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal variables, fixed "
+                    "step, O(N); Prony kernels), paper (explicit baseline for benchmarks)", METHODS),
+    "dt": _spec(None, FIXED_STEP_METHODS, "time step, s (null: contact-time estimate / steps_per_contact)",
+                bounds=("float", 0.0, math.inf, "(0, inf) s")),
+    "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
+                               bounds=("int", 10, math.inf, "an integer >= 10")),
+    "max_steps": _spec(200_000, FIXED_STEP_METHODS, "step budget of the fixed-step march (integer >= 100); a run "
+                       "that reaches it without separating ends with status step-budget",
+                       bounds=("int", 100, math.inf, "an integer >= 100")),
+    "volterra": _spec(False, ("direct", "ive"), "add the second-order Volterra term (Green Eqs. 10, 15, 16)"),
+    "c2": _spec(1.0, ("direct", "ive"), "Volterra coefficient, m^-1.5 (only with volterra: true)",
+                bounds=("float", -math.inf, math.inf, "a finite number, m^-1.5")),
+    "form": _spec("a", ("direct",), "hereditary Hertz law form (Green Eq. 8): a (any kernel) or b (finite k(0))",
+                  ("a", "b")),
+    "rule": _spec("force", METHODS, "separation: force (F returns to zero, the paper's) or overlap (s returns to "
+                  "zero)", ("force", "overlap")),
+    "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in (0, 1)", bounds=("float", 0.0, 1.0, "(0, 1)")),
+    "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
+    "ghost": _spec(0.5, METHODS, "histories only: continue the solution this fraction of t0 past separation, "
+                   "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]")),
+}
+
+#: option name -> help text (the CLI and the schema descriptions use it)
+OPTION_HELP = {k: v["help"] for k, v in _SPEC.items()}
+
+
+def _number(name, value, *, integer=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or (integer and not float(value).is_integer()):
+        kind = "an integer" if integer else "a number"
+        raise ValueError(f"solver option {name} must be {kind}, got {value!r}")
+    return int(value) if integer else float(value)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SolverOptions:
+    """Validated solver options (see the module docstring). Units: s, m^-1.5."""
+
+    method: str = _SPEC["method"]["default"]
+    dt: float | None = None
+    steps_per_contact: int | None = None
+    max_steps: int | None = None
+    volterra: bool = _SPEC["volterra"]["default"]
+    c2: float | None = None
+    form: str | None = None
+    rule: str = _SPEC["rule"]["default"]
+    rtol: float | None = None
+    ive_method: str | None = None
+    ghost: float = _SPEC["ghost"]["default"]
+
+    def __post_init__(self):
+        if self.method not in METHODS:
+            raise ValueError(f"solver option method must be one of {METHODS}, got {self.method!r}")
+        values = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        # 1. types and ranges of what was set
+        for name, value in values.items():
+            spec = _SPEC[name]
+            if value is None:
+                continue
+            if spec["allowed"] is not None:
+                if isinstance(value, bool) or value not in spec["allowed"]:
+                    raise ValueError(f"solver option {name} must be one of {spec['allowed']}, got {value!r}")
+            elif name == "volterra":
+                if not isinstance(value, bool):
+                    raise ValueError(f"solver option volterra must be true or false, got {value!r}")
+            else:
+                kind, lo, hi, text = spec["bounds"]
+                v = _number(name, value, integer=kind == "int")
+                closed = name == "ghost" or kind == "int"  # [lo, hi]; the others are open (lo, hi)
+                inside = (lo <= v <= hi) if closed else (lo < v < hi)
+                if not (math.isfinite(v) and inside):
+                    raise ValueError(f"solver option {name} must be {text if kind == 'int' else 'in ' + text}, "
+                                     f"got {value!r}")
+                values[name] = v
+        # 2. options the method ignores are errors, not silently dropped
+        method = values["method"]
+        for name, value in values.items():
+            spec = _SPEC[name]
+            unused = method not in spec["methods"] or (name == "c2" and not values["volterra"])
+            is_set = value is not None and not (name == "volterra" and value is False)
+            if unused and is_set:
+                users = "volterra: true" if (name == "c2" and method in spec["methods"]) else \
+                    f"method {' or '.join(spec['methods'])}"
+                raise ValueError(f"solver option {name} is not used by method {method!r}"
+                                 + (" without volterra" if name == "c2" else "") + f" (it needs {users}); remove it")
+        if method == "paper" and values["volterra"]:
+            raise ValueError("solver option volterra is not available with method 'paper' (benchmark baseline)")
+        # 3. fill the method's defaults; everything it does not use stays None
+        for name, value in values.items():
+            spec = _SPEC[name]
+            used = method in spec["methods"] and not (name == "c2" and not values["volterra"])
+            if used and value is None:
+                values[name] = spec["default"]
+        for name, value in values.items():
+            object.__setattr__(self, name, value)
+
+    def to_dict(self) -> dict:
+        """All options, the unused ones as None (canonical: equal runs give equal dicts)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    def replace(self, **changes) -> SolverOptions:
+        """A copy with ``changes``; options the new method does not use are dropped first."""
+        d = self.to_dict()
+        d.update(changes)
+        method = d["method"]
+        for name in list(d):
+            if name not in changes and method not in _SPEC[name]["methods"]:
+                d[name] = None
+        if not d["volterra"] and "c2" not in changes:
+            d["c2"] = None
+        return SolverOptions(**d)
+
+    @staticmethod
+    def names() -> tuple[str, ...]:
+        return tuple(_SPEC)
+
+    @staticmethod
+    def default_of(name: str):
+        """The value an option takes when it is not set and the method uses it."""
+        return _SPEC[name]["default"]
+
+    @staticmethod
+    def allowed_of(name: str):
+        """Allowed values (a tuple) or None for numeric/boolean options."""
+        return _SPEC[name]["allowed"]
+
+    @staticmethod
+    def methods_of(name: str) -> tuple[str, ...]:
+        return _SPEC[name]["methods"]
+
+
+def solver_options(options=None, **kwargs) -> SolverOptions:
+    """``options`` (a SolverOptions or a dict) or keyword arguments -> SolverOptions; not both."""
+    if options is None:
+        return SolverOptions(**kwargs)
+    if kwargs:
+        raise ValueError(f"give solver options either as options= or as keywords, not both ({sorted(kwargs)})")
+    if isinstance(options, SolverOptions):
+        return options
+    if isinstance(options, dict):
+        unknown = set(options) - set(_SPEC)
+        if unknown:
+            raise ValueError(f"unknown solver option(s) {sorted(unknown)}; allowed: {sorted(_SPEC)}")
+        return SolverOptions(**options)
+    raise ValueError(f"options must be a SolverOptions or a dict, got {type(options).__name__}")

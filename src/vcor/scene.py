@@ -1,0 +1,221 @@
+"""Scenes: a config mapping -> grid points, solver settings, and one point -> (material, v0, geometry).
+
+A *scene* (as in ``config.yaml``) names materials, grid axes and solver settings:
+
+    materials: [sls]                      # presets or fitted names (results/materials/<name>.nc)
+    grid: {v0: {start: 1, stop: 30, step: 1}, beta: [600, 1200, 2400]}
+    tie: {alpha: {to: beta, ratio: 0.25}}  # alpha = 0.25 * beta at every point
+    solver: {method: direct, steps_per_contact: 2000}   # vcor.options.SolverOptions
+    geometry: {}                          # fixed geometry keywords (r, rho_a, rho_b, h, nu, case, rigid)
+
+Grid axes are ``v0`` (m/s), any geometry keyword, or any scalar parameter of the material
+(``Material.params()``: E_glassy, alpha, beta for ``sls``; E0, E1 for ``butyl-fc``; ...).
+This module validates scenes and builds points; shard identity and planning are in
+:mod:`vcor.shards`, solving in :mod:`vcor.runner`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from pathlib import Path
+
+import numpy as np
+
+from . import materials as _materials
+from .impact import GEOMETRY_DEFAULTS
+from .options import SolverOptions
+
+__all__ = [
+    "AXIS_UNITS",
+    "canon",
+    "axis_values",
+    "scene_axes",
+    "scene_points",
+    "settings_of",
+    "solver_options_of",
+    "resolve_material",
+    "check_material_name",
+    "validate_scene",
+    "build_point",
+    "material_params",
+]
+
+AXIS_UNITS = {
+    "v0": ("m s-1", "impact speed"),
+    "r": ("m", "sphere radius"),
+    "rho_a": ("kg m-3", "sphere density"),
+    "rho_b": ("kg m-3", "plate density"),
+    "h": ("m", "plate half-thickness"),
+    "nu": ("1", "Poisson ratio of the viscoelastic body"),
+    "E_plate": ("Pa", "elastic plate modulus (case 4)"),
+    "nu_plate": ("1", "plate Poisson ratio (case 4)"),
+    "beta": ("s-1", "relaxation (decay) rate"),
+    "alpha": ("s-1", "SLS rate alpha (rubbery/glassy = alpha/beta)"),
+    "E_glassy": ("Pa", "glassy modulus"),
+    "E0": ("Pa", "rubbery modulus"),
+    "E1": ("Pa", "relaxing modulus"),
+    "E": ("Pa", "modulus"),
+    "E_inf": ("Pa", "rubbery modulus"),
+    "b1": ("s-1/2", "CERF rate parameter"),
+    "tau": ("s", "retardation time"),
+}
+
+
+def canon(v) -> float:
+    """Canonical float (12 significant digits) so that 0.1 * 3 and 0.3 name the same point."""
+    return float(f"{float(v):.12g}")
+
+
+def axis_values(spec) -> list[float]:
+    """Grid axis values from a list or {start, stop, step} (stop inclusive) / {start, stop, num[, log]}.
+
+    Returns sorted unique floats; raises ValueError on NaN, infinities or an empty axis.
+    """
+    if isinstance(spec, dict):
+        start, stop = float(spec["start"]), float(spec["stop"])
+        if "step" in spec:
+            step = float(spec["step"])
+            if not step > 0:
+                raise ValueError(f"grid step must be > 0, got {step}")
+            n = int(math.floor((stop - start) / step + 1e-9)) + 1
+            vals = [start + i * step for i in range(max(n, 0))]
+        else:
+            num = int(spec["num"])
+            vals = list(np.geomspace(start, stop, num) if spec.get("log") else np.linspace(start, stop, num))
+    else:
+        vals = [float(v) for v in np.atleast_1d(spec)]
+    vals = sorted({canon(v) for v in vals})
+    if not vals:
+        raise ValueError("grid axis is empty")
+    if any(not math.isfinite(v) for v in vals):
+        raise ValueError(f"grid axis values must be finite numbers, got {vals}")
+    return vals
+
+
+def check_material_name(name: str, fitted=(), where: str = "materials") -> None:
+    """ValueError naming ``where`` unless ``name`` is a preset or one of the ``fitted`` names."""
+    if name not in _materials.PRESETS and name not in fitted:
+        raise ValueError(f"{where}: unknown material {name!r}; presets {sorted(_materials.PRESETS)}, "
+                         f"fitted {sorted(fitted)}")
+
+
+def resolve_material(name: str, overrides: dict | None = None, material_dir: str | Path = "results/materials"):
+    """Material by preset name or fitted file ``<material_dir>/<name>.nc``, with parameter overrides."""
+    if name in _materials.PRESETS:
+        mat = _materials.get(name)
+    else:
+        path = Path(material_dir) / f"{name}.nc"
+        if not path.exists():
+            raise ValueError(
+                f"unknown material {name!r}: not a preset ({sorted(_materials.PRESETS)}) and no fitted file {path}"
+            )
+        mat = _materials.from_file(path)
+    if overrides:
+        d = mat.to_dict()
+        for key, value in overrides.items():
+            if key not in d or isinstance(d[key], list):
+                scalars = [k for k, v in d.items() if k != "kind" and not isinstance(v, list)]
+                raise ValueError(f"material {name!r} has no scalar parameter {key!r}; allowed: {scalars}")
+            d[key] = float(value)
+        mat = _materials.from_dict(d)
+    return mat
+
+
+def scene_axes(scene) -> dict[str, list[float]]:
+    grid = scene.get("grid") or {}
+    if "v0" not in grid:
+        raise ValueError("scene grid must contain 'v0' (m/s)")
+    return {k: axis_values(v) for k, v in grid.items()}
+
+
+def scene_points(scene) -> list[dict]:
+    """All grid points (material first, then axes in config order)."""
+    axes = scene_axes(scene)
+    names = list(axes)
+    pts = []
+    for mat in scene["materials"]:
+        for combo in itertools.product(*(axes[n] for n in names)):
+            pts.append({"material": mat, **dict(zip(names, combo))})
+    return pts
+
+
+def solver_options_of(scene) -> SolverOptions:
+    """The scene's validated solver options (``scene['solver']``; unset ones take their defaults)."""
+    return SolverOptions(**(scene.get("solver") or {}))
+
+
+def settings_of(scene) -> dict:
+    """Everything except the grid values and the materials that determines a point's result
+    (solver options complete and canonical, as ``SolverOptions.to_dict()``)."""
+    return {
+        "solver": solver_options_of(scene).to_dict(),
+        "geometry": dict(scene.get("geometry") or {}),
+        "tie": dict(scene.get("tie") or {}),
+        "error_estimate": bool(scene.get("error_estimate", False)),
+    }
+
+
+def validate_scene(name: str, scene: dict, material_dir="results/materials", fitted=()) -> None:
+    """Checks that need vcor (the JSON schema checks the shape): solver options, axes, ties,
+    materials, values.
+
+    Builds the material and geometry of the grid's corner points so that bad values fail now,
+    naming the key, before any job runs. Fitted materials (listed in ``fitted``) are checked by
+    name only, since their files may not exist yet.
+    """
+    from .solvers.simulate import make_impact
+
+    where = f"scenes.{name}"
+    try:
+        solver_options_of(scene)
+    except ValueError as exc:
+        raise ValueError(f"{where}.solver: {exc}") from None
+    try:
+        axes = scene_axes(scene)
+    except (ValueError, KeyError, TypeError) as exc:
+        raise ValueError(f"{where}.grid: {exc}") from None
+    if axes["v0"][0] <= 0:
+        raise ValueError(f"{where}.grid.v0: impact speeds must be > 0 m/s, got {axes['v0'][0]}")
+    tie = scene.get("tie") or {}
+    for target, spec in tie.items():
+        if spec["to"] not in axes:
+            raise ValueError(f"{where}.tie.{target}: 'to' must name a grid axis, got {spec['to']!r}")
+    settings = settings_of(scene)
+    for mat in scene["materials"]:
+        check_material_name(mat, fitted, f"{where}.materials")
+        if mat in fitted:
+            continue
+        corners = itertools.product(*[(v[0], v[-1]) for v in axes.values()])
+        for combo in corners:
+            point = {"material": mat, **dict(zip(axes, combo))}
+            try:
+                material, v0, geometry = build_point(point, settings, material_dir)
+                make_impact(material, v0, geometry)
+            except ValueError as exc:
+                raise ValueError(f"{where}: point {point}: {exc}") from None
+
+
+def build_point(point, settings, material_dir):
+    """(material, v0, geometry) of one point: grid axes are v0, geometry keywords or material
+    parameters; ties set a material parameter from an axis."""
+    geometry = dict(settings["geometry"])
+    overrides = {}
+    v0 = None
+    for key, value in point.items():
+        if key in ("material", "material_id"):
+            continue
+        if key == "v0":
+            v0 = float(value)
+        elif key in GEOMETRY_DEFAULTS:
+            geometry[key] = value
+        else:
+            overrides[key] = value
+    for target, spec in settings["tie"].items():
+        overrides[target] = float(spec["ratio"]) * float(point[spec["to"]])
+    return resolve_material(point["material"], overrides, material_dir), v0, geometry
+
+
+def material_params(names, material_dir="results/materials") -> dict:
+    """{name: Material.to_dict()} for provenance (fitted materials included)."""
+    return {n: resolve_material(n, material_dir=material_dir).to_dict() for n in names}

@@ -1,0 +1,126 @@
+"""Driver of the fixed-step numba marches (direct and internal-variable): arrays, the T_max
+extension, the ghost continuation and the post-processing into a :class:`Result`.
+
+Budget and verdicts:
+
+* T_max starts at ``n_steps`` and doubles while the force has not returned to zero, up to
+  ``max_steps``. A run that reaches the budget without separating ends with status
+  ``step-budget`` (never ``no-separation``: the budget is not a physical verdict).
+* A separation found in the last steps before the budget is a separation: the march is always
+  allowed the few extra steps that the separation's interpolation needs.
+* The ghost continuation (histories only) runs the requested fraction of t0 past separation,
+  growing the arrays as needed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _kernels as K
+from .common import Histories, Result, separation
+
+__all__ = ["Arrays", "drive", "finish", "N_EXTRA"]
+
+#: steps marched past the separation step (the cubic separation interpolant needs two)
+N_EXTRA = 2
+
+
+class Arrays:
+    """Growable solution arrays s, s', F, J, u = s^{3/2} and du (increments of u)."""
+
+    names = ("s", "g", "F", "J", "u", "du")
+
+    def __init__(self, n):
+        for k in self.names:
+            setattr(self, k, np.zeros(n + 1))
+        self.n = n
+
+    def grow(self, n):
+        for k in self.names:
+            old = getattr(self, k)
+            new = np.zeros(n + 1)
+            new[: old.size] = old
+            setattr(self, k, new)
+        self.n = n
+
+
+def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
+    """Run ``step_fn(n0, n1, arrays, alpha, alphad, state, n_extra)`` with T_max extension.
+
+    Returns (arrays, state, n_done, ghost_note); ``state`` as in ``_kernels`` (status SEPARATED,
+    DIVERGED or END = budget reached)."""
+    arr = Arrays(n_steps)
+    arr.g[0] = impact.v0
+    state = K.empty_state()
+    n_done = 0
+    n_cap = n_steps
+    while True:
+        t = dt * np.arange(n_cap + 1)
+        step_fn(n_done + 1, n_cap, arr, impact.alpha(t), impact.alpha_rate(t), state, N_EXTRA)
+        n_done = int(state[2])
+        if state[3] != K.STATUS_END:
+            break
+        if state[1] >= 0:  # separated within the last N_EXTRA steps: finish the interpolation steps
+            n_cap = n_done + N_EXTRA
+        elif n_cap >= max_steps:
+            break
+        else:
+            n_cap = min(2 * n_cap, max_steps)
+        arr.grow(n_cap)
+    note = ""
+    if state[3] == K.STATUS_SEPARATED and ghost > 0:
+        n_sep = int(state[1])
+        n_ghost = max(int(math.ceil(n_sep * (1.0 + ghost))), n_done)
+        if n_ghost > n_cap:
+            arr.grow(n_ghost)
+            n_cap = n_ghost
+        if n_ghost > n_done:
+            t = dt * np.arange(n_cap + 1)
+            st = state.copy()
+            step_fn(n_done + 1, n_ghost, arr, impact.alpha(t), impact.alpha_rate(t), st, n_ghost)
+            reached = int(st[2])
+            if st[3] == K.STATUS_DIVERGED:
+                note = (f"ghost continuation stopped at t = {reached * dt:.6g} s ({reached - n_sep} of "
+                        f"{n_ghost - n_sep} steps past separation): the march diverged")
+                reached -= 1
+            n_done = reached
+    return arr, state, n_done, note
+
+
+def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_steps, note=""):
+    """Result of a fixed-step march (separation post-processing, or the status and its message)."""
+    m, v0 = impact.m, impact.v0
+    t = dt * np.arange(n_done + 1)
+    s, g, F, J = arr.s[: n_done + 1], arr.g[: n_done + 1], arr.F[: n_done + 1], arr.J[: n_done + 1]
+    res = Result(steps=n_done, wall_time=wall, dt=dt, method=method)
+    status = int(state[3])
+    if status == K.STATUS_SEPARATED:
+        out = separation(t, s, g, F, J, int(state[1]), rule, m, v0)
+        res.message = out.pop("message")
+        res.__dict__.update(out)
+        res.steps = int(state[1])
+    elif status == K.STATUS_DIVERGED:
+        res.status = "diverged"
+        res.message = (
+            f"Newton iteration failed or a non-finite value appeared at step {n_done} "
+            f"(t = {t[-1]:.6g} s, dt = {dt:.3g} s); try a smaller dt"
+        )
+    else:
+        res.status = "step-budget"
+        res.message = (
+            f"stopped by the step budget before a verdict: the contact force had not returned to zero at "
+            f"T_max = {t[-1]:.6g} s ({n_done} steps of dt = {dt:.3g} s; budget {max_steps} steps, the smaller "
+            f"of max_steps and 32 contact-time estimates); "
+            f"s_max and f_max are over that window"
+        )
+        res.s_max = float(np.max(s))
+        res.f_max = float(np.max(F))
+    if note:
+        res.message = (res.message + "; " if res.message else "") + note
+    if history:
+        zd = v0 - J / m
+        h = Histories(t=t, s=s.copy(), sdot=g.copy(), F=F.copy(), J=J.copy(), zdot=zd, U=impact.alpha(t) * J)
+        res.history = h.mark(res.t0 if res.ok else math.inf)
+    return res

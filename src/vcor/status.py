@@ -1,0 +1,49 @@
+"""One status vocabulary for results and every dataset (sweeps, histories, convergence, spheres).
+
+===============  ====  =========================================================================
+status           code  meaning
+===============  ====  =========================================================================
+ok               0     separated; every output is valid
+no-separation    1     the force did not return to zero for a physical reason the message names
+diverged         2     the numerical method failed (Newton, non-finite state, solve_ivp failure)
+invalid-input    3     a parameter or option was refused (ValueError before any work)
+failed           4     an unexpected exception, stored with its type and message
+step-budget      5     stopped by a step or time budget before a verdict (never no-separation)
+===============  ====  =========================================================================
+
+Codes are stable (archived datasets keep their meaning); new statuses get new codes.
+Datasets store the code as a small integer with CF ``flag_values`` / ``flag_meanings``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["STATUS_CODES", "STATUS_NAMES", "code", "cf_attrs", "codes_of"]
+
+STATUS_CODES = {"ok": 0, "no-separation": 1, "diverged": 2, "invalid-input": 3, "failed": 4, "step-budget": 5}
+STATUS_NAMES = {v: k for k, v in STATUS_CODES.items()}
+
+
+def code(name: str) -> int:
+    """Integer code of a status name (ValueError for a name outside the vocabulary)."""
+    try:
+        return STATUS_CODES[name]
+    except KeyError:
+        raise ValueError(f"unknown status {name!r}; allowed: {sorted(STATUS_CODES)}") from None
+
+
+def codes_of(names) -> np.ndarray:
+    """int8 array of codes for a sequence of status names."""
+    return np.array([code(n) for n in names], dtype=np.int8)
+
+
+def cf_attrs(long_name: str = "solver status") -> dict:
+    """CF attributes of a status variable."""
+    items = sorted(STATUS_CODES.items(), key=lambda kv: kv[1])
+    return {
+        "long_name": long_name,
+        "units": "1",
+        "flag_values": np.array([c for _, c in items], dtype=np.int8),
+        "flag_meanings": " ".join(k.replace("-", "_") for k, _ in items),
+    }
