@@ -15,7 +15,8 @@ from .solvers.common import UNITS
 _INTEGER_OPTIONS = ("steps_per_contact", "max_steps")
 
 
-def _parser():
+def build_parser():
+    """The argument parser; its solver flags come from vcor.options.SolverOptions."""
     p = argparse.ArgumentParser(prog="vcor", description="Viscoelastic coefficient of restitution")
     sub = p.add_subparsers(dest="command", required=True)
     imp = sub.add_parser("impact", help="simulate one sphere-plate impact")
@@ -45,7 +46,7 @@ def _parser():
 
 
 def main(argv=None) -> int:
-    args = _parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
     geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if getattr(args, k, None) is not None}
     if args.rigid:
         geometry["rigid"] = True

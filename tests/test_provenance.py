@@ -1,0 +1,132 @@
+"""Provenance-safe archives (README, "Provenance"): a shard's identity covers the computing code and
+the material's content; changed code recomputes the affected shards (and ``snakemake -n`` lists
+them); an aggregate never combines shards of different code or material parameters."""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+import vcor
+from vcor import provenance, runner, scene, shards
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENE = {"materials": ["sls"], "grid": {"v0": [2.0, 10.0]}, "shard_size": 1}
+CONFIG = {"shard_size": 1, "material_dir": "results/materials", "scenes": {"tiny": SCENE}}
+TARGET = "results/tiny/sweep.nc"
+
+
+def _run(path, env, *args):
+    out = subprocess.run([sys.executable, "-m", "snakemake", "-d", str(path), "-j1", *args, TARGET], cwd=path,
+                         env=env, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
+    return out.stdout + out.stderr
+
+
+def _fingerprint(env):
+    code = "from vcor import provenance; print(provenance.code_fingerprint(), provenance.__file__)"
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    fp, where = out.stdout.split()
+    return fp, where
+
+
+def _jobs(text, rule):
+    """Number of jobs of ``rule`` in Snakemake's job-stats table (0 when absent)."""
+    m = re.search(rf"^{rule}\s+(\d+)\s*$", text, flags=re.M)
+    return int(m.group(1)) if m else 0
+
+
+@pytest.fixture(scope="module")
+def project(tmp_path_factory):
+    """A workflow copy whose scripts import a private copy of the package (on PYTHONPATH)."""
+    path = tmp_path_factory.mktemp("prov")
+    for name in ("Snakefile", "workflow"):
+        src = ROOT / name
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, path / name)
+    (path / "config.yaml").write_text(yaml.safe_dump(CONFIG, sort_keys=False))
+    pkg = path / "pkg"
+    shutil.copytree(Path(vcor.__file__).parent, pkg / "vcor", ignore=shutil.ignore_patterns("__pycache__"))
+    env = {**os.environ, "PYTHONPATH": str(pkg), "NUMBA_CACHE_DIR": str(path / "numba-cache")}
+    fp, where = _fingerprint(env)
+    assert Path(where).is_relative_to(pkg)  # the copy is the code that runs
+    return path, pkg, env
+
+
+def test_changed_code_recomputes_the_shards_and_the_aggregate_carries_one_fingerprint(project):
+    path, pkg, env = project
+    _run(path, env)
+    first, _ = _fingerprint(env)
+    assert _jobs(_run(path, env, "-n"), "sweep_shard") == 0  # nothing to do: finished shards are reused
+    # a change of the computing code (a comment is enough: the fingerprint hashes the source)
+    with open(pkg / "vcor" / "solvers" / "direct.py", "a") as fh:
+        fh.write("\n# provenance test: a changed line\n")
+    second, _ = _fingerprint(env)
+    assert second != first
+    dry = _run(path, env, "-n")
+    assert _jobs(dry, "sweep_shard") == 2 and _jobs(dry, "aggregate") == 1, dry[-2000:]
+    _run(path, env)
+    ds = xr.open_dataset(path / TARGET)
+    assert ds.attrs["code_fingerprint"] == second and second in ds.attrs["source"]
+    # every shard the new plan uses carries the new fingerprint; the stale ones are not inputs
+    new = sorted((path / "results/tiny/shards").glob(f"{shards.content_hash({**_settings(), 'code': second}, 10)}-*.nc"))
+    old = sorted((path / "results/tiny/shards").glob(f"{shards.content_hash({**_settings(), 'code': first}, 10)}-*.nc"))
+    assert len(new) == 2 and len(old) == 2
+    assert {xr.open_dataset(p).attrs["code_fingerprint"] for p in new} == {second}
+    assert {xr.open_dataset(p).attrs["code_fingerprint"] for p in old} == {first}
+    np.testing.assert_array_equal(ds["status"].values, 0)
+
+
+def _settings():
+    return scene.settings_of(SCENE)
+
+
+def _shard(code):
+    pts = [{**p, "material_id": "x"} for p in scene.scene_points(SCENE)]
+    ds = runner.run_points(pts, _settings())
+    ds.attrs["code_fingerprint"] = code
+    ds.attrs["materials"] = json.dumps({"sls": scene.resolve_material("sls").to_dict()})
+    return ds
+
+
+def test_aggregate_refuses_shards_of_different_code():
+    current = provenance.code_fingerprint()
+    with pytest.raises(ValueError, match="different code"):
+        runner.aggregate([_shard(current), _shard("0123456789abcdef")], SCENE, {"sls": "x"})
+    with pytest.raises(ValueError, match="different code"):
+        runner.aggregate([_shard("0123456789abcdef")], SCENE, {"sls": "x"})
+
+
+def test_aggregate_refuses_changed_material_parameters():
+    ds = _shard(provenance.code_fingerprint())
+    p = scene.resolve_material("sls").to_dict()
+    p["E0"] = p.get("E0", 1.0) * 1.01
+    ds.attrs["materials"] = json.dumps({"sls": p})
+    with pytest.raises(ValueError, match="material 'sls'"):
+        runner.aggregate([ds], SCENE, {"sls": "x"})
+
+
+def test_shard_identity_covers_code_material_content_and_options():
+    ident = {"sls": shards.material_identity("sls")}
+    base = shards.plan_shards(SCENE, "/nonexistent", 1, ident)
+    # a material's identity is its content, not its name
+    assert shards.material_identity("sls") == shards.content_hash({"material": scene.resolve_material("sls").to_dict()})
+    assert shards.material_identity("sls") != shards.material_identity("butyl-prony3")
+    # another fit spec, another identity (the fitted parameters follow from it)
+    fits = {"f": {"model": "prony", "n_terms": 3}}
+    a = shards.material_identity("f", fits=fits)
+    b = shards.material_identity("f", fits={"f": {"model": "prony", "n_terms": 4}})
+    assert a != b
+    # another material content: other shard names; other solver options: other shard names
+    other = shards.plan_shards(SCENE, "/nonexistent", 1, {"sls": "another-content"})
+    assert set(other).isdisjoint(base)
+    stiff = {**SCENE, "solver": {"steps_per_contact": 4000}}
+    assert set(shards.plan_shards(stiff, "/nonexistent", 1, ident)).isdisjoint(base)
+    assert shards.shard_settings(SCENE)["code"] == provenance.code_fingerprint()
