@@ -90,10 +90,11 @@ def test_convergence_order_fractional_kernel():
 # ----------------------------------------------------------------------------- energy, limits
 @pytest.mark.parametrize("name", ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3"])
 def test_energy_residual_small(name):
+    """README "Numerics": the energy residual (kinetic energy lost - hysteresis - work into the plate,
+    relative) is ~1e-11 (measured 2.0e-11 .. 3.3e-11 at v0 = 10)."""
     r = vcor.simulate(name, 10.0)
-    assert abs(r.energy_residual) < 1e-6
-    # the books balance: kinetic energy lost = hysteresis + work into the plate
-    zd = r.cor  # noqa: F841  (COR is relative; the balance is checked through energy_residual)
+    print(f"\n{name}: energy residual {r.energy_residual:.2e}")
+    assert abs(r.energy_residual) < 1e-10
     assert r.w_h > 0 and r.w_plate > 0
 
 
@@ -104,15 +105,19 @@ def test_rigid_elastic_gives_unit_cor():
 
 
 # ----------------------------------------------------------------------------- Volterra
-def test_volterra_effect_reported():
-    """Report (not assume) the second-order Volterra term's effect at c2 = 1 SI."""
-    print()
-    for name in ("sls", "butyl-fc", "butyl-prony3"):
-        off = vcor.simulate(name, 10.0)
-        on = vcor.simulate(name, 10.0, volterra=True)
-        assert on.status == "ok"
-        print(f"{name:14s} COR off {off.cor:.8f} on {on.cor:.8f} change {on.cor - off.cor:+.3e}")
-        assert on.cor != off.cor
+#: README "Numerics": the Volterra term's effect on the COR at c2 = 1 m^-1.5, v0 = 10 m/s
+VOLTERRA_EFFECT = {"sls": 1.0e-5, "butyl-fc": 6.3e-6, "butyl-prony3": 7.3e-6}
+
+
+@pytest.mark.parametrize("name", sorted(VOLTERRA_EFFECT))
+def test_volterra_effect_sizes(name):
+    """The README's effect sizes, to a tolerance that catches a factor of two (or a wrong sign)."""
+    off = vcor.simulate(name, 10.0)
+    on = vcor.simulate(name, 10.0, volterra=True)
+    assert on.status == "ok"
+    change = on.cor - off.cor
+    print(f"\n{name:14s} COR off {off.cor:.8f} on {on.cor:.8f} change {change:+.2e}")
+    assert abs(change / VOLTERRA_EFFECT[name] - 1) < 0.05
 
 
 @pytest.mark.parametrize("name", ["sls", "butyl-prony3"])
@@ -146,10 +151,31 @@ def test_volterra_elastic_closed_form():
 
 
 # ----------------------------------------------------------------------------- histories
+def test_contact_time_estimate_is_an_estimate_not_a_bound():
+    """README "Numerics": t0 / t_c = 0.845 in the paper's case (h = 20 mm), 0.82 .. 0.91 for
+    h = 12 .. 100 mm, so 2000 steps per t_c is about 1690 steps per contact."""
+    ratios = {}
+    for h in (0.012, 0.02, 0.1):
+        r = vcor.simulate("sls", 10.0, h=h)
+        ratios[h] = r.t0 / make_impact("sls", 10.0, {"h": h}).contact_time_estimate()
+    print(f"\nt0 / t_c: {ratios}")
+    assert round(ratios[0.02], 3) == 0.845
+    assert 0.82 <= min(ratios.values()) and max(ratios.values()) <= 0.92
+
+
+@pytest.mark.parametrize("method", ["direct", "ive"])
+def test_ghost_reaches_the_requested_length(method):
+    """The ghost continuation runs ghost * t0 past separation, also when the contact outlasted the
+    first time horizon (h = 6 mm: it used to stop at 0.064 t0)."""
+    r = vcor.simulate("sls", 10.0, h=6e-3, method=method, history=True, ghost=0.5)
+    assert r.status == "ok"
+    assert r.history.t[-1] >= 1.5 * r.t0 * (1 - 1e-9)
+
+
 def test_histories_with_ghost():
     r = vcor.simulate("sls", 10.0, history=True, ghost=0.5)
     h = r.history
-    assert h.t[-1] >= 1.45 * r.t0
+    assert h.t[-1] >= 1.5 * r.t0 * (1 - 1e-9)
     assert np.any(h.ghost) and not np.all(h.ghost)
     assert np.all(h.F[~h.ghost] >= -1e-9 * r.f_max)
     assert np.min(h.F[h.ghost]) < 0  # the ghost part pulls
@@ -160,12 +186,6 @@ def test_histories_with_ghost():
 
 
 # ----------------------------------------------------------------------------- robustness
-def test_tmax_extension_then_no_separation():
-    r = vcor.simulate("sls", 10.0, max_steps=500)
-    assert r.status == "step-budget"  # the budget is not a physical verdict
-    assert "T_max" in r.message and "budget" in r.message and math.isnan(r.cor)
-
-
 def test_tmax_extends_for_thin_plate():
     # thin plate (h = 5 mm): the contact lasts ~7.6 rigid-target contact times, T_max doubles twice
     r = vcor.simulate("sls", 10.0, h=5e-3)

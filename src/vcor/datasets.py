@@ -51,6 +51,11 @@ def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e
     return ds
 
 
+def _history_run(material, method, v0, base, geometry, material_dir):
+    mat = resolve_material(material, material_dir=material_dir)
+    return simulate(mat, float(v0), options=base.replace(method=method), history=True, **geometry)
+
+
 def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_samples=600,
                       material_dir="results/materials"):
     """Time histories of ``runs`` = [(material, method), ...] at impact speed v0 (m/s).
@@ -72,15 +77,14 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     scal = {k: [] for k in ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "wall_time")}
     status, message = [], []
     for material, method in runs:
-        mat = resolve_material(material, material_dir=material_dir)
-        res = simulate(mat, float(v0), options=base.replace(method=method), history=True, **geometry)
+        res, name, text = _status.guarded(_history_run, material, method, v0, base, geometry, material_dir)
         labels.append(f"{material}/{method}")
-        status.append(res.status)
-        message.append(res.message)
+        status.append(res.status if res is not None else name)
+        message.append(res.message if res is not None else text)
         for k in scal:
-            scal[k].append(getattr(res, k))
-        h = res.history
-        if not res.ok or h is None:
+            scal[k].append(getattr(res, k) if res is not None else np.nan)
+        h = res.history if res is not None else None
+        if res is None or not res.ok or h is None:
             for k in cols:
                 cols[k].append(np.zeros(n_samples, bool) if k == "ghost" else np.full(n_samples, np.nan))
             continue
@@ -138,12 +142,8 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
     her_st = np.zeros((len(tau_ratios), len(rules), b.size), dtype=np.int8)
 
     def solve(fn, *args):
-        try:
-            return fn(*args, steps_per_contact=steps_per_contact), "ok", ""
-        except S.SolverFailure as exc:
-            return np.nan, exc.status, str(exc)
-        except ValueError as exc:
-            return np.nan, "invalid-input", str(exc)
+        value, name, message = _status.guarded(fn, *args, steps_per_contact=steps_per_contact)
+        return (np.nan if value is None else value), name, message
 
     for i, rule in enumerate(rules):
         for j, x in enumerate(b):

@@ -16,7 +16,6 @@ from __future__ import annotations
 import json
 import math
 import time
-import traceback
 
 import numpy as np
 
@@ -71,12 +70,9 @@ def run_points(points, settings, material_dir="results/materials"):
     rows = []
     for p in points:
         t = time.perf_counter()
-        try:
-            row = solve_point(p, settings, material_dir)
-        except ValueError as exc:
-            row = {"status": "invalid-input", "message": str(exc)}
-        except Exception as exc:  # noqa: BLE001 - a failed point must not sink its shard
-            row = {"status": "failed", "message": f"{type(exc).__name__}: {exc} | {traceback.format_exc(limit=2)}"}
+        row, name, message = _status.guarded(solve_point, p, settings, material_dir)
+        if row is None:
+            row = {"status": name, "message": message}
         row.setdefault("wall_time", time.perf_counter() - t)
         if settings.get("error_estimate"):
             row.setdefault("error_status", row["status"])

@@ -17,9 +17,11 @@ Datasets store the code as a small integer with CF ``flag_values`` / ``flag_mean
 
 from __future__ import annotations
 
+import traceback
+
 import numpy as np
 
-__all__ = ["STATUS_CODES", "STATUS_NAMES", "code", "cf_attrs", "codes_of"]
+__all__ = ["STATUS_CODES", "STATUS_NAMES", "code", "cf_attrs", "codes_of", "guarded"]
 
 STATUS_CODES = {"ok": 0, "no-separation": 1, "diverged": 2, "invalid-input": 3, "failed": 4, "step-budget": 5}
 STATUS_NAMES = {v: k for k, v in STATUS_CODES.items()}
@@ -47,3 +49,20 @@ def cf_attrs(long_name: str = "solver status") -> dict:
         "flag_values": np.array([c for _, c in items], dtype=np.int8),
         "flag_meanings": " ".join(k.replace("-", "_") for k, _ in items),
     }
+
+
+def guarded(fn, *args, **kwargs):
+    """``(value, status, message)`` of ``fn(*args, **kwargs)``: a run that raises is classified, never
+    re-raised, so one failed point never sinks the others. ``ValueError`` -> invalid-input (its
+    message names the parameter); an exception with a ``status`` attribute (e.g.
+    ``vcor.spheres.SolverFailure``) -> that status; any other exception -> failed, stored with its
+    type, message and the last frames of the traceback. ``value`` is None when it raised."""
+    try:
+        return fn(*args, **kwargs), "ok", ""
+    except ValueError as exc:
+        return None, "invalid-input", str(exc)
+    except Exception as exc:  # noqa: BLE001 - classified and stored, see the docstring
+        name = getattr(exc, "status", None)
+        if isinstance(name, str) and name in STATUS_CODES:
+            return None, name, str(exc)
+        return None, "failed", f"{type(exc).__name__}: {exc} | {traceback.format_exc(limit=2)}"

@@ -1,0 +1,107 @@
+"""One status vocabulary (README, "Statuses"): each status a row; a failed point or run never loses
+the others; failed histories are NaN with their status; an error-estimate run has its own status."""
+
+import math
+
+import numpy as np
+import pytest
+
+import vcor
+from vcor import datasets, runner, scene, status
+from vcor.impact import Impact
+
+SCENE = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}}
+
+
+def test_codes_are_stable_and_cf_encoded():
+    # archived datasets keep their meaning: the codes never change
+    assert status.STATUS_CODES == {"ok": 0, "no-separation": 1, "diverged": 2, "invalid-input": 3, "failed": 4,
+                                   "step-budget": 5}
+    attrs = status.cf_attrs()
+    assert list(attrs["flag_values"]) == [0, 1, 2, 3, 4, 5]
+    assert attrs["flag_meanings"] == "ok no_separation diverged invalid_input failed step_budget"
+    with pytest.raises(ValueError, match="unknown status"):
+        status.code("fine")
+
+
+def test_ok():
+    r = vcor.simulate("sls", 10.0)
+    assert r.status == "ok" and r.ok and r.message == ""
+
+
+def test_step_budget_is_not_no_separation():
+    r = vcor.simulate("sls", 10.0, max_steps=500)
+    assert r.status == "step-budget" and not r.ok
+    assert "step budget" in r.message and "T_max" in r.message and math.isnan(r.cor)
+
+
+@pytest.mark.parametrize("method", ["direct", "ive-numba"])
+def test_separation_in_the_last_step_before_the_budget_is_a_separation(method):
+    full = vcor.simulate("sls", 10.0, method=method)
+    n = int(full.steps)  # the step in which the force crossed zero
+    last = vcor.simulate("sls", 10.0, method=method, max_steps=n)
+    assert last.status == "ok" and last.cor == full.cor and last.t0 == full.t0
+    assert vcor.simulate("sls", 10.0, method=method, max_steps=n - 1).status == "step-budget"
+
+
+def test_diverged(monkeypatch):
+    """A non-finite value in the march (here injected through the plate mobility) is `diverged`,
+    with the step and time in the message."""
+    real = Impact.alpha
+
+    def poisoned(self, t):
+        a = np.array(real(self, t), dtype=float, copy=True)
+        return np.where(np.asarray(t) > 2e-4, np.nan, a)
+
+    monkeypatch.setattr(Impact, "alpha", poisoned)
+    r = vcor.simulate("sls", 10.0, dt=1e-6)
+    assert r.status == "diverged" and "non-finite" in r.message and "step" in r.message
+
+
+def test_invalid_input_and_failed_points_keep_the_others(monkeypatch):
+    points = scene.scene_points({**SCENE, "grid": {"v0": [1.0, 10.0, 20.0], "alpha": [-5.0, 250.0]}})
+    real = runner.simulate
+
+    def flaky(material, v0, **kw):
+        if v0 == 20.0:
+            raise RuntimeError("injected")
+        return real(material, v0, **kw)
+
+    monkeypatch.setattr(runner, "simulate", flaky)
+    ds = runner.run_points(points, scene.settings_of(SCENE))
+    names = np.array([status.STATUS_NAMES[int(c)] for c in ds["status"].values])
+    alpha, v0 = ds["alpha"].values, ds["v0"].values
+    assert np.all(names[alpha < 0] == "invalid-input")
+    assert all("alpha" in str(m) for m in ds["message"].values[alpha < 0])
+    assert np.all(names[(alpha > 0) & (v0 == 20.0)] == "failed")
+    assert all("RuntimeError: injected" in str(m) for m in ds["message"].values[(alpha > 0) & (v0 == 20.0)])
+    good = (alpha > 0) & (v0 < 20.0)
+    assert np.all(names[good] == "ok") and np.all(np.isfinite(ds["cor"].values[good]))
+    assert np.all(np.isnan(ds["cor"].values[~good]))
+
+
+def test_a_failing_error_estimate_has_its_own_status():
+    """dt fits the step budget, dt/2 does not: the point stays ok, the estimate is step-budget."""
+    sc = {**SCENE, "grid": {"v0": [10.0]}, "error_estimate": True,
+          "solver": {"steps_per_contact": 200, "max_steps": 250}}
+    ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
+    assert status.STATUS_NAMES[int(ds["status"].values[0])] == "ok" and np.isfinite(ds["cor"].values[0])
+    assert status.STATUS_NAMES[int(ds["error_status"].values[0])] == "step-budget"
+    assert "step budget" in str(ds["error_message"].values[0])
+    assert np.isnan(ds["cor_err"].values[0])
+
+
+def test_failed_history_is_nan_with_its_status_and_rule_is_honoured():
+    runs = [("sls", "direct"), ("butyl-fc", "ive"), ("sls", "ive")]
+    ds = datasets.histories_dataset(runs, 10.0, options={"max_steps": 1000})
+    names = [status.STATUS_NAMES[int(c)] for c in ds["status"].values]
+    assert names == ["step-budget", "invalid-input", "ok"]
+    assert "Prony" in str(ds["message"].values[1])
+    for i in (0, 1):
+        assert np.all(np.isnan(ds["F"].values[i])) and np.isnan(ds["cor"].values[i])
+    assert np.all(np.isfinite(ds["F"].values[2]))
+    assert ds["status"].attrs["flag_meanings"] == status.cf_attrs()["flag_meanings"]
+    # the separation rule reaches the histories: overlap separates later than force
+    force = datasets.histories_dataset([("sls", "direct")], 10.0, options={"rule": "force"})
+    overlap = datasets.histories_dataset([("sls", "direct")], 10.0, options={"rule": "overlap"})
+    assert float(overlap["t0"].values[0]) > float(force["t0"].values[0]) * 1.01
