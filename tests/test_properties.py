@@ -1,6 +1,7 @@
 """Limits and invariants: Zener's elastic plate solved independently, and property tests on random
 Prony materials and geometries (hypothesis, derandomised so CI is reproducible)."""
 
+import collections
 import math
 
 import numpy as np
@@ -61,24 +62,47 @@ geometry = st.fixed_dictionaries({
 })
 
 
-@settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
-@given(material=prony, geom=geometry, v0=st.floats(0.1, 50.0))
-def test_invariants_random_prony(material, geom, v0):
-    r = vcor.simulate(material, v0, **geom)
-    if r.status == "no-separation":  # a thin, heavy-loaded plate may keep the sphere: flagged, with a message
-        assert r.message
-        return
-    assert r.status == "ok", r.message
-    assert r.cor > 0 and r.t0 > 0
-    assert abs(r.sphere_velocity) <= v0 * (1 + 1e-9)  # the sphere cannot leave faster than it came
-    assert abs(r.energy_residual) < 1e-6
-    assert r.s_residual >= -1e-6 * r.s_max
-    assert r.w_h > 0
-    ive = vcor.simulate(material, v0, method="ive", rtol=1e-9, **geom)
-    assert ive.status == "ok"
-    assert abs(ive.cor - r.cor) < 2e-5 * max(1.0, r.cor)
-    if r.cor > 1:
-        print(f"\nCOR > 1 (|s'| includes the plate's surface velocity): {material}, {geom}, v0 = {v0}: {r.cor}")
+#: at most this many of the examples may end without a verdict (step-budget); each is printed
+MAX_FLAGGED = 2
+N_EXAMPLES = 25
+
+
+def test_invariants_random_prony():
+    """Invariants over random Prony materials and geometries. Every example is counted: a flagged one
+    (step-budget, with its message) is allowed at most MAX_FLAGGED times, any other status fails."""
+    outcomes = collections.Counter()
+
+    @settings(max_examples=N_EXAMPLES, deadline=None, derandomize=True, database=None,
+              suppress_health_check=[HealthCheck.too_slow])
+    @given(material=prony, geom=geometry, v0=st.floats(0.1, 50.0))
+    def check(material, geom, v0):
+        r = vcor.simulate(material, v0, **geom)
+        outcomes[r.status] += 1
+        if r.status == "step-budget":
+            print(f"\nflagged: {material}, {geom}, v0 = {v0}: {r.message}")
+            return
+        assert r.status == "ok", r.message
+        assert r.cor > 0 and r.t0 > 0
+        # README: no COR > 1 has occurred; it could (s' includes the plate surface's velocity), and a
+        # counter-example would be a finding to record in the README, not a tolerance to widen
+        assert r.cor <= 1.0, f"COR > 1: {material}, {geom}, v0 = {v0}: {r.cor}"
+        assert abs(r.sphere_velocity) <= v0 * (1 + 1e-9)  # the sphere cannot leave faster than it came
+        worst["energy_residual"] = max(worst["energy_residual"], abs(r.energy_residual))
+        assert abs(r.energy_residual) < 1e-8  # README "Stability": < 1e-8 on random Prony materials
+        assert r.s_residual >= -1e-6 * r.s_max
+        assert r.w_h > 0
+        ive = vcor.simulate(material, v0, method="ive", rtol=1e-9, **geom)
+        assert ive.status == "ok", ive.message
+        worst["direct - ive"] = max(worst["direct - ive"], abs(ive.cor - r.cor))
+        assert abs(ive.cor - r.cor) < 2e-6  # README "Stability": direct = ive to 2e-6
+
+    worst = {"energy_residual": 0.0, "direct - ive": 0.0}
+    check()
+    print(f"\nrandom Prony examples: {dict(outcomes)}; largest |energy residual| {worst['energy_residual']:.1e}, "
+          f"|COR direct - ive| {worst['direct - ive']:.1e}")
+    assert sum(outcomes.values()) >= N_EXAMPLES  # every example ran (none filtered away)
+    assert outcomes["step-budget"] <= MAX_FLAGGED
+    assert set(outcomes) <= {"ok", "step-budget"}
 
 
 def test_stiff_prony_found_by_hypothesis():
