@@ -57,17 +57,28 @@ def main():
 
     off = solver_time("sls", 10.0, dt=1e-6)
     on = solver_time("sls", 10.0, dt=1e-6, volterra=True)
-    n1 = solver_time("butyl-fc", 10.0, dt=1e-6)
-    n2 = solver_time("butyl-fc", 10.0, dt=0.5e-6)
-    n3 = solver_time("butyl-fc", 10.0, dt=0.25e-6)
+    # cost against the number of steps N: direct is O(N^2) (the history sum), ive-numba O(N)
+    scaling = []
+    for dt in (1e-6, 0.5e-6, 0.25e-6, 0.125e-6):
+        n = vcor.simulate("butyl-fc", 10.0, dt=dt).steps
+        t_direct = solver_time("butyl-fc", 10.0, repeat=5, dt=dt)
+        t_ive = solver_time("butyl-prony3", 10.0, repeat=5, dt=dt, method="ive-numba")
+        scaling.append((dt, n, t_direct, t_ive))
     print(f"{'benchmark':62s} {'median':>12s}  target")
     for name, t, target in rows:
         print(f"{name:62s} {t * 1e3:9.3f} ms  {target}")
     print()
     print(f"{'ratio':62s} {'value':>12s}  target")
     print(f"{'Volterra on / off (SLS, dt = 1 us)':62s} {on / off:12.2f}  <= 20")
-    print(f"{'doubling N: t(dt/2) / t(dt), butyl-fc, dt 1 -> 0.5 us':62s} {n2 / n1:12.2f}  <= ~4.5")
-    print(f"{'doubling N: t(dt/4) / t(dt/2), butyl-fc, 0.5 -> 0.25 us':62s} {n3 / n2:12.2f}  <= ~4.5")
+    print()
+    print("cost against steps N (v0 = 10): the ratio per doubling of N tends to 4 for O(N^2), 2 for O(N)")
+    print(f"{'dt [us]':>8s} {'N':>6s} {'direct butyl-fc [ms]':>21s} {'ratio':>6s} {'ive-numba prony3 [ms]':>22s} {'ratio':>6s}")
+    prev = None
+    for dt, n, td, ti in scaling:
+        rd = f"{td / prev[2]:6.2f}" if prev else f"{'':6s}"
+        ri = f"{ti / prev[3]:6.2f}" if prev else f"{'':6s}"
+        print(f"{dt * 1e6:8.3f} {n:6d} {td * 1e3:21.3f} {rd} {ti * 1e3:22.3f} {ri}")
+        prev = (dt, n, td, ti)
     print()
     with tempfile.TemporaryDirectory() as d:
         total, inner = cold_process({"NUMBA_CACHE_DIR": d})

@@ -79,3 +79,41 @@ def test_expand_fits():
     assert set(out) == {"p-n1", "p-n3", "c"} and out["p-n3"]["n_terms"] == 3
     with pytest.raises(ValueError, match="needs a list"):
         fit.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
+
+
+#: README "Fitted materials" table: (max E(t), max |E*|, max tan delta) relative errors and the COR gap
+#: COR(v0 = 10) / COR_fractional - 1. Rounded in the README: each must round to within 10 %.
+README_FITS = {
+    "paper CERF": ((0.21, 0.45, 0.61), 0.061),
+    "paper Prony": ((0.62, 0.78, 0.97), 0.217),
+    "Prony N=3": ((0.19, 0.12, 0.20), 0.058),
+    "Prony auto (N=7)": ((0.0075, 0.0040, 0.0082), 0.0028),
+    "Prony N=9": ((0.0008, 0.0011, 0.0009), 0.00018),
+    "Prony N=12": ((0.000075, 0.000087, 0.000096), 0.000003),
+}
+#: the fitted CERF reproduces the fractional law to round-off of the fit: upper bounds
+README_CERF_BOUNDS = ((1e-8, 2e-8, 4e-8), 2e-9)
+
+
+def test_fit_table_of_the_readme(data, auto_prony):
+    c_fc = vcor.simulate("butyl-fc", 10.0).cor
+    sets = {"paper CERF": M.get("butyl-cerf"), "paper Prony": M.get("butyl-prony3"),
+            "Prony N=3": fit.fit_prony(data, 3).material, "Prony auto (N=7)": auto_prony.material,
+            "Prony N=9": fit.fit_prony(data, 9).material, "Prony N=12": fit.fit_prony(data, 12).material}
+    assert auto_prony.n_terms == 7
+    keys = ("E_t_max", "abs_E_star_max", "tan_delta_max")
+    print()
+    for name, mat in sets.items():
+        m = fit.metrics(mat, data)
+        gap = vcor.simulate(mat, 10.0).cor / c_fc - 1
+        print(f"{name:18s} " + " ".join(f"{m[k]:.2e}" for k in keys) + f"  COR gap {gap:+.2e}")
+        expected, expected_gap = README_FITS[name]
+        for k, e in zip(keys, expected):
+            assert abs(m[k] / e - 1) < 0.1, (name, k, m[k], e)
+        assert abs(gap / expected_gap - 1) < 0.1, (name, gap, expected_gap)
+    cerf = fit.fit_cerf(data)
+    gap = vcor.simulate(cerf.material, 10.0).cor / c_fc - 1
+    print(f"{'fitted CERF':18s} " + " ".join(f"{cerf.metrics[k]:.2e}" for k in keys) + f"  COR gap {gap:+.2e}")
+    for k, bound in zip(keys, README_CERF_BOUNDS[0]):
+        assert cerf.metrics[k] < bound, (k, cerf.metrics[k])
+    assert abs(gap) < README_CERF_BOUNDS[1]
