@@ -9,7 +9,7 @@ import yaml
 
 import vcor
 from vcor import cli
-from vcor.options import METHODS, SolverOptions, solver_options
+from vcor.options import SolverOptions, solver_options
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text())

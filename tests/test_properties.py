@@ -4,7 +4,6 @@ Prony materials and geometries (hypothesis, derandomised so CI is reproducible).
 import collections
 import math
 
-import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st

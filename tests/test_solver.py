@@ -244,3 +244,31 @@ def test_fractional_cor_against_converged_prony_with_ive(v0):
     print(f"\nv0 = {v0}: {len(soe.beta)} terms, kernel error {kernel_err:.1e}; COR direct {direct:.10f} "
           f"(+- {err:.1e}), Prony/ive {oracle.cor:.10f}, gap {oracle.cor - direct:+.1e}")
     assert abs(oracle.cor - direct) < 1e-7
+
+
+# ----------------------------------------------------------------------------- README "noticed"
+def test_hysteresis_at_50_m_s_against_the_paper():
+    """README: at 50 m/s W_h = 27.3 J (fractional), 26.7 J (CERF), 27.1 J with the paper-like scheme,
+    W_h + W_plate = 39.8 J; the paper states 30.7 J, which none of these explains."""
+    fc = vcor.simulate("butyl-fc", 50.0)
+    cerf = vcor.simulate("butyl-cerf", 50.0)
+    paper = vcor.simulate("butyl-fc", 50.0, method="paper", dt=1e-6)
+    got = [fc.w_h, cerf.w_h, paper.w_h, fc.w_h + fc.w_plate]
+    print(f"\nW_h at 50 m/s [J]: fractional {got[0]:.2f}, CERF {got[1]:.2f}, paper-like {got[2]:.2f}, "
+          f"W_h + W_plate {got[3]:.2f}")
+    assert [round(x, 1) for x in got] == [27.3, 26.7, 27.1, 39.8]
+
+
+def test_fig4_cor_against_v0_trends():
+    """README, Fig. 4: monotone rise only at the paper's beta = 1200 1/s; monotone fall at 4800 1/s."""
+    v = np.arange(1.0, 31.0)
+    trends = {}
+    for beta in (600.0, 1200.0, 2400.0, 4800.0):
+        c = np.array([vcor.simulate(M.SLS(15e6, beta / 4, beta), x).cor for x in v])
+        d = np.diff(c)
+        trends[beta] = ("rising" if np.all(d > 0) else "falling" if np.all(d < 0) else "mixed",
+                        round(c[0], 3), round(c.max(), 3), float(v[np.argmax(c)]), round(c[-1], 3))
+    print(f"\nFig. 4 trends (trend, COR at 1 m/s, max, v0 of max, COR at 30 m/s): {trends}")
+    assert trends[1200.0][0] == "rising" and trends[4800.0][0] == "falling"
+    assert trends[600.0][0] == "mixed" and trends[600.0][2] == 0.568 and trends[600.0][4] == 0.563
+    assert trends[1200.0][1:3] == (0.388, 0.442) and (trends[4800.0][1], trends[4800.0][4]) == (0.424, 0.251)
