@@ -9,12 +9,14 @@ Wall times are medians of ``repeat`` runs of the solver alone (``Result.wall_tim
 
 from __future__ import annotations
 
+import json
 import math
 import statistics
 
 import numpy as np
 
 from . import status as _status
+from .options import solver_options
 from .scene import resolve_material
 from .solvers import simulate
 from .solvers.common import richardson
@@ -94,6 +96,9 @@ def study(name, v0, *, material_dir="results/materials", repeat=3):
             "err_t0": (("solver", "level"), np.abs(t0 - rt), {"units": "s", "long_name": "|t0 - reference|"}),
             "status": (("solver", "level"), status, _status.cf_attrs()),
             "message": (("solver", "level"), message.astype(str), {"long_name": "solver message"}),
+            "solver_options": ("solver", np.array([json.dumps(solver_options(**m[1]).to_dict(), sort_keys=True)
+                                                    for m in methods], dtype=str),
+                               {"long_name": "resolved solver options (JSON; the ladder sets steps_per_contact or rtol)"}),
             "cor_ref": ((), ref_cor, {"units": "1", "long_name": "reference COR (Richardson, direct-a)"}),
             "cor_ref_volterra": ((), ref_v_cor, {"units": "1", "long_name": "reference COR with Volterra"}),
             "cor_ive_1e12": ((), cross, {"units": "1", "long_name": "ive Radau rtol 1e-12 (Prony only)"}),
