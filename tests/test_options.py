@@ -50,7 +50,7 @@ def test_schema_bounds_match_the_dataclass():
 
 
 CLI_VALUES = {"method": "ive-numba", "dt": "1e-7", "steps_per_contact": "100", "max_steps": "1000", "c2": "2",
-              "form": "b", "rule": "overlap", "rtol": "1e-8", "ive_method": "LSODA"}
+              "form": "b", "rule": "overlap", "rtol": "1e-8", "ive_method": "LSODA", "soe_tol": "1e-8"}
 
 
 def test_cli_flags_are_the_options():
@@ -93,6 +93,9 @@ def test_defaults_are_filled_for_the_method_and_unused_options_stay_unset():
     i = SolverOptions(method="ive").to_dict()
     assert i["rtol"] == 1e-10 and i["ive_method"] == "Radau" and i["steps_per_contact"] is None and i["form"] is None
     assert SolverOptions(volterra=True).c2 == 1.0
+    # the O(N) methods get a larger step budget (their cost is linear in the steps)
+    assert SolverOptions(method="soe").max_steps == SolverOptions(method="ive-numba").max_steps == 4_000_000
+    assert SolverOptions(method="soe").soe_tol == 1e-10 and SolverOptions().soe_tol is None
     # replace switches method and drops what the new one does not use
     assert SolverOptions(dt=1e-7).replace(method="ive").dt is None
     with pytest.raises(dataclasses.FrozenInstanceError):

@@ -56,3 +56,54 @@ def test_bad_interval_is_refused():
         S.soe(M.get("butyl-fc"), 1e-3, 1e-4)
     with pytest.raises(ValueError, match="tol must be in"):
         S.soe(M.get("butyl-fc"), 1e-6, 1.0, tol=0.5)
+
+
+# ----------------------------------------------------------------------------- the soe method
+PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
+
+
+@pytest.mark.parametrize("name", PRESETS)
+@pytest.mark.parametrize("v0", [0.001, 1.0, 10.0, 50.0, 300.0])
+def test_soe_method_reproduces_direct(name, v0):
+    """Same dt, same product integration: the exponential-sum history changes the numbers of the
+    O(N^2) direct scheme by at most its tolerance (1e-10) times the history's share."""
+    import vcor
+
+    a = vcor.simulate(name, v0)
+    b = vcor.simulate(name, v0, method="soe")
+    assert a.status == b.status == "ok", (a.message, b.message)
+    assert b.dt == a.dt and b.steps == a.steps
+    assert abs(b.cor / a.cor - 1) < 1e-10, (b.cor, a.cor)
+    assert abs(b.t0 / a.t0 - 1) < 1e-10, (b.t0, a.t0)
+
+
+@pytest.mark.parametrize("h", [1e-3, 2e-3, 3.16e-3, 5e-3])
+@pytest.mark.parametrize("name", ["sls", "elastic"])
+@pytest.mark.parametrize("v0", [1.0, 10.0])
+def test_thin_plates_separate(h, name, v0):
+    """Long contacts (up to 600 contact-time estimates at h = 1 mm) end ok with soe, and agree with
+    scipy's Radau on the exact internal variables (rtol 1e-10): t0 to 1e-3 relative, COR to 1e-6."""
+    import vcor
+
+    r = vcor.simulate(name, v0, h=h, method="soe")
+    ref = vcor.simulate(name, v0, h=h, method="ive")
+    assert r.status == "ok" and ref.status == "ok", (r.message, ref.message)
+    print(f"\nh = {h * 1e3:g} mm, {name}, v0 = {v0}: t0 {r.t0:.6g} s (Radau {ref.t0:.6g}), "
+          f"COR {r.cor:.4e} (Radau {ref.cor:.4e}), {r.steps} steps")
+    assert abs(r.t0 / ref.t0 - 1) < 1e-3
+    assert abs(r.cor - ref.cor) < 1e-6
+
+
+@pytest.mark.parametrize("option, value", [("soe_tol", 1e-8)])
+def test_soe_options_belong_to_soe(option, value):
+    import vcor
+
+    with pytest.raises(ValueError, match=f"solver option {option} is not used by method 'direct'"):
+        vcor.simulate("sls", 10.0, **{option: value})
+    with pytest.raises(ValueError, match="solver option volterra is not used by method 'soe'"):
+        vcor.simulate("sls", 10.0, method="soe", volterra=True)
+    with pytest.raises(ValueError, match="solver option form is not used by method 'soe'"):
+        vcor.simulate("sls", 10.0, method="soe", form="b")
+    looser = vcor.simulate("butyl-fc", 10.0, method="soe", soe_tol=1e-6)
+    exact = vcor.simulate("butyl-fc", 10.0)
+    assert looser.ok and 1e-12 < abs(looser.cor / exact.cor - 1) < 1e-6

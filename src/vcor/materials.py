@@ -238,14 +238,23 @@ class Prony(Material):
 
     def step_integrals(self, dt: float, n: int) -> np.ndarray:
         # Closed form without differences of growing antiderivatives (no cancellation).
+        return self.E_inf * dt + self.term_step_integrals(dt, n).sum(axis=-1)
+
+    def step_moments(self, dt: float, n: int) -> np.ndarray:
+        # E_inf gives 0.
+        return self.term_step_moments(dt, n).sum(axis=-1)
+
+    def term_step_integrals(self, dt: float, n: int) -> np.ndarray:
+        """Per term k (last axis): int_{i dt}^{(i+1) dt} E_k e^{-beta_k t} dt, i = 0..n-1, Pa s."""
         i = np.arange(n, dtype=float)
         e, b = self._arrays()
         bdt = b * dt
         frac = np.where(b > 0, -np.expm1(-bdt) / np.where(b > 0, b, 1.0), dt)
-        return self.E_inf * dt + (e * frac * np.exp(-np.multiply.outer(i, bdt))).sum(axis=-1)
+        return e * frac * np.exp(-np.multiply.outer(i, bdt))
 
-    def step_moments(self, dt: float, n: int) -> np.ndarray:
-        # int_0^dt e^{-b x} (x - dt/2) dx, closed form or (small b dt) its series; E_inf gives 0.
+    def term_step_moments(self, dt: float, n: int) -> np.ndarray:
+        """Per term k (last axis): int_{step i} E_k e^{-beta_k t} (t - (i + 1/2) dt) dt, Pa s^2; with
+        int_0^dt e^{-b x} (x - dt/2) dx in closed form or (small b dt) its series."""
         i = np.arange(n, dtype=float)
         e, b = self._arrays()
         x = b * dt
@@ -257,7 +266,7 @@ class Prony(Material):
             fact *= k
             series = series + (-x) ** k / fact * k / (2.0 * (k + 1) * (k + 2))
         phi = np.where(x > 0.05, closed, dt**2 * series)
-        return (e * phi * np.exp(-np.multiply.outer(i, x))).sum(axis=-1)
+        return e * phi * np.exp(-np.multiply.outer(i, x))
 
     def prony_terms(self):
         """(E_inf, E[], beta[]) as float and arrays (for the internal-variable solver)."""

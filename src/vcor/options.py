@@ -21,29 +21,33 @@ from dataclasses import dataclass
 __all__ = ["SolverOptions", "METHODS", "FIXED_STEP_METHODS", "OPTION_HELP", "solver_options"]
 
 #: solver methods; ``paper`` is the explicit baseline of the work-precision study
-METHODS = ("direct", "ive", "ive-numba", "paper")
+METHODS = ("direct", "ive", "ive-numba", "paper", "soe")
 #: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
-FIXED_STEP_METHODS = ("direct", "ive-numba", "paper")
+FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
 IVE_METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853")
 
 
-def _spec(default, methods, help_text, allowed=None, bounds=None):
-    """Field metadata: the value used when the option is not set (``default``), the methods that use
-    it, the allowed values (a tuple) and a help text with units."""
-    return {"default": default, "methods": tuple(methods), "help": help_text, "allowed": allowed, "bounds": bounds}
+def _spec(default, methods, help_text, allowed=None, bounds=None, method_defaults=None):
+    """Field metadata: the value used when the option is not set (``default``; ``method_defaults``
+    overrides it per method), the methods that use it, the allowed values (a tuple) and a help text
+    with units."""
+    return {"default": default, "methods": tuple(methods), "help": help_text, "allowed": allowed, "bounds": bounds,
+            "method_defaults": dict(method_defaults or {})}
 
 
 _SPEC = {
     "method": _spec("direct", METHODS, "solver: direct (full-history product integration, any kernel), ive "
                     "(internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal variables, fixed "
-                    "step, O(N); Prony kernels), paper (explicit baseline for benchmarks)", METHODS),
+                    "step, O(N); Prony kernels), paper (explicit baseline for benchmarks), soe (the direct scheme with an "
+                    "exponential-sum history: any kernel, O(N K))", METHODS),
     "dt": _spec(None, FIXED_STEP_METHODS, "time step, s (null: contact-time estimate / steps_per_contact)",
                 bounds=("float", 0.0, math.inf, "(0, inf) s")),
     "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
                                bounds=("int", 10, math.inf, "an integer >= 10")),
-    "max_steps": _spec(200_000, FIXED_STEP_METHODS, "step budget of the fixed-step march (integer >= 100); a run "
-                       "that reaches it without separating ends with status step-budget",
-                       bounds=("int", 100, math.inf, "an integer >= 100")),
+    "max_steps": _spec(200_000, FIXED_STEP_METHODS, "step budget of the fixed-step march (integer >= 100; "
+                       "4000000 for soe and ive-numba, whose cost is linear in the steps); a run that reaches it without "
+                       "separating ends with status step-budget",
+                       bounds=("int", 100, math.inf, "an integer >= 100"), method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000}),
     "volterra": _spec(False, ("direct", "ive"), "add the second-order Volterra term (Green Eqs. 10, 15, 16)"),
     "c2": _spec(1.0, ("direct", "ive"), "Volterra coefficient, m^-1.5 (only with volterra: true)",
                 bounds=("float", -math.inf, math.inf, "a finite number, m^-1.5")),
@@ -53,6 +57,8 @@ _SPEC = {
                   "zero)", ("force", "overlap")),
     "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in (0, 1)", bounds=("float", 0.0, 1.0, "(0, 1)")),
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
+    "soe_tol": _spec(1e-10, ("soe",), "relative error bound of the exponential sum of the kernel's history part "
+                     "(vcor.soe), in (0, 0.01)", bounds=("float", 0.0, 1e-2, "(0, 0.01)")),
     "ghost": _spec(0.5, METHODS, "histories only: continue the solution this fraction of t0 past separation, "
                    "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]")),
 }
@@ -82,6 +88,7 @@ class SolverOptions:
     rule: str = _SPEC["rule"]["default"]
     rtol: float | None = None
     ive_method: str | None = None
+    soe_tol: float | None = None
     ghost: float = _SPEC["ghost"]["default"]
 
     def __post_init__(self):
@@ -126,7 +133,7 @@ class SolverOptions:
             spec = _SPEC[name]
             used = method in spec["methods"] and not (name == "c2" and not values["volterra"])
             if used and value is None:
-                values[name] = spec["default"]
+                values[name] = spec["method_defaults"].get(method, spec["default"])
         for name, value in values.items():
             object.__setattr__(self, name, value)
 
@@ -151,9 +158,9 @@ class SolverOptions:
         return tuple(_SPEC)
 
     @staticmethod
-    def default_of(name: str):
-        """The value an option takes when it is not set and the method uses it."""
-        return _SPEC[name]["default"]
+    def default_of(name: str, method: str | None = None):
+        """The value an option takes when it is not set and ``method`` (default: the usual one) uses it."""
+        return _SPEC[name]["method_defaults"].get(method, _SPEC[name]["default"])
 
     @staticmethod
     def allowed_of(name: str):

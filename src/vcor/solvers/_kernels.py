@@ -210,6 +210,58 @@ def march_prony(n_start, n_end, s, g, F, J, u, Q, G_inf, G, decay, weight, eta, 
     state[3] = STATUS_END
 
 
+@numba.njit(**_JIT)
+def march_soe(n_start, n_end, s, g, F, J, u, du, wt, v, n_local, c, vc, r, S, P, eta, alpha, alphad, m, v0, dt,
+              rule, n_extra, state):
+    """The direct scheme with an exponential-sum history (O(N (L + K)), L = n_local, K = modes).
+
+    The folded weights of the first L + 1 steps, wt[0..L] and v[0..L], are the exact kernel's (they
+    hold any singularity at t = 0); beyond, wt_i = sum_k c_k r_k^(i-L-1) and v_i = sum_k vc_k
+    r_k^(i-L-1), the weights of the kernel's exponential sum (r_k = exp(-beta_k dt)). So the history
+    sum over du_j with lag i > L is carried by one recursive variable per mode,
+    S_k = sum_{j <= n-2-L} du_j r_k^(n-2-L-j), and P_k = r_k^(n-2-L) gives v_{n-1} for the first
+    step's correction. Everything else is the direct march (``march_direct``).
+    """
+    s_scale = v0 * dt
+    nk = c.shape[0]
+    for n in range(n_start, n_end + 1):
+        w0 = wt[0] - v[0] if n == 1 else wt[0]
+        H = -w0 * u[n - 1]
+        for j in range(max(0, n - 1 - n_local), n - 1):
+            H += du[j] * wt[n - 1 - j]
+        for k in range(nk):
+            H += c[k] * S[k]
+        if n >= 2:
+            if n - 1 <= n_local:
+                H -= du[0] * v[n - 1]
+            else:
+                vv = 0.0
+                for k in range(nk):
+                    vv += vc[k] * P[k]
+                H -= du[0] * vv
+        sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
+                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale)
+        s[n] = sn
+        g[n] = gn
+        F[n] = Fn
+        u[n] = un
+        J[n] = Jn
+        du[n - 1] = un - u[n - 1]
+        jn = n - 1 - n_local  # the increment whose lag becomes L + 1 at step n + 1
+        if jn >= 0:
+            for k in range(nk):
+                S[k] = r[k] * S[k] + du[jn]
+        if n == n_local + 1:
+            for k in range(nk):
+                P[k] = 1.0
+        elif n > n_local + 1:
+            for k in range(nk):
+                P[k] *= r[k]
+        if _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
+            return
+    state[3] = STATUS_END
+
+
 def empty_state() -> np.ndarray:
     return np.array([0, -1, 0, STATUS_RUNNING], dtype=np.int64)
 

@@ -15,7 +15,7 @@ import numpy as np
 from . import _kernels as K
 from .march import Arrays, drive, finish
 
-__all__ = ["run_direct", "run_paper", "kernel_weights", "volterra_weights", "MAX_T_FACTOR"]
+__all__ = ["run_direct", "run_paper", "kernel_weights", "folded_weights", "volterra_weights", "MAX_T_FACTOR"]
 
 #: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
 MAX_T_FACTOR = 32.0
@@ -23,8 +23,13 @@ MAX_T_FACTOR = 32.0
 
 def kernel_weights(impact, dt, n):
     """Folded weights (wt, v) of the quadratic product integration (see ``_kernels``), N m^-1.5."""
-    w = impact.kappa * impact.material.step_integrals(dt, n) / dt
-    v = -impact.kappa * impact.material.step_moments(dt, n) / dt**2
+    return folded_weights(impact.material, impact.kappa, dt, n)
+
+
+def folded_weights(material, kappa, dt, n):
+    """Folded weights (wt, v) of ``material`` scaled by the contact stiffness ``kappa`` (m^0.5)."""
+    w = kappa * material.step_integrals(dt, n) / dt
+    v = -kappa * material.step_moments(dt, n) / dt**2
     wt = w + v
     wt[1:] -= v[:-1]
     return wt, v

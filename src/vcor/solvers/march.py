@@ -112,7 +112,8 @@ def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_step
         res.message = (
             f"stopped by the step budget before a verdict: the contact force had not returned to zero at "
             f"T_max = {t[-1]:.6g} s ({n_done} steps of dt = {dt:.3g} s; budget {max_steps} steps, the smaller "
-            f"of max_steps and 32 contact-time estimates); "
+            f"of max_steps and the method's horizon: 32 contact-time estimates for direct and paper, 2048 for "
+            f"soe and ive-numba); "
             f"s_max and f_max are over that window"
         )
         res.s_max = float(np.max(s))

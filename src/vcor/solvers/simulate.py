@@ -6,14 +6,20 @@ import math
 
 from .. import materials as _materials
 from ..impact import GEOMETRY_DEFAULTS, Geometry, Impact
-from ..options import METHODS, SolverOptions, solver_options
+from ..options import FIXED_STEP_METHODS, METHODS, SolverOptions, solver_options
 from .direct import MAX_T_FACTOR, run_direct, run_paper
 from .ive import run_ive_fixed, run_ive_scipy
+from .modes import run_soe
 
 __all__ = ["simulate", "METHODS", "default_dt", "make_impact", "split_keywords"]
 
 #: T_max starts at this many contact-time estimates and doubles while the impact has not separated
 T_MAX_START = 1.5
+#: time horizon of the methods whose cost is linear in time (soe, ive-numba, ive), in contact-time
+#: estimates (direct and paper, O(N^2) or a baseline: MAX_T_FACTOR = 32): the long contacts of thin
+#: plates (600 t_c at h = 1 mm) fit
+LINEAR_MAX_T_FACTOR = 2048.0
+LINEAR_METHODS = ("soe", "ive-numba", "ive")
 
 
 def split_keywords(kwargs: dict) -> tuple[dict, dict]:
@@ -84,7 +90,7 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
     if opts.dt is not None and not opts.dt < tc:
         raise ValueError(f"dt must be in (0, {tc:.4g}) s (below the estimated contact time), got {opts.dt!r}")
     res = _dispatch(impact, opts, tc, history)
-    if (opts.dt is None and opts.method in ("direct", "ive-numba", "paper") and res.ok
+    if (opts.dt is None and opts.method in FIXED_STEP_METHODS and res.ok
             and res.steps < MIN_STEPS_FRACTION * opts.steps_per_contact):
         wall = res.wall_time
         res = _dispatch(impact, opts.replace(dt=res.t0 / (0.8 * opts.steps_per_contact)), tc, history)
@@ -96,11 +102,12 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
 def _dispatch(impact, opts: SolverOptions, tc: float, history: bool):
     if opts.method == "ive":
         return run_ive_scipy(impact, rtol=opts.rtol, method=opts.ive_method, tc=tc, t_max=T_MAX_START * tc,
-                             max_t=MAX_T_FACTOR * tc, history=history, ghost=opts.ghost, rule=opts.rule,
+                             max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=opts.ghost, rule=opts.rule,
                              volterra=opts.volterra, c2=opts.c2 if opts.volterra else 0.0)
     dt = default_dt(impact, opts.steps_per_contact, tc) if opts.dt is None else opts.dt
     n_steps = max(int(math.ceil(T_MAX_START * tc / dt)), 16)
-    max_n = min(opts.max_steps, max(n_steps, int(MAX_T_FACTOR * tc / dt)))
+    t_factor = LINEAR_MAX_T_FACTOR if opts.method in LINEAR_METHODS else MAX_T_FACTOR
+    max_n = min(opts.max_steps, max(n_steps, int(t_factor * tc / dt)))
     n_steps = min(n_steps, max_n)
     if opts.method == "direct":
         return run_direct(impact, dt, n_steps, max_steps=max_n, rule=opts.rule, volterra=opts.volterra,
@@ -109,5 +116,8 @@ def _dispatch(impact, opts: SolverOptions, tc: float, history: bool):
         if history:
             raise ValueError("method 'paper' (benchmark baseline) has no history option")
         return run_paper(impact, dt, n_steps, max_steps=max_n, rule=opts.rule)
+    if opts.method == "soe":
+        return run_soe(impact, dt, n_steps, max_steps=max_n, rule=opts.rule, history=history, ghost=opts.ghost,
+                       tol=opts.soe_tol)
     return run_ive_fixed(impact, dt, n_steps, max_steps=max_n, rule=opts.rule, history=history, ghost=opts.ghost)
 
