@@ -38,6 +38,7 @@ def methods_for(material) -> list[tuple[str, dict, tuple]]:
         out += [("ive-Radau", {"method": "ive", "ive_method": "Radau"}, RTOLS),
                 ("ive-BDF", {"method": "ive", "ive_method": "BDF"}, RTOLS),
                 ("ive-numba", {"method": "ive-numba"}, LADDER)]
+    out.append(("soe", {"method": "soe"}, LADDER))
     out.append(("paper-explicit", {"method": "paper"}, LADDER))
     return out
 
