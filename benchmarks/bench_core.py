@@ -13,16 +13,7 @@ import tempfile
 import time
 
 import vcor
-
-
-def median_time(fn, repeat=15):
-    fn()  # JIT / cache load
-    ts = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t)
-    return statistics.median(ts)
+from timing import median_time
 
 
 def solver_time(material, v0, repeat=15, **kw):
