@@ -105,3 +105,19 @@ def test_failed_history_is_nan_with_its_status_and_rule_is_honoured():
     force = datasets.histories_dataset([("sls", "direct")], 10.0, options={"rule": "force"})
     overlap = datasets.histories_dataset([("sls", "direct")], 10.0, options={"rule": "overlap"})
     assert float(overlap["t0"].values[0]) > float(force["t0"].values[0]) * 1.01
+
+
+def test_separation_uses_the_root_inside_the_step():
+    """Force rule, s already negative a step before F crosses zero: the root of F is used (it lies
+    in the step), not an extrapolated root of s; a target that does not change sign is an error."""
+    from vcor.solvers.common import separation
+
+    t = np.arange(6.0)
+    s = np.array([0.0, 1.0, 0.5, -0.1, -0.5, -1.0])
+    F = np.array([0.0, 2.0, 1.5, 1.0, -0.5, -1.0])
+    g = np.gradient(s, t)
+    J = np.cumsum(F)
+    out = separation(t, s, g, F, J, 4, "force", 1.0, 1.0)
+    assert 3.0 < out["t0"] < 4.0 and out["message"] == ""
+    with pytest.raises(RuntimeError, match="does not change sign"):
+        separation(t, s, g, np.abs(F) + 1.0, J, 4, "force", 1.0, 1.0)

@@ -144,17 +144,18 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
     is found as the root of the cubic
     Lagrange interpolant through the four nodes around it (third-order interpolation, error
-    O(dt^4)); s, s', J are interpolated the same way. Where the cubic does not bracket the root
-    (a kink of F inside the step), the root of the linear interpolant is used instead and the
-    returned ``message`` says so. Returns a dict of the scalars and ``message``.
+    O(dt^4)); s, s', J are interpolated the same way. The interpolant equals the nodes, so the
+    root is always bracketed in a march's separation step; anything else raises (no silent guess).
+    Returns a dict of the scalars and ``message`` (empty).
     """
     n = int(n_sep)
     lo = max(0, min(n - 2, len(t) - 4))
     idx = slice(lo, lo + 4)
     tn = t[idx]
     # F = 0 and s = 0 in the same step (elastic-like separation): F ~ s^{3/2} is not smooth at its
-    # root, s is, so the root of s locates the same instant far more accurately.
-    by_overlap = rule == "overlap" or s[n] <= 0.0
+    # root, s is, so the root of s locates the same instant far more accurately. (If s crossed in an
+    # earlier step, its root is not in this one: F's is used.)
+    by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
     target = s if by_overlap else F
     yn = target[idx]
 
@@ -164,14 +165,13 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     a, b = t[n - 1], t[n]
     fa, fb = f(a), f(b)
     message = ""
-    if not (fa > 0 >= fb):  # interpolant does not bracket: fall back to linear on the nodes
-        y0, y1 = target[n - 1], target[n]
-        t0 = a + (b - a) * y0 / (y0 - y1)
-        message = ("separation located by linear interpolation (the cubic interpolant of "
-                   f"{'s' if by_overlap else 'F'} does not bracket its root in the last step): t0 is O(dt^2) accurate")
-    else:
-        # Brent's method on the cubic interpolant, bracketed by fa > 0 >= fb
-        t0 = b if fb == 0.0 else brentq(f, a, b, xtol=1e-15 * max(b, 1e-300), rtol=4 * np.finfo(float).eps, maxiter=200)
+    if not (fa > 0 >= fb):
+        # cannot happen for a march's separation step (the interpolant equals the nodes, and the
+        # target was > 0 at step n - 1 and <= 0 at step n); loud rather than a silent guess
+        raise RuntimeError(f"separation step {n}: {'s' if by_overlap else 'F'} does not change sign "
+                           f"({fa!r} -> {fb!r})")
+    # Brent's method on the cubic interpolant, bracketed by fa > 0 >= fb
+    t0 = b if fb == 0.0 else brentq(f, a, b, xtol=1e-15 * max(b, 1e-300), rtol=4 * np.finfo(float).eps, maxiter=200)
     s0 = _lagrange(tn, s[idx], t0)
     g0 = _lagrange(tn, g[idx], t0)
     J0 = _lagrange(tn, J[idx], t0)
