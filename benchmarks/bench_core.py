@@ -12,8 +12,9 @@ import sys
 import tempfile
 import time
 
-import vcor
 from timing import median_time
+
+import vcor
 
 
 def solver_time(material, v0, repeat=15, **kw):

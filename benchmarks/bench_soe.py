@@ -8,9 +8,9 @@ from __future__ import annotations
 import time
 
 import numpy as np
+from timing import median_time
 
 import vcor
-from timing import median_time
 
 
 def main():

@@ -32,7 +32,7 @@ def main(methods):
             wall = time.perf_counter() - t
             names = [status.STATUS_NAMES[int(c)] for c in ds["status"].values]
             ok = ds["status"].values == status.code("ok")
-            print(f"{name:22s} {method:8s} {str(dict(collections.Counter(names))):40s} "
+            print(f"{name:22s} {method:8s} {dict(collections.Counter(names))!s:40s} "
                   f"{np.nanmax(ds['cor_err'].values[ok]):12.2e} {wall:9.1f}")
             if method == methods[-1]:
                 axes = [a for a in ds.coords if a not in ("point", "material", "material_id")]

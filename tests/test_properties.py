@@ -22,7 +22,7 @@ def zener_cor(lam):
         z = max(y[0], 0.0)
         return [y[1] - lam * z**1.5, -(z**1.5)]
 
-    ev = lambda t, y: y[0] if t > 1e-3 else 1.0  # noqa: E731
+    ev = lambda t, y: y[0] if t > 1e-3 else 1.0
     ev.terminal, ev.direction = True, -1
     sol = solve_ivp(rhs, (0, 50), [0.0, 1.0], events=ev, rtol=1e-13, atol=1e-15, method="DOP853")
     z, w = sol.y_events[0][0]

@@ -40,7 +40,7 @@ def _fingerprint(env):
 
 def _jobs(text, rule):
     """Number of jobs of ``rule`` in Snakemake's job-stats table (0 when absent)."""
-    m = re.search(rf"^{rule}\s+(\d+)\s*$", text, flags=re.M)
+    m = re.search(rf"^{rule}\s+(\d+)\s*$", text, flags=re.MULTILINE)
     return int(m.group(1)) if m else 0
 
 
@@ -55,7 +55,7 @@ def project(tmp_path_factory):
     pkg = path / "pkg"
     shutil.copytree(Path(vcor.__file__).parent, pkg / "vcor", ignore=shutil.ignore_patterns("__pycache__"))
     env = {**os.environ, "PYTHONPATH": str(pkg), "NUMBA_CACHE_DIR": str(path / "numba-cache")}
-    fp, where = _fingerprint(env)
+    _, where = _fingerprint(env)
     assert Path(where).is_relative_to(pkg)  # the copy is the code that runs
     return path, pkg, env
 

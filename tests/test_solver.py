@@ -141,7 +141,7 @@ def test_volterra_elastic_closed_form():
         u = max(y[0], 0.0) ** 1.5
         return [y[1], -k * (u + c2 * u * u) / m]
 
-    ev = lambda t, y: y[0] if t > 0 else 1.0  # noqa: E731
+    ev = lambda t, y: y[0] if t > 0 else 1.0
     ev.terminal, ev.direction = True, -1
     sol = solve_ivp(rhs, (0, 0.01), [0.0, v0], events=ev, rtol=1e-12, atol=1e-15, method="DOP853")
     vout = sol.y_events[0][0][1]

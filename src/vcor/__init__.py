@@ -5,4 +5,4 @@ from .options import SolverOptions
 from .solvers import Result, simulate
 
 __version__ = "0.1.0"
-__all__ = ["simulate", "Result", "SolverOptions", "materials", "__version__"]
+__all__ = ["Result", "SolverOptions", "__version__", "materials", "simulate"]

@@ -21,7 +21,7 @@ from .scene import resolve_material
 from .solvers import simulate
 from .solvers.common import richardson
 
-__all__ = ["LADDER", "RTOLS", "methods_for", "study", "observed_order"]
+__all__ = ["LADDER", "RTOLS", "methods_for", "observed_order", "study"]
 
 LADDER = (250, 500, 1000, 2000, 4000, 8000)
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
@@ -165,5 +165,5 @@ def orders_table(ds) -> str:
                 else:
                     o = observed_order(d, str(s))
                     vals.append("-" if not math.isfinite(o) else f"{o:.2f}")
-            lines.append(f"{str(m):14s} {v:8g} " + " ".join(f"{x:>18s}" for x in vals))
+            lines.append(f"{m!s:14s} {v:8g} " + " ".join(f"{x:>18s}" for x in vals))
     return "\n".join(lines) + "\n"

@@ -12,7 +12,7 @@ from .scene import resolve_material
 from .solvers import simulate
 from .solvers.common import LONG_NAMES, UNITS
 
-__all__ = ["moduli_dataset", "histories_dataset"]
+__all__ = ["histories_dataset", "moduli_dataset"]
 
 
 def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e7, n=400,

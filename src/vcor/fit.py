@@ -24,7 +24,7 @@ from scipy.optimize import least_squares, nnls
 
 from . import materials as _materials
 
-__all__ = ["FitData", "FitResult", "bagley_torvik_data", "fit_prony", "fit_cerf", "metrics", "fit", "fit_identity"]
+__all__ = ["FitData", "FitResult", "bagley_torvik_data", "fit", "fit_cerf", "fit_identity", "fit_prony", "metrics"]
 
 
 def _axis_and_values(axis_name, unit, axis, values_name, values, dtype):

@@ -26,7 +26,7 @@ import numpy as np
 from . import materials as _materials
 from .checks import number
 
-__all__ = ["Geometry", "Impact", "GEOMETRY_DEFAULTS"]
+__all__ = ["GEOMETRY_DEFAULTS", "Geometry", "Impact"]
 
 GEOMETRY_DEFAULTS = {
     "r": 0.010,  # sphere radius, m

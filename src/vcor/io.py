@@ -11,7 +11,7 @@ import numpy as np
 
 from . import provenance as _provenance
 
-__all__ = ["write_dataset", "REFERENCES", "scalar_dataset_check"]
+__all__ = ["REFERENCES", "scalar_dataset_check", "write_dataset"]
 
 REFERENCES = (
     "Green, I. (2026) The viscoelastic coefficient of restitution: integrating the wave equation with "
@@ -30,7 +30,7 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     ds = ds.copy()
-    now = _dt.datetime.now(_dt.timezone.utc).replace(microsecond=0).isoformat()
+    now = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat()
     cmd = command or " ".join(sys.argv[:1])
     attrs = {
         "Conventions": "CF-1.10",

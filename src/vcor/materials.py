@@ -30,17 +30,17 @@ from scipy.special import erfcx, gamma
 from .checks import positive as _positive
 
 __all__ = [
-    "Material",
-    "Elastic",
-    "Prony",
-    "SLS",
-    "FractionalPower",
-    "Cerf",
-    "KelvinVoigt",
     "PRESETS",
-    "get",
+    "SLS",
+    "Cerf",
+    "Elastic",
+    "FractionalPower",
+    "KelvinVoigt",
+    "Material",
+    "Prony",
     "from_dict",
     "from_file",
+    "get",
 ]
 
 _SQRT_PI = math.sqrt(math.pi)

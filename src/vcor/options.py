@@ -18,7 +18,7 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-__all__ = ["SolverOptions", "METHODS", "FIXED_STEP_METHODS", "OPTION_HELP", "solver_options"]
+__all__ = ["FIXED_STEP_METHODS", "METHODS", "OPTION_HELP", "SolverOptions", "solver_options"]
 
 #: solver methods; ``paper`` is the explicit baseline of the work-precision study
 METHODS = ("direct", "ive", "ive-numba", "paper", "soe")

@@ -17,7 +17,7 @@ import hashlib
 import subprocess
 from pathlib import Path
 
-__all__ = ["code_fingerprint", "plots_fingerprint", "git_commit", "source"]
+__all__ = ["code_fingerprint", "git_commit", "plots_fingerprint", "source"]
 
 _PACKAGE = Path(__file__).resolve().parent
 #: modules that draw or parse arguments but compute no stored number
@@ -58,10 +58,10 @@ def git_commit() -> str:
     """The git commit of the source tree ("+dirty" with local changes), or "unknown"."""
     try:
         out = subprocess.run(["git", "-C", str(_PACKAGE), "rev-parse", "HEAD"], capture_output=True, text=True,
-                             timeout=5)
+                             timeout=5, check=False)
         commit = out.stdout.strip() if out.returncode == 0 else "unknown"
         dirty = subprocess.run(["git", "-C", str(_PACKAGE), "status", "--porcelain", "--", str(_PACKAGE)],
-                               capture_output=True, text=True, timeout=5).stdout.strip()
+                               capture_output=True, text=True, timeout=5, check=False).stdout.strip()
         return commit + ("+dirty" if dirty and commit != "unknown" else "")
     except (OSError, subprocess.SubprocessError):
         return "unknown"

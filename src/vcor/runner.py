@@ -21,12 +21,19 @@ import numpy as np
 
 from . import status as _status
 from .provenance import code_fingerprint
-from .scene import AXIS_UNITS, build_point, canon, material_params, scene_axes, settings_of
+from .scene import (
+    AXIS_UNITS,
+    build_point,
+    canon,
+    material_params,
+    scene_axes,
+    settings_of,
+)
 from .shards import identified_points, point_key
 from .solvers import simulate
 from .solvers.common import LONG_NAMES, UNITS, richardson
 
-__all__ = ["SCALARS", "solve_point", "run_points", "aggregate", "dataset_attrs"]
+__all__ = ["SCALARS", "aggregate", "dataset_attrs", "run_points", "solve_point"]
 
 #: scalar outputs stored per point
 SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",

@@ -28,17 +28,17 @@ from .options import SolverOptions
 
 __all__ = [
     "AXIS_UNITS",
-    "canon",
     "axis_values",
+    "build_point",
+    "canon",
+    "check_material_name",
+    "material_params",
+    "resolve_material",
     "scene_axes",
     "scene_points",
     "settings_of",
     "solver_options_of",
-    "resolve_material",
-    "check_material_name",
     "validate_scene",
-    "build_point",
-    "material_params",
 ]
 
 AXIS_UNITS = {

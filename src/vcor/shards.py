@@ -26,8 +26,16 @@ from pathlib import Path
 from .provenance import code_fingerprint
 from .scene import resolve_material, scene_points, settings_of
 
-__all__ = ["content_hash", "material_identity", "shard_settings", "settings_hash", "identified_points",
-           "point_key", "plan_shards", "SHARD_PATTERN"]
+__all__ = [
+    "SHARD_PATTERN",
+    "content_hash",
+    "identified_points",
+    "material_identity",
+    "plan_shards",
+    "point_key",
+    "settings_hash",
+    "shard_settings",
+]
 
 #: the wildcard pattern of shard ids
 SHARD_PATTERN = "[0-9a-f]{10}-[0-9a-f]{12}"

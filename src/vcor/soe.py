@@ -41,7 +41,7 @@ from scipy.special import erfc, erfcx
 from . import materials as _materials
 from .checks import number
 
-__all__ = ["SOE", "soe", "fractional_bound"]
+__all__ = ["SOE", "fractional_bound", "soe"]
 
 #: a posteriori check: log-spaced times, this many per period h of the trapezoid error in log t
 CHECKS_PER_PERIOD = 32

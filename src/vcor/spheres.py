@@ -31,9 +31,24 @@ from .solvers import simulate
 from .solvers.common import richardson
 
 __all__ = [
-    "C", "C1_CLOSED_FORM", "A_COEFFS", "TABLE_I", "MP_NUM", "MP_DEN",
-    "pade_coefficients", "cor_series", "cor_pade", "cor_pade_force", "cor_root", "cor_numeric",
-    "cor_numeric_sls", "b_group", "g_star", "dissipative_constant", "cor_spheres", "SolverFailure",
+    "A_COEFFS",
+    "C1_CLOSED_FORM",
+    "MP_DEN",
+    "MP_NUM",
+    "TABLE_I",
+    "C",
+    "SolverFailure",
+    "b_group",
+    "cor_numeric",
+    "cor_numeric_sls",
+    "cor_pade",
+    "cor_pade_force",
+    "cor_root",
+    "cor_series",
+    "cor_spheres",
+    "dissipative_constant",
+    "g_star",
+    "pade_coefficients",
 ]
 
 

@@ -21,7 +21,7 @@ import traceback
 
 import numpy as np
 
-__all__ = ["STATUS_CODES", "STATUS_NAMES", "code", "cf_attrs", "codes_of", "guarded"]
+__all__ = ["STATUS_CODES", "STATUS_NAMES", "cf_attrs", "code", "codes_of", "guarded"]
 
 STATUS_CODES = {"ok": 0, "no-separation": 1, "diverged": 2, "invalid-input": 3, "failed": 4, "step-budget": 5}
 STATUS_NAMES = {v: k for k, v in STATUS_CODES.items()}

@@ -4,9 +4,9 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-import xarray as xr  # noqa: E402
+import xarray as xr
 
-from vcor import io, runner  # noqa: E402
+from vcor import io, runner
 
 cfg = snakemake.params.scene  # noqa: F821
 mdir = snakemake.params.material_dir  # noqa: F821

@@ -4,9 +4,9 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-import xarray as xr  # noqa: E402
+import xarray as xr
 
-from vcor import convergence, io  # noqa: E402
+from vcor import convergence, io
 
 spec = snakemake.params.spec  # noqa: F821
 mats = spec["materials"]

@@ -4,9 +4,9 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-import xarray as xr  # noqa: E402
+import xarray as xr
 
-from vcor import plots  # noqa: E402
+from vcor import plots
 
 fn, needs = plots.FIGURES[snakemake.wildcards.fig]  # noqa: F821
 data = [xr.load_dataset(snakemake.input[n]) for n in needs]  # noqa: F821

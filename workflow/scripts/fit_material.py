@@ -4,7 +4,7 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import fit, io  # noqa: E402
+from vcor import fit, io
 
 spec = snakemake.params.spec  # noqa: F821
 data = fit.data_from_spec(spec)

@@ -4,7 +4,7 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import fit, scene  # noqa: E402
+from vcor import fit, scene
 
 data = fit.bagley_torvik_data()
 rows = []

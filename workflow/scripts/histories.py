@@ -4,7 +4,7 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import datasets, io, scene  # noqa: E402
+from vcor import datasets, io, scene
 
 h = snakemake.params.histories  # noqa: F821
 settings = snakemake.params.settings  # noqa: F821

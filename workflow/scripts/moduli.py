@@ -4,7 +4,7 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import datasets, io, scene  # noqa: E402
+from vcor import datasets, io, scene
 
 names = list(snakemake.params.materials)  # noqa: F821
 ds = datasets.moduli_dataset(names, material_dir=snakemake.params.material_dir)  # noqa: F821

@@ -4,7 +4,7 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import datasets, io, scene  # noqa: E402
+from vcor import datasets, io, scene
 
 spec = snakemake.params.spec  # noqa: F821
 ds = datasets.spheres_dataset(scene.axis_values(spec["b"]), rules=spec["rules"], tau_ratios=spec["tau_ratio"],

@@ -5,7 +5,7 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import io, runner, scene  # noqa: E402
+from vcor import io, runner, scene
 
 points = snakemake.params.points  # noqa: F821
 settings = snakemake.params.settings  # noqa: F821

@@ -5,4 +5,4 @@ from ..status import STATUS_CODES
 from .common import Histories, Result
 from .simulate import METHODS, default_dt, simulate
 
-__all__ = ["simulate", "Result", "Histories", "STATUS_CODES", "METHODS", "default_dt", "SolverOptions"]
+__all__ = ["METHODS", "STATUS_CODES", "Histories", "Result", "SolverOptions", "default_dt", "simulate"]

@@ -279,7 +279,7 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
     """
     u = np.zeros(n_end + 1)
     fs = np.zeros((n_end + 1, 2))  # derivatives of (s, J)
-    for n in range(0, n_end + 1):
+    for n in range(n_end + 1):
         if n > 0:
             k = min(n, 4)
             for c in range(2):

@@ -10,7 +10,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from ..status import STATUS_CODES
 
-__all__ = ["Result", "STATUS_CODES", "UNITS", "LONG_NAMES", "separation", "peak", "richardson", "Histories"]
+__all__ = ["LONG_NAMES", "STATUS_CODES", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
 
 UNITS = {
     "cor": "1",

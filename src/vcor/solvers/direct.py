@@ -15,7 +15,7 @@ import numpy as np
 from . import _kernels as K
 from .march import Arrays, drive, finish
 
-__all__ = ["run_direct", "run_paper", "kernel_weights", "folded_weights", "volterra_weights", "MAX_T_FACTOR"]
+__all__ = ["MAX_T_FACTOR", "folded_weights", "kernel_weights", "run_direct", "run_paper", "volterra_weights"]
 
 #: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
 MAX_T_FACTOR = 32.0

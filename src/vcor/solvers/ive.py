@@ -19,7 +19,7 @@ from . import _kernels as K
 from .common import Histories, Result, peak
 from .march import drive, finish
 
-__all__ = ["run_ive_scipy", "run_ive_fixed"]
+__all__ = ["run_ive_fixed", "run_ive_scipy"]
 
 
 def prony_terms(impact, method):

@@ -21,7 +21,7 @@ import numpy as np
 from . import _kernels as K
 from .common import Histories, Result, separation
 
-__all__ = ["Arrays", "drive", "finish", "N_EXTRA"]
+__all__ = ["N_EXTRA", "Arrays", "drive", "finish"]
 
 #: steps marched past the separation step (the cubic separation interpolant needs two)
 N_EXTRA = 2
@@ -72,7 +72,7 @@ def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
     note = ""
     if state[3] == K.STATUS_SEPARATED and ghost > 0:
         n_sep = int(state[1])
-        n_ghost = max(int(math.ceil(n_sep * (1.0 + ghost))), n_done)
+        n_ghost = max(math.ceil(n_sep * (1.0 + ghost)), n_done)
         if n_ghost > n_cap:
             arr.grow(n_ghost)
             n_cap = n_ghost

@@ -20,7 +20,7 @@ from . import _kernels as K
 from .direct import folded_weights
 from .march import drive, finish
 
-__all__ = ["run_soe", "N_LOCAL"]
+__all__ = ["N_LOCAL", "run_soe"]
 
 #: steps of exact local history (lags 0..N_LOCAL)
 N_LOCAL = 8

@@ -11,7 +11,7 @@ from .direct import MAX_T_FACTOR, run_direct, run_paper
 from .ive import run_ive_fixed, run_ive_scipy
 from .modes import run_soe
 
-__all__ = ["simulate", "METHODS", "default_dt", "make_impact", "split_keywords"]
+__all__ = ["METHODS", "default_dt", "make_impact", "simulate", "split_keywords"]
 
 #: T_max starts at this many contact-time estimates and doubles while the impact has not separated
 T_MAX_START = 1.5
@@ -105,7 +105,7 @@ def _dispatch(impact, opts: SolverOptions, tc: float, history: bool):
                              max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=opts.ghost, rule=opts.rule,
                              volterra=opts.volterra, c2=opts.c2 if opts.volterra else 0.0)
     dt = default_dt(impact, opts.steps_per_contact, tc) if opts.dt is None else opts.dt
-    n_steps = max(int(math.ceil(T_MAX_START * tc / dt)), 16)
+    n_steps = max(math.ceil(T_MAX_START * tc / dt), 16)
     t_factor = LINEAR_MAX_T_FACTOR if opts.method in LINEAR_METHODS else MAX_T_FACTOR
     max_n = min(opts.max_steps, max(n_steps, int(t_factor * tc / dt)))
     n_steps = min(n_steps, max_n)
