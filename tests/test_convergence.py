@@ -11,12 +11,14 @@ from vcor.options import SolverOptions
 def test_study_records_options_statuses_and_order_two():
     ds = convergence.study("sls", 10.0, repeat=1)
     solvers = list(ds["solver"].values)
-    assert {"direct-a", "direct-b", "direct-a+volterra", "ive-Radau", "ive-numba", "soe", "paper-explicit"} <= set(solvers)
+    assert {"direct-a", "direct-b", "direct-a+volterra", "ive-Radau", "ive-numba", "soe", "paper-explicit",
+            "adaptive"} <= set(solvers)
     # every solver row says which resolved options it used (the ladder sets steps_per_contact or rtol)
     for name, text in zip(solvers, ds["solver_options"].values):
         opts = json.loads(str(text))
         assert set(opts) == set(SolverOptions.names())
-        assert opts["method"] == {"ive-R": "ive", "ive-B": "ive", "ive-n": "ive-numba", "paper": "paper", "soe": "soe"}.get(
+        assert opts["method"] == {"ive-R": "ive", "ive-B": "ive", "ive-n": "ive-numba", "paper": "paper", "soe": "soe",
+                                 "adapt": "adaptive"}.get(
             name[:5], "direct"), name
     assert ds["status"].dtype == np.int8
     assert ds["status"].attrs["flag_meanings"] == status.cf_attrs()["flag_meanings"]
@@ -27,8 +29,8 @@ def test_study_records_options_statuses_and_order_two():
     assert all("ladder" in str(m) for m in ds["message"].values[off])
     on = ~off
     assert np.all(ds["status"].values[on] == status.code("ok"))
-    for name in ("direct-a", "direct-b", "ive-numba", "soe"):
+    for name in ("direct-a", "direct-b", "ive-numba", "soe", "adaptive"):
         order = convergence.observed_order(ds, name)
         print(f"\nsls v0 = 10, {name}: observed order {order:.3f}")
-        assert 1.9 < order < 2.2  # README table: 2.00-2.02
+        assert 1.9 < order < 2.2  # README table: 2.00-2.02 (adaptive, in the steps taken: 1.96)
     assert convergence.observed_order(ds, "paper-explicit") < 1.0  # README: 0.89-0.93

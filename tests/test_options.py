@@ -9,7 +9,7 @@ import yaml
 
 import vcor
 from vcor import cli
-from vcor.options import SolverOptions, solver_options
+from vcor.options import SWEEP_METHOD, SolverOptions, solver_options
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text())
@@ -24,8 +24,9 @@ def test_schema_lists_exactly_the_options():
 def test_schema_default_and_enum_match_the_dataclass(name):
     field = {f.name: f for f in dataclasses.fields(SolverOptions)}[name]
     entry = SOLVER[name]
-    # the schema's default is the dataclass field's default (None <-> null: "not set")
-    assert entry["default"] == field.default, name
+    # the schema's default is the dataclass field's default (None <-> null: "not set"); a scene's
+    # method defaults to SWEEP_METHOD
+    assert entry["default"] == (SWEEP_METHOD if name == "method" else field.default), name
     allowed = SolverOptions.allowed_of(name)
     if allowed is not None:
         expected = list(allowed) + ([None] if field.default is None else [])
@@ -50,7 +51,8 @@ def test_schema_bounds_match_the_dataclass():
 
 
 CLI_VALUES = {"method": "ive-numba", "dt": "1e-7", "steps_per_contact": "100", "max_steps": "1000", "c2": "2",
-              "form": "b", "rule": "overlap", "rtol": "1e-8", "ive_method": "LSODA", "soe_tol": "1e-8"}
+              "form": "b", "rule": "overlap", "rtol": "1e-8", "ive_method": "LSODA", "soe_tol": "1e-8",
+              "step_tol": "1e-6", "max_adaptive_steps": "5000"}
 
 
 def test_cli_flags_are_the_options():

@@ -127,6 +127,6 @@ def test_shard_identity_covers_code_material_content_and_options():
     # another material content: other shard names; other solver options: other shard names
     other = shards.plan_shards(SCENE, "/nonexistent", 1, {"sls": "another-content"})
     assert set(other).isdisjoint(base)
-    stiff = {**SCENE, "solver": {"steps_per_contact": 4000}}
+    stiff = {**SCENE, "solver": {"method": "direct", "steps_per_contact": 4000}}
     assert set(shards.plan_shards(stiff, "/nonexistent", 1, ident)).isdisjoint(base)
     assert shards.shard_settings(SCENE)["code"] == provenance.code_fingerprint()

@@ -26,7 +26,7 @@ CONFIG = {
                  "tie": {"alpha": {"to": "beta", "ratio": 0.25}}, "error_estimate": True},
         "two": {"materials": ["butyl-fc", "tiny-prony"], "grid": {"v0": [5.0, 10.0]}},
         "thin": {"materials": ["sls"], "grid": {"v0": [10.0], "h": [0.02, 0.002]},
-                 "solver": {"steps_per_contact": 200}},
+                 "solver": {"method": "direct", "steps_per_contact": 200}},
     },
 }
 

@@ -16,7 +16,7 @@ SCENES = {k: v for k, v in CONFIG["scenes"].items() if k.startswith("stability-"
 
 #: README "Stability": statuses per scene with the default solver (direct, 2000 steps per t_c)
 DOCUMENTED = {
-    "stability-plate": {"ok": 67, "step-budget": 17},
+    "stability-plate": {"ok": 84},
     "stability-relaxation": {"ok": 32},
     "stability-ratio": {"ok": 24},
     "stability-mass": {"ok": 32},

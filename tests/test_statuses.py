@@ -83,7 +83,7 @@ def test_invalid_input_and_failed_points_keep_the_others(monkeypatch):
 def test_a_failing_error_estimate_has_its_own_status():
     """dt fits the step budget, dt/2 does not: the point stays ok, the estimate is step-budget."""
     sc = {**SCENE, "grid": {"v0": [10.0]}, "error_estimate": True,
-          "solver": {"steps_per_contact": 200, "max_steps": 250}}
+          "solver": {"method": "direct", "steps_per_contact": 200, "max_steps": 250}}
     ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
     assert status.STATUS_NAMES[int(ds["status"].values[0])] == "ok" and np.isfinite(ds["cor"].values[0])
     assert status.STATUS_NAMES[int(ds["error_status"].values[0])] == "step-budget"

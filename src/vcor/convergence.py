@@ -21,10 +21,12 @@ from .scene import resolve_material
 from .solvers import simulate
 from .solvers.common import richardson
 
-__all__ = ["LADDER", "RTOLS", "methods_for", "observed_order", "study"]
+__all__ = ["LADDER", "RTOLS", "STEP_TOLS", "methods_for", "observed_order", "study"]
 
 LADDER = (250, 500, 1000, 2000, 4000, 8000)
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
+#: step_tol ladder of the adaptive method
+STEP_TOLS = (1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 REF_STEPS = (8000, 16000)
 
 
@@ -39,6 +41,7 @@ def methods_for(material) -> list[tuple[str, dict, tuple]]:
                 ("ive-BDF", {"method": "ive", "ive_method": "BDF"}, RTOLS),
                 ("ive-numba", {"method": "ive-numba"}, LADDER)]
     out.append(("soe", {"method": "soe"}, LADDER))
+    out.append(("adaptive", {"method": "adaptive"}, STEP_TOLS))
     out.append(("paper-explicit", {"method": "paper"}, LADDER))
     return out
 
@@ -47,6 +50,8 @@ def _run(material, v0, kw, level, repeat):
     if "method" in kw and kw["method"] == "ive":
         args = {**kw, "rtol": level}
         repeat = 1  # slow and not noisy at this scale
+    elif kw.get("method") == "adaptive":
+        args = {**kw, "step_tol": level}
     else:
         args = {**kw, "steps_per_contact": int(level)}
     runs = [simulate(material, v0, **args) for _ in range(repeat)]
@@ -74,13 +79,13 @@ def study(name, v0, *, material_dir="results/materials", repeat=3):
     methods = methods_for(material)
     n_level = max(len(m[2]) for m in methods)
     shape = (len(methods), n_level)
-    cor, t0, wall, param = (np.full(shape, np.nan) for _ in range(4))
+    cor, t0, wall, param, steps = (np.full(shape, np.nan) for _ in range(5))
     status = np.full(shape, _status.code("invalid-input"), dtype=np.int8)
     message = np.full(shape, "not on this solver's ladder", dtype=object)
     for i, (mname, kw, ladder) in enumerate(methods):
         for j, level in enumerate(ladder):
             r, w = _run(material, v0, kw, level, repeat)
-            cor[i, j], t0[i, j], wall[i, j] = r.cor, r.t0, w
+            cor[i, j], t0[i, j], wall[i, j], steps[i, j] = r.cor, r.t0, w, r.steps
             param[i, j] = level
             status[i, j], message[i, j] = _status.code(r.status), r.message
     volt = np.array(["volterra" in m[0] for m in methods])[:, None]
@@ -92,14 +97,15 @@ def study(name, v0, *, material_dir="results/materials", repeat=3):
             "t0": (("solver", "level"), t0, {"units": "s", "long_name": "separation time"}),
             "wall_time": (("solver", "level"), wall, {"units": "s", "long_name": "solver wall time (median)"}),
             "param": (("solver", "level"), param,
-                      {"units": "1", "long_name": "steps per contact time (fixed step) or rtol (ive)"}),
+                      {"units": "1", "long_name": "steps per contact time (fixed step), rtol (ive) or step_tol (adaptive)"}),
+            "steps": (("solver", "level"), steps, {"units": "1", "long_name": "time steps to separation"}),
             "err_cor": (("solver", "level"), np.abs(cor - rc), {"units": "1", "long_name": "|COR - reference|"}),
             "err_t0": (("solver", "level"), np.abs(t0 - rt), {"units": "s", "long_name": "|t0 - reference|"}),
             "status": (("solver", "level"), status, _status.cf_attrs()),
             "message": (("solver", "level"), message.astype(str), {"long_name": "solver message"}),
             "solver_options": ("solver", np.array([json.dumps(solver_options(**m[1]).to_dict(), sort_keys=True)
                                                     for m in methods], dtype=str),
-                               {"long_name": "resolved solver options (JSON; the ladder sets steps_per_contact or rtol)"}),
+                               {"long_name": "resolved solver options (JSON; the ladder sets steps_per_contact, rtol or step_tol)"}),
             "cor_ref": ((), ref_cor, {"units": "1", "long_name": "reference COR (Richardson, direct-a)"}),
             "cor_ref_volterra": ((), ref_v_cor, {"units": "1", "long_name": "reference COR with Volterra"}),
             "cor_ive_1e12": ((), cross, {"units": "1", "long_name": "ive Radau rtol 1e-12 (Prony only)"}),
@@ -113,9 +119,10 @@ def study(name, v0, *, material_dir="results/materials", repeat=3):
 
 
 def observed_order(ds, solver):
-    """Slope of log err_cor against log(1/steps) (fixed-step methods), over the finite points."""
+    """Slope of log err_cor against log(1/steps) over the finite points: steps per contact (the
+    ladder) for fixed-step methods, the steps taken for ``adaptive``."""
     d = ds.sel(solver=solver)
-    p, e = d["param"].values, d["err_cor"].values
+    p, e = d["steps" if solver == "adaptive" else "param"].values, d["err_cor"].values
     ok = np.isfinite(p) & np.isfinite(e) & (e > 0)
     if ok.sum() < 3:
         return math.nan

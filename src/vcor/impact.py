@@ -113,7 +113,8 @@ class Impact:
         return self.kappa * self.material.relaxation_modulus(t)
 
     @property
-    def _mobility_scale(self) -> float:
+    def mobility_scale(self) -> float:
+        """alpha(t) sqrt(E'_b(t)) = sqrt(3 rho_b) / (16 rho_b h^2), m N^-1 s^-1 Pa^0.5."""
         g = self.geometry
         h = g.half_thickness
         return math.sqrt(3.0 * g.rho_b) / (16.0 * g.rho_b * h * h)
@@ -132,7 +133,7 @@ class Impact:
         if self.geometry.rigid:
             return np.zeros_like(t)
         with np.errstate(divide="ignore"):
-            return self._mobility_scale / np.sqrt(self._plate_modulus(t))
+            return self.mobility_scale / np.sqrt(self._plate_modulus(t))
 
     def alpha_rate(self, t):
         """d alpha/dt, m N^-1 s^-2. 0 at t = 0 where it is singular but multiplies J(0) = 0."""
@@ -143,7 +144,7 @@ class Impact:
         eb = self._plate_modulus(t)
         deb = self.material.relaxation_rate(t) / (1.0 - g.nu**2)
         with np.errstate(divide="ignore", invalid="ignore"):
-            out = -0.5 * self._mobility_scale * deb / eb**1.5
+            out = -0.5 * self.mobility_scale * deb / eb**1.5
         return np.where(t > 0, out, 0.0)
 
     def mobility(self, t: float) -> tuple[float, float]:
@@ -162,7 +163,7 @@ class Impact:
         ex = e * np.exp(-b * t) if e.size else e
         eb = c * (e_inf + float(ex.sum()))
         deb = -c * float((ex * b).sum())
-        a = self._mobility_scale / math.sqrt(eb)
+        a = self.mobility_scale / math.sqrt(eb)
         return a, (-0.5 * a * deb / eb if t > 0 else 0.0)
 
     def contact_time_estimate(self) -> float:

@@ -18,12 +18,16 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
-__all__ = ["FIXED_STEP_METHODS", "METHODS", "OPTION_HELP", "SolverOptions", "solver_options"]
+__all__ = ["FIXED_STEP_METHODS", "METHODS", "OPTION_HELP", "SWEEP_METHOD", "SolverOptions", "solver_options"]
 
 #: solver methods; ``paper`` is the explicit baseline of the work-precision study
-METHODS = ("direct", "ive", "ive-numba", "paper", "soe")
+METHODS = ("adaptive", "direct", "ive", "ive-numba", "paper", "soe")
 #: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
 FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
+#: the method of a sweep (scene) that names none: the fastest one that meets the default accuracy (COR and
+#: t0 within 1e-6 relative of Richardson-extrapolated direct) on every preset and every stability point
+#: (README, "Which method a sweep uses"); ``simulate`` itself defaults to ``direct``, the paper's method
+SWEEP_METHOD = "adaptive"
 IVE_METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853")
 
 
@@ -39,7 +43,8 @@ _SPEC = {
     "method": _spec("direct", METHODS, "solver: direct (full-history product integration, any kernel), ive "
                     "(internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal variables, fixed "
                     "step, O(N); Prony kernels), paper (explicit baseline for benchmarks), soe (the direct scheme with an "
-                    "exponential-sum history: any kernel, O(N K))", METHODS),
+                    "exponential-sum history: any kernel, O(N K)), adaptive (the same on a variable grid with local error "
+                    "control: any kernel, O(N K), steps grow in long contacts)", METHODS),
     "dt": _spec(None, FIXED_STEP_METHODS, "time step, s (null: contact-time estimate / steps_per_contact)",
                 bounds=("float", 0.0, math.inf, "(0, inf) s")),
     "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
@@ -48,6 +53,11 @@ _SPEC = {
                        "4000000 for soe and ive-numba, whose cost is linear in the steps); a run that reaches it without "
                        "separating ends with status step-budget",
                        bounds=("int", 100, math.inf, "an integer >= 100"), method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000}),
+    "step_tol": _spec(1e-7, ("adaptive",), "adaptive only: local error per unit step of s' relative to v0 (the "
+                      "trapezoidal error h^2 |g''|/12, g = s'), in (0, 0.01)", bounds=("float", 0.0, 1e-2, "(0, 0.01)")),
+    "max_adaptive_steps": _spec(1_000_000, ("adaptive",), "adaptive only: step budget (integer >= 100); a run that "
+                                "reaches it without separating ends with status step-budget",
+                                bounds=("int", 100, math.inf, "an integer >= 100")),
     "volterra": _spec(False, ("direct", "ive"), "add the second-order Volterra term (Green Eqs. 10, 15, 16)"),
     "c2": _spec(1.0, ("direct", "ive"), "Volterra coefficient, m^-1.5 (only with volterra: true)",
                 bounds=("float", -math.inf, math.inf, "a finite number, m^-1.5")),
@@ -57,7 +67,7 @@ _SPEC = {
                   "zero)", ("force", "overlap")),
     "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in (0, 1)", bounds=("float", 0.0, 1.0, "(0, 1)")),
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
-    "soe_tol": _spec(1e-10, ("soe",), "relative error bound of the exponential sum of the kernel's history part "
+    "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's history part "
                      "(vcor.soe), in (0, 0.01)", bounds=("float", 0.0, 1e-2, "(0, 0.01)")),
     "ghost": _spec(0.5, METHODS, "histories only: continue the solution this fraction of t0 past separation, "
                    "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]")),
@@ -89,6 +99,8 @@ class SolverOptions:
     rtol: float | None = None
     ive_method: str | None = None
     soe_tol: float | None = None
+    step_tol: float | None = None
+    max_adaptive_steps: int | None = None
     ghost: float = _SPEC["ghost"]["default"]
 
     def __post_init__(self):

@@ -3,7 +3,7 @@ into a scene's dataset with dims (material, *grid axes).
 
 A failed point never sinks its shard: it is stored with its status and message
 (:mod:`vcor.status`). With ``error_estimate`` every ok point is solved again (dt/2 for fixed-step
-methods: Richardson; rtol/100 for ``ive``) and the estimates ``cor_err``, ``t0_err`` get their own
+methods: Richardson; rtol/100 for ``ive``; step_tol/16 for ``adaptive``) and the estimates ``cor_err``, ``t0_err`` get their own
 ``error_status`` / ``error_message``: a failing estimate run never overwrites the point's status.
 
 The aggregate refuses to combine shards computed by different code (their ``code_fingerprint``
@@ -55,13 +55,15 @@ def solve_point(point, settings, material_dir) -> dict:
 
 def _error_estimate(res, material, v0, opts, geometry) -> dict:
     """Fixed step: Richardson from dt and dt/2 (order 2), |x_dt - x_extrapolated|. solve_ivp: the
-    difference to a run at rtol/100. The stored values stay those of the first run, so the
+    difference to a run at rtol/100; adaptive: to a run at step_tol/16 (its error is about
+    proportional to step_tol). The stored values stay those of the first run, so the
     estimate is an estimate of *their* error."""
     out = {"cor_err": math.nan, "t0_err": math.nan}
     if not res.ok:
         return {**out, "error_status": res.status, "error_message": "no estimate: the point itself is not ok"}
-    if opts["method"] == "ive":
-        fine = simulate(material, v0, options={**opts, "rtol": opts["rtol"] / 100}, **geometry)
+    if opts["method"] in ("ive", "adaptive"):
+        key, div = ("rtol", 100) if opts["method"] == "ive" else ("step_tol", 16)
+        fine = simulate(material, v0, options={**opts, key: opts[key] / div}, **geometry)
         if fine.ok:
             out["cor_err"], out["t0_err"] = abs(res.cor - fine.cor), abs(res.t0 - fine.t0)
     else:

@@ -5,7 +5,7 @@ A *scene* (as in ``config.yaml``) names materials, grid axes and solver settings
     materials: [sls]                      # presets or fitted names (results/materials/<name>.nc)
     grid: {v0: {start: 1, stop: 30, step: 1}, beta: [600, 1200, 2400]}
     tie: {alpha: {to: beta, ratio: 0.25}}  # alpha = 0.25 * beta at every point
-    solver: {method: direct, steps_per_contact: 2000}   # vcor.options.SolverOptions
+    solver: {method: direct, steps_per_contact: 2000}   # vcor.options.SolverOptions (default: adaptive)
     geometry: {}                          # fixed geometry keywords (r, rho_a, rho_b, h, nu, case, rigid)
 
 Grid axes are ``v0`` (m/s), any geometry keyword, or any scalar parameter of the material
@@ -24,7 +24,7 @@ import numpy as np
 
 from . import materials as _materials
 from .impact import GEOMETRY_DEFAULTS
-from .options import SolverOptions
+from .options import SWEEP_METHOD, SolverOptions
 
 __all__ = [
     "AXIS_UNITS",
@@ -141,8 +141,9 @@ def scene_points(scene) -> list[dict]:
 
 
 def solver_options_of(scene) -> SolverOptions:
-    """The scene's validated solver options (``scene['solver']``; unset ones take their defaults)."""
-    return SolverOptions(**(scene.get("solver") or {}))
+    """The scene's validated solver options (``scene['solver']``; unset ones take their defaults, the
+    method ``vcor.options.SWEEP_METHOD``)."""
+    return SolverOptions(**{"method": SWEEP_METHOD, **(scene.get("solver") or {})})
 
 
 def settings_of(scene) -> dict:

@@ -37,6 +37,7 @@ STATUS_RUNNING = 0
 STATUS_SEPARATED = 1
 STATUS_DIVERGED = 2
 STATUS_END = 3  # reached the end of the arrays without separating
+STATUS_FULL = 4  # adaptive march: arrays full, grow them and call again (resumable)
 
 
 @numba.njit(**_JIT)
@@ -307,3 +308,143 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
         if n > 0 and _advance(state, n, True, s[n], g[n], Fn, rule, n_extra):
             return
     state[3] = STATUS_END
+
+
+@numba.njit(**_JIT)
+def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
+                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, S, X, q, state):
+    """Variable-step march with an exponential-sum history (see ``adaptive``).
+
+    Steps are hl[l] = h_base 2^l (levels l = 0..L-1, tables per level). Step n spans [t_{n-1}, t_n]
+    with size h_n; on it u' = d_n + c_n (tau - mid), d_n = (u_n - u_{n-1})/h_n and
+    c_n = 2 (d_n - d_{n-1})/(h_n + h_{n-1}) (the parabola through three nodes; c_1 = 0): the direct
+    scheme's quadratic product integration on an arbitrary grid. The newest step uses the exact
+    kernel (I0[l] = int_0^h k, M[l] = int_0^h k(x) (h/2 - x) dx); older steps live in one variable
+    per exponential mode, S_k(t_n) = sum_{j<n} e^{-beta_k (t_n - t_j)} (d_j GA[l_j,k] + c_j GB[l_j,k]),
+    updated by R[l,k] = exp(-beta_k h_l). A trial step changes nothing until it is accepted, so a
+    rejection needs no roll-back.
+
+    Plate mobility (plate = 1): alpha = pscale / sqrt(E_b), E_b(t) = pc (pe_inf + sum pe_k X_k),
+    X_k = exp(-pb_k t) carried with the same factors (pb = the modes' rates); plate = 0: alpha_c.
+
+    Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
+    the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against step_tol v0.
+    Reject: down 1..4 levels (not below lev_floor, where the test is waived); accept with est <
+    step_tol v0 / 8: up to 2 levels. A separation found with h_n > sep_frac t_n is rejected and
+    re-stepped finer; after it the level is frozen for the n_extra steps and the ghost continuation
+    to (1 + ghost) t_sep.
+
+    state = [loaded, separation index, last index, status, rejected steps, floor steps, level, frozen]
+    (set level to the first step's before the first call). Resumable: when the arrays are full it
+    returns STATUS_FULL with S, X, q (the pending contribution of the newest step) and state intact.
+    """
+    nk = R.shape[1]
+    nmax = t.shape[0] - 1
+    St = np.empty(nk)
+    Xt = np.empty(nk)
+    l = state[6]
+    n = state[2] + 1
+    frozen = state[7] == 1
+    state[3] = STATUS_RUNNING
+    tol_abs = step_tol * v0
+    pass
+    while n <= nmax:
+        h = hl[l]
+        tn = t[n - 1] + h
+        # history of all steps before this one
+        Hh = 0.0
+        for k in range(nk):
+            v = R[l, k] * (S[k] + q[k])
+            St[k] = v
+            Hh += v
+        hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
+        if n >= 2:
+            cfac = 2.0 / (h * (h + hp))
+            w0 = I0[l] / h + cfac * M[l]
+            dprev = (u[n - 1] - u[n - 2]) / hp
+            H = Hh - w0 * u[n - 1] - 2.0 * M[l] * dprev / (h + hp)
+        else:
+            w0 = I0[l] / h
+            H = Hh - w0 * u[n - 1]
+        if plate == 1:
+            eb = pe_inf
+            ebd = 0.0
+            for k in range(nk):
+                x = R[l, k] * X[k]
+                Xt[k] = x
+                eb += pe[k] * x
+                ebd -= pb[k] * pe[k] * x
+            eb *= pc
+            ebd *= pc
+            a_n = pscale / math.sqrt(eb)
+            ad_n = -0.5 * a_n * ebd / eb
+        else:
+            a_n = alpha_c
+            ad_n = 0.0
+        sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
+                                              0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h)
+        # local error estimate and step control
+        if not frozen and ok and n >= 2 and math.isfinite(gn):
+            tol_abs = step_tol * min(v0, abs(gn) + abs(sn) * inv_tc)
+            dd = ((gn - g[n - 1]) / h - (g[n - 1] - g[n - 2]) / hp) / (h + hp)
+            est = h * h * abs(dd) / 6.0
+            if est > tol_abs and l > lev_floor:
+                drop = 1
+                ratio = est / tol_abs
+                while drop < 4 and ratio > 4.0 ** drop and l - drop > lev_floor:
+                    drop += 1
+                l -= drop
+                state[6] = l
+                state[4] += 1
+                continue
+            if est > tol_abs:
+                state[5] += 1
+        elif not frozen and not ok and l > lev_floor:
+            l -= 1
+            state[6] = l
+            state[4] += 1
+            continue
+        # separation found on a coarse step: re-step finer
+        if (not frozen and state[1] < 0 and state[0] == 1 and _separated(rule, True, Fn, sn)
+                and h > sep_frac * tn and l > lev_floor):
+            l -= 1
+            state[6] = l
+            state[4] += 1
+            continue
+        # accept
+        t[n] = tn
+        s[n] = sn
+        g[n] = gn
+        F[n] = Fn
+        u[n] = un
+        J[n] = Jn
+        lev[n] = l
+        d = (un - u[n - 1]) / h
+        c = 2.0 * (d - (u[n - 1] - u[n - 2]) / hp) / (h + hp) if n >= 2 else 0.0
+        for k in range(nk):
+            S[k] = St[k]
+            q[k] = d * GA[l, k] + c * GB[l, k]
+        if plate == 1:
+            for k in range(nk):
+                X[k] = Xt[k]
+        if _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
+            if state[3] != STATUS_SEPARATED or tn >= t[state[1]] * (1.0 + ghost):
+                return
+            state[3] = STATUS_RUNNING
+        if state[1] >= 0:
+            frozen = True
+            state[7] = 1
+        elif not frozen and n >= 2:
+            # grow: est computed above for this accepted step
+            dd = ((gn - g[n - 1]) / h - (g[n - 1] - g[n - 2]) / hp) / (h + hp)
+            est = h * h * abs(dd) / 6.0
+            up = 0
+            while up < 2 and est * 4.0 ** (up + 1) < 0.5 * tol_abs and l + up + 1 <= lev_max:
+                up += 1
+            l += up
+            state[6] = l
+        if tn >= t_horizon:
+            state[3] = STATUS_END
+            return
+        n += 1
+    state[3] = STATUS_FULL

@@ -122,7 +122,7 @@ def _lagrange(tn, yn, t):
 
 def peak(t, y, f=None):
     """Maximum of sampled y(t). Refined by the parabola through the largest sample and its neighbours
-    (uniform samples), or, when ``f`` (a callable y(t), e.g. a dense output) is given, by a bounded
+    (any spacing), or, when ``f`` (a callable y(t), e.g. a dense output) is given, by a bounded
     scalar search for the maximum of f between the neighbouring samples."""
     i = int(np.argmax(y))
     if i == 0 or i == y.size - 1:
@@ -131,11 +131,14 @@ def peak(t, y, f=None):
         lo, hi = t[i - 1], t[i + 1]
         r = minimize_scalar(lambda x: -f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * hi})
         return float(max(-r.fun, y[i]))
-    a, b, c = y[i - 1], y[i], y[i + 1]
-    den = a - 2.0 * b + c
-    if den >= 0.0:
-        return float(b)
-    return float(b - 0.125 * (c - a) ** 2 / den)
+    # the parabola through the three samples (any spacing), Newton form around t[i - 1]
+    h1, h2 = t[i] - t[i - 1], t[i + 1] - t[i]
+    d1 = (y[i] - y[i - 1]) / h1
+    curv = ((y[i + 1] - y[i]) / h2 - d1) / (h1 + h2)
+    if curv >= 0.0:
+        return float(y[i])
+    x = 0.5 * (t[i - 1] + t[i]) - 0.5 * d1 / curv
+    return float(y[i - 1] + d1 * (x - t[i - 1]) + curv * (x - t[i - 1]) * (x - t[i]))
 
 
 def separation(t, s, g, F, J, n_sep, rule, m, v0):
@@ -181,9 +184,9 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     zd = v0 - J / m
     fg = F[:n] * g[:n]
     fz = F[:n] * zd[:n]
-    dt = t[1] - t[0]
-    w_h = dt * (fg.sum() - 0.5 * (fg[0] + fg[-1])) + 0.5 * (t0 - a) * (fg[-1] + F0 * g0)
-    w_z = dt * (fz.sum() - 0.5 * (fz[0] + fz[-1])) + 0.5 * (t0 - a) * (fz[-1] + F0 * z0)
+    half = 0.5 * np.diff(t[:n])  # trapezoid on any grid
+    w_h = float(half @ (fg[1:] + fg[:-1])) + 0.5 * (t0 - a) * (fg[-1] + F0 * g0)
+    w_z = float(half @ (fz[1:] + fz[:-1])) + 0.5 * (t0 - a) * (fz[-1] + F0 * z0)
     e_in = 0.5 * m * v0 * v0
     energy_residual = (e_in - 0.5 * m * z0 * z0 - w_z) / e_in
     return {

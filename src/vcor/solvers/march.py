@@ -89,14 +89,15 @@ def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
     return arr, state, n_done, note
 
 
-def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_steps, note=""):
-    """Result of a fixed-step march (separation post-processing, or the status and its message)."""
+def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_steps, note="", t=None, budget=""):
+    """Result of a march (separation post-processing, or the status and its message). ``t`` is the
+    time grid (default: uniform, dt * n); ``budget`` replaces the fixed-step budget text."""
     m, v0 = impact.m, impact.v0
-    t = dt * np.arange(n_done + 1)
+    t = dt * np.arange(n_done + 1) if t is None else t[: n_done + 1]
     s, g, F, J = arr.s[: n_done + 1], arr.g[: n_done + 1], arr.F[: n_done + 1], arr.J[: n_done + 1]
     res = Result(steps=n_done, wall_time=wall, dt=dt, method=method)
     status = int(state[3])
-    if status == K.STATUS_SEPARATED:
+    if status == K.STATUS_SEPARATED or (state[1] >= 0 and n_done >= state[1] + N_EXTRA):
         out = separation(t, s, g, F, J, int(state[1]), rule, m, v0)
         res.message = out.pop("message")
         res.__dict__.update(out)
@@ -109,7 +110,7 @@ def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_step
         )
     else:
         res.status = "step-budget"
-        res.message = (
+        res.message = budget or (
             f"stopped by the step budget before a verdict: the contact force had not returned to zero at "
             f"T_max = {t[-1]:.6g} s ({n_done} steps of dt = {dt:.3g} s; budget {max_steps} steps, the smaller "
             f"of max_steps and the method's horizon: 32 contact-time estimates for direct and paper, 2048 for "
@@ -122,6 +123,6 @@ def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_step
         res.message = (res.message + "; " if res.message else "") + note
     if history:
         zd = v0 - J / m
-        h = Histories(t=t, s=s.copy(), sdot=g.copy(), F=F.copy(), J=J.copy(), zdot=zd, U=impact.alpha(t) * J)
+        h = Histories(t=t.copy(), s=s.copy(), sdot=g.copy(), F=F.copy(), J=J.copy(), zdot=zd, U=impact.alpha(t) * J)
         res.history = h.mark(res.t0 if res.ok else math.inf)
     return res

@@ -7,6 +7,7 @@ import math
 from .. import materials as _materials
 from ..impact import GEOMETRY_DEFAULTS, Geometry, Impact
 from ..options import FIXED_STEP_METHODS, METHODS, SolverOptions, solver_options
+from .adaptive import run_adaptive
 from .direct import MAX_T_FACTOR, run_direct, run_paper
 from .ive import run_ive_fixed, run_ive_scipy
 from .modes import run_soe
@@ -100,6 +101,9 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
 
 
 def _dispatch(impact, opts: SolverOptions, tc: float, history: bool):
+    if opts.method == "adaptive":
+        return run_adaptive(impact, tc, step_tol=opts.step_tol, max_steps=opts.max_adaptive_steps, rule=opts.rule,
+                            history=history, ghost=opts.ghost, tol=opts.soe_tol)
     if opts.method == "ive":
         return run_ive_scipy(impact, rtol=opts.rtol, method=opts.ive_method, tc=tc, t_max=T_MAX_START * tc,
                              max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=opts.ghost, rule=opts.rule,

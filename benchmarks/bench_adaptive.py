@@ -1,0 +1,75 @@
+"""The adaptive method against direct (issue 11's benchmark table): per impact, thin plates, cost
+against plate thickness, sweep throughput inside one shard.
+
+Prints tables of medians (this machine is shared: read ratios). Run: python benchmarks/bench_adaptive.py
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from timing import median_time
+
+import vcor
+from vcor import runner, scene
+
+
+def per_impact():
+    print("per impact at default settings, v0 = 10 m/s, whole simulate call (direct: 2000 steps per contact-time "
+          "estimate; adaptive: step_tol 1e-7)")
+    print(f"{'material':14s} {'direct [ms]':>12s} {'adaptive [ms]':>14s} {'adaptive/direct':>16s} {'steps d/a':>12s}")
+    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
+        td = median_time(lambda n=name: vcor.simulate(n, 10.0), 15)
+        ta = median_time(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), 15)
+        sd, sa = vcor.simulate(name, 10.0).steps, vcor.simulate(name, 10.0, method="adaptive").steps
+        print(f"{name:14s} {td * 1e3:12.3f} {ta * 1e3:14.3f} {ta / td:16.2f} {sd:>6d}/{sa:<6d}")
+    print()
+
+
+def thickness():
+    print("cost against plate half-thickness h (sls, v0 = 10 m/s): adaptive; direct for comparison")
+    print(f"{'h [mm]':>8s} {'status':>7s} {'t0 [s]':>10s} {'COR':>10s} {'steps':>7s} {'adaptive [s]':>13s} "
+          f"{'direct status':>14s} {'direct [s]':>11s}")
+    standard = median_time(lambda: vcor.simulate("sls", 10.0, method="adaptive"), 9)
+    for h in np.geomspace(1e-3, 1.0, 7):
+        ra = vcor.simulate("sls", 10.0, h=h, method="adaptive")
+        ta = median_time(lambda hh=h: vcor.simulate("sls", 10.0, h=hh, method="adaptive"), 5)
+        t = time.perf_counter()
+        rd = vcor.simulate("sls", 10.0, h=h)
+        td = time.perf_counter() - t
+        print(f"{h * 1e3:8.2f} {ra.status:>7s} {ra.t0:10.4g} {ra.cor:10.3e} {ra.steps:7d} {ta:13.4f} {rd.status:>14s} "
+              f"{td:11.4f}")
+    thin = median_time(lambda: vcor.simulate("sls", 10.0, h=1e-3, method="adaptive"), 5)
+    print(f"thin plate h = 1 mm / standard impact (h = 2 r = 20 mm), adaptive: {thin / standard:.1f}x "
+          f"({thin * 1e3:.2f} ms / {standard * 1e3:.3f} ms)")
+    print()
+
+
+def throughput():
+    print("sweep throughput inside one shard (runner.run_points: validation, solve, dataset; one process)")
+    print(f"{'scene':34s} {'points':>7s} {'method':>9s} {'wall [s]':>9s} {'points/s':>9s}")
+    scenes = {
+        "sls, v0 1..30 x beta (4), adaptive": {"materials": ["sls"], "grid": {"v0": list(np.arange(1.0, 31.0)),
+                                                                          "beta": [600, 1200, 2400, 4800]},
+                                               "tie": {"alpha": {"to": "beta", "ratio": 0.25}}},
+        "butyl (3 materials), v0 1..50": {"materials": ["butyl-fc", "butyl-cerf", "butyl-prony3"],
+                                         "grid": {"v0": list(np.arange(1.0, 51.0))}},
+    }
+    for label, sc in scenes.items():
+        for method in ("adaptive", "direct"):
+            s2 = {**sc, "solver": {"method": method}}
+            pts = scene.scene_points(s2)
+            settings = scene.settings_of(s2)
+            runner.run_points(pts[:3], settings)  # JIT, caches
+            t = time.perf_counter()
+            runner.run_points(pts, settings)
+            wall = time.perf_counter() - t
+            print(f"{label:34s} {len(pts):7d} {method:>9s} {wall:9.3f} {len(pts) / wall:9.0f}")
+    print()
+
+
+if __name__ == "__main__":
+    per_impact()
+    thickness()
+    throughput()

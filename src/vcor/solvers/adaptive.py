@@ -1,0 +1,147 @@
+"""The ``adaptive`` method: the direct scheme on a variable time grid, history as internal variables.
+
+Every kernel is split into its newest step (exact product integration, which holds the t^-1/2
+singularity of the fractional law) and older history carried by the exponential sum of
+:func:`vcor.soe.soe` (exact for Prony, SLS, elastic and Kelvin-Voigt; relative error <= ``soe_tol``
+for the fractional and CERF laws on [smallest step, horizon]). One variable per exponential is
+updated in O(1) per step for any step size, so the cost is O(N K) and steps can grow by orders of
+magnitude in long, slow contacts (thin plates) and shrink near t = 0 and at separation.
+
+Step sizes are powers of two times h_base = 2^(floor(log2 t_c) - FLOOR_BITS) (t_c the contact-time
+estimate), so every table (local weights, mode factors) is computed once per level and shared by the
+points of a sweep (cached); t_n are sums of powers of two and exact in floating point.
+
+Error control (``_kernels.march_adaptive``): the trapezoidal rule's local error h^3 g''/12, with
+g'' from the last three nodes, per unit step against ``step_tol`` * v0 (so the global error of s' is
+of order step_tol * v0 * T). Steps are not refined below h_base (t_c / 65536 .. t_c / 131072), where
+the test is waived: near t = 0 the exact solution's u = s^3/2 makes g'' ~ t^-1/2 and the local errors
+there are O(h^2.5), far below the global error. A separation is located on a step <= t / SEP_STEPS;
+the time horizon starts at HORIZON_START t_c and grows by 32 up to MAX_HORIZON t_c (the march is
+restarted with an exponential sum for the longer horizon) before the run ends as ``step-budget``.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import time
+
+import numpy as np
+
+from ..soe import soe
+from . import _kernels as K
+from .march import N_EXTRA, Arrays, finish
+
+__all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "SEP_STEPS", "level_tables", "run_adaptive"]
+
+#: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
+FLOOR_BITS = 16
+#: first step, in levels above the floor (t_c / 8192 .. t_c / 16384)
+START_LEVEL = 3
+#: separation is located on a step <= t / SEP_STEPS
+SEP_STEPS = 1024
+#: time horizon: start and largest, in contact-time estimates
+HORIZON_START = 64.0
+MAX_HORIZON = 2.0**30
+#: initial size of the solution arrays (they double when full)
+INITIAL_SIZE = 4096
+#: the largest step is this fraction of the horizon
+MAX_STEP_FRACTION = 1.0 / 16.0
+
+
+@functools.lru_cache(maxsize=64)
+def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: float, tol: float):
+    """Per level l (step h_l = h_base 2^l): exact local weights I0 = int_0^h k, M = int_0^h k(x)
+    (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per exponential mode k of the kernel's sum on
+    [h_base, t_max] (column 0: the constant E(inf) + slow modes, rate 0) the step weights
+    GA = kappa E_k int_0^h e^{-b x} dx, GB = kappa E_k int_0^h e^{-b x} (h/2 - x) dx and the decay
+    R = e^{-b h}. Returns a dict of arrays, plus the modes' moduli (Pa) and rates (1/s) for the plate."""
+    mat = material
+    rep = soe(mat, h_base, t_max, tol)
+    pr = rep.material
+    e_inf, e, b = pr.prony_terms()
+    hl = h_base * 2.0 ** np.arange(n_levels)
+    nk = e.size + 1
+    I0, M = np.empty(n_levels), np.empty(n_levels)
+    GA, GB, R = np.zeros((n_levels, nk)), np.zeros((n_levels, nk)), np.ones((n_levels, nk))
+    for i, h in enumerate(hl):
+        I0[i] = kappa * mat.step_integrals(h, 1)[0]
+        M[i] = -kappa * mat.step_moments(h, 1)[0]
+        GA[i, 0] = kappa * e_inf * h
+        if e.size:
+            GA[i, 1:] = kappa * pr.term_step_integrals(h, 1)[0]
+            GB[i, 1:] = -kappa * pr.term_step_moments(h, 1)[0]
+            R[i, 1:] = np.exp(-b * h)
+    pe = np.concatenate(([0.0], e))
+    pb = np.concatenate(([0.0], b))
+    return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "pe_inf": float(e_inf), "pe": pe, "pb": pb,
+            "n_terms": rep.n_terms, "soe_error": rep.checked_error}
+
+
+def _grown(a, n):
+    out = np.zeros(n + 1, dtype=a.dtype)
+    out[: a.size] = a
+    return out
+
+
+def _plate(impact):
+    """(plate flag, mobility scale, modulus factor, constant alpha) for the march."""
+    g = impact.geometry
+    if g.rigid:
+        return 0, 0.0, 0.0, 0.0
+    if g.case == 4:
+        return 0, 0.0, 0.0, float(impact.alpha(0.0))
+    return 1, impact.mobility_scale, 1.0 / (1.0 - g.nu**2), 0.0
+
+
+def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10,
+                 fixed_level=None):
+    """Adaptive march (see the module docstring). ``tc``: contact-time estimate, s.
+
+    ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
+    a uniform grid on which the march is the direct scheme with an exponential-sum history."""
+    mat = impact.material
+    eta = impact.kappa * mat.viscosity
+    plate, pscale, pc, alpha_c = _plate(impact)
+    top = 2.0 ** math.floor(math.log2(tc))
+    h_base = top * 2.0**-FLOOR_BITS
+    t_start = time.perf_counter()
+    factor = HORIZON_START
+    while True:
+        horizon = factor * tc
+        n_levels = int(math.floor(math.log2(MAX_STEP_FRACTION * horizon / h_base))) + 1
+        tab = level_tables(mat, float(impact.kappa), h_base, n_levels, 2.0 * horizon, tol)
+        nk = tab["GA"].shape[1]
+        S, X, q = np.zeros(nk), np.ones(nk), np.zeros(nk)
+        first = START_LEVEL if fixed_level is None else int(fixed_level)
+        lo, hi = (0, n_levels - 1) if fixed_level is None else (first, first)
+        state = np.array([0, -1, 0, K.STATUS_RUNNING, 0, 0, first, 0], dtype=np.int64)
+        arr = Arrays(min(INITIAL_SIZE, max_steps))
+        t, lev = np.zeros(arr.n + 1), np.zeros(arr.n + 1, dtype=np.int64)
+        arr.g[0] = impact.v0
+        while True:
+            K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
+                             tab["GB"], tab["R"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"], tab["pb"],
+                             alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
+                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, S, X, q, state)
+            if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
+                break  # a verdict, or the step budget (the steps after a separation are not budgeted)
+            arr.grow(2 * arr.n if state[1] >= 0 else min(2 * arr.n, max_steps))
+            t, lev = _grown(t, arr.n), _grown(lev, arr.n)
+        n_done = int(state[2])
+        if not (state[3] == K.STATUS_END and state[1] < 0 and t[n_done] >= horizon and factor < MAX_HORIZON):
+            break
+        factor *= 32.0
+    wall = time.perf_counter() - t_start
+    note = ""
+    if state[3] == K.STATUS_DIVERGED and state[1] >= 0 and n_done >= state[1] + N_EXTRA:
+        note = f"ghost continuation stopped at t = {t[n_done]:.6g} s: the march diverged"
+    budget = ""
+    if state[3] in (K.STATUS_END, K.STATUS_FULL):
+        reason = (f"the time horizon {horizon:.6g} s ({factor:g} contact-time estimates)" if t[n_done] >= horizon
+                  else f"the step budget max_steps = {max_steps}")
+        budget = (f"stopped by {reason} before a verdict: the contact force had not returned to zero at "
+                  f"t = {t[n_done]:.6g} s ({n_done} adaptive steps); s_max and f_max are over that window")
+    res = finish(impact, float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan, arr, state, n_done,
+                 rule, history, wall, "adaptive", max_steps, note, t=t, budget=budget)
+    return res
