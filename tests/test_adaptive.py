@@ -1,6 +1,7 @@
 """The ``adaptive`` method (issue 11): the direct scheme on a variable grid with an exponential-sum
 history. README, "The adaptive method"."""
 
+import itertools
 import math
 
 import numpy as np
@@ -82,7 +83,7 @@ def test_error_is_about_proportional_to_step_tol():
     """What the error estimate of sweeps (a run at step_tol / 16) relies on."""
     ref = vcor.simulate("sls", 10.0, method="ive", rtol=1e-12).cor
     errs = [abs(vcor.simulate("sls", 10.0, method="adaptive", step_tol=tol).cor - ref) for tol in (1e-6, 1e-7, 1e-8)]
-    for coarse, fine in zip(errs, errs[1:]):
+    for coarse, fine in itertools.pairwise(errs):
         assert 3 < coarse / fine < 30, errs
 
 

@@ -328,7 +328,10 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     X_k = exp(-pb_k t) carried with the same factors (pb = the modes' rates); plate = 0: alpha_c.
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
-    the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against step_tol v0.
+    the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against
+    step_tol min(v0, |g_n| + s_n inv_tc): relative to the motion's own scale, which in a long contact
+    (thin plate) falls by orders of magnitude below v0, where an error relative to v0 would move the
+    separation time (inv_tc = 1 / contact-time estimate).
     Reject: down 1..4 levels (not below lev_floor, where the test is waived); accept with est <
     step_tol v0 / 8: up to 2 levels. A separation found with h_n > sep_frac t_n is rejected and
     re-stepped finer; after it the level is frozen for the n_extra steps and the ghost continuation
@@ -347,7 +350,6 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     frozen = state[7] == 1
     state[3] = STATUS_RUNNING
     tol_abs = step_tol * v0
-    pass
     while n <= nmax:
         h = hl[l]
         tn = t[n - 1] + h
