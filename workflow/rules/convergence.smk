@@ -2,6 +2,8 @@
 
 
 rule convergence_case:
+    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
+    priority: 10
     input:
         materials=get_fitted_inputs,
     output:

@@ -2,6 +2,8 @@
 
 
 rule fit_material:
+    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
+    priority: 10
     output:
         nc=f"{MATERIAL_DIR}/{{material}}.nc",
         table=f"{MATERIAL_DIR}/{{material}}.txt",
