@@ -20,11 +20,6 @@ rule figure:
         "../scripts/figure.py"
 
 
-# a local rule run inside the Snakemake process: hashing a few files is not worth a process start-up
-localrules:
-    manifest,
-
-
 rule manifest:
     input:
         get_scene_targets,
@@ -32,8 +27,5 @@ rule manifest:
         "results/{scene}/MANIFEST.txt",
     log:
         "results/{scene}/logs/manifest.log",
-    run:
-        from vcor.io import write_manifest
-
-        open(log[0], "w").close()
-        write_manifest(wildcards.scene, input, output[0])
+    script:
+        "../scripts/manifest.py"
