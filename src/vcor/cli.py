@@ -12,7 +12,7 @@ from .options import OPTION_HELP, SolverOptions
 from .solvers import simulate
 from .solvers.common import UNITS
 
-_INTEGER_OPTIONS = ("steps_per_contact", "max_steps")
+_INTEGER_OPTIONS = ("steps_per_contact", "max_steps", "max_adaptive_steps")
 
 
 def build_parser():
@@ -21,7 +21,10 @@ def build_parser():
     sub = p.add_subparsers(dest="command", required=True)
     imp = sub.add_parser("impact", help="simulate one sphere-plate impact")
     imp.add_argument("--material", default="sls",
-                     help=f"preset ({', '.join(sorted(materials.PRESETS))}) or a fitted material file")
+                     help=f"preset ({', '.join(sorted(materials.PRESETS))}), a fitted material file, or a "
+                          "name in the materials block of --config")
+    imp.add_argument("--config", default=None,
+                     help="a config.yaml whose materials block defines --material (relative CSV paths from its folder)")
     imp.add_argument("--v0", type=float, required=True, help="impact speed, m/s")
     # solver options: names, allowed values and help from vcor.options (unset ones keep their defaults)
     for name in SolverOptions.names():
@@ -45,6 +48,24 @@ def build_parser():
     return p
 
 
+def _config_material(path, name):
+    """Material ``name`` of the ``materials:`` block of the YAML config ``path``."""
+    from pathlib import Path
+
+    import yaml
+
+    from .material_specs import from_spec
+
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"--config {str(path)!r} does not exist")
+    block = (yaml.safe_load(path.read_text()) or {}).get("materials") or {}
+    if name not in block:
+        raise ValueError(f"material {name!r} is neither a preset nor in the materials block of {path} "
+                         f"(names there: {sorted(block)})")
+    return from_spec(block[name], name=name, base_dir=path.parent)
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if getattr(args, k, None) is not None}
@@ -53,7 +74,9 @@ def main(argv=None) -> int:
     material = args.material
     options = {k: getattr(args, k) for k in SolverOptions.names() if getattr(args, k, None) is not None}
     try:
-        if material not in materials.PRESETS and (material.endswith(".nc") or material.endswith(".json")):
+        if args.config is not None and material not in materials.PRESETS:
+            material = _config_material(args.config, material)
+        elif material not in materials.PRESETS and (material.endswith(".nc") or material.endswith(".json")):
             material = materials.from_file(material)
         res = simulate(material, args.v0, options=options, **geometry)
     except ValueError as exc:

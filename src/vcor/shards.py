@@ -46,13 +46,19 @@ def content_hash(obj, n: int = 12) -> str:
     return hashlib.sha1(json.dumps(obj, sort_keys=True, default=float).encode()).hexdigest()[:n]
 
 
-def material_identity(name: str, *, fits: dict | None = None, material_dir="results/materials") -> str:
-    """Identity of a material's content (see the module docstring)."""
+def material_identity(name: str, *, fits: dict | None = None, material_dir="results/materials",
+                      materials: dict | None = None, base_dir=".") -> str:
+    """Identity of a material's content (see the module docstring); ``materials``: the config's
+    material specs (identity = the built material's parameters, so a CSV table's values count)."""
     fits = fits or {}
     if name in fits:
         from .fit import fit_identity
 
         return content_hash({"fit": fit_identity(fits[name])})
+    if materials and name in materials:
+        from .material_specs import from_spec
+
+        return content_hash({"material": from_spec(materials[name], name=name, base_dir=base_dir).to_dict()})
     return content_hash({"material": resolve_material(name, material_dir=material_dir).to_dict()})
 
 

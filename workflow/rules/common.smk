@@ -5,6 +5,8 @@ from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 import vcor.fit as vfit
+import vcor.material_specs as vspecs
+import vcor.materials as vmaterials
 import vcor.plots as vplots
 import vcor.provenance as vprovenance
 import vcor.scene as vscene
@@ -25,6 +27,31 @@ try:
 except ValueError as exc:
     raise WorkflowError(f"config.yaml: {exc}")
 FITTED = set(FITS)
+# materials defined in the config (name -> spec; vcor.material_specs); written to MATERIAL_DIR by a
+# local rule and then used like fitted ones. Relative CSV paths are taken from the project folder.
+CONFIG_MATERIALS = config.get("materials") or {}
+
+
+def _check_config_materials():
+    for name, spec in CONFIG_MATERIALS.items():
+        if not re.fullmatch(r"[A-Za-z0-9_.-]+", name):
+            raise ValueError(
+                f"config.yaml: materials.{name}: names may use letters, digits, ., - and _"
+            )
+        if name in vmaterials.PRESETS or name in FITTED:
+            raise ValueError(
+                f"config.yaml: materials.{name}: the name is taken by a "
+                f"{'preset' if name in vmaterials.PRESETS else 'fit'}; choose another"
+            )
+        vspecs.from_spec(spec, name=name, base_dir=".")
+
+
+try:
+    _check_config_materials()
+except ValueError as exc:
+    raise WorkflowError(str(exc))
+# materials that live in MATERIAL_DIR: fitted ones and the config's own
+FILE_MATERIALS = FITTED | set(CONFIG_MATERIALS)
 
 
 def _check_scenes():
@@ -37,7 +64,7 @@ def _check_scenes():
         figures = scene.get("figures", {})
         need = vplots.needs(figures)
         if "grid" in scene:
-            vscene.validate_scene(name, scene, MATERIAL_DIR, FITTED)
+            vscene.validate_scene(name, scene, MATERIAL_DIR, FILE_MATERIALS)
         if "sweep" in need and "grid" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
@@ -48,7 +75,7 @@ def _check_scenes():
             )
         for mat in scene.get("convergence", {}).get("materials", []):
             vscene.check_material_name(
-                mat, FITTED, f"config.yaml: scenes.{name}.convergence.materials"
+                mat, FILE_MATERIALS, f"config.yaml: scenes.{name}.convergence.materials"
             )
         if "spheres" in need and "spheres" not in scene:
             raise ValueError(
@@ -91,7 +118,9 @@ def material_identities(scene):
     """{material name: content identity} of a scene's materials (see vcor.shards)."""
     if scene not in _IDENTITIES:
         _IDENTITIES[scene] = {
-            m: vshards.material_identity(m, fits=FITS, material_dir=MATERIAL_DIR)
+            m: vshards.material_identity(
+                m, fits=FITS, material_dir=MATERIAL_DIR, materials=CONFIG_MATERIALS
+            )
             for m in SCENES[scene]["materials"]
         }
     return _IDENTITIES[scene]
@@ -152,18 +181,28 @@ def get_shard_files(wildcards):
 
 
 def get_fitted_inputs(wildcards):
-    """Fitted material files a scene uses (none for presets: no fit unless needed)."""
+    """Fitted and config material files a scene uses (none for presets: no fit unless needed)."""
     scene = SCENES[wildcards.scene]
     used = (
         set(scene.get("materials", []))
         | set(scene.get("moduli", []))
         | set(scene.get("convergence", {}).get("materials", []))
     )
-    return [f"{MATERIAL_DIR}/{m}.nc" for m in sorted(used & FITTED)]
+    return [f"{MATERIAL_DIR}/{m}.nc" for m in sorted(used & FILE_MATERIALS)]
 
 
 def get_fit_spec(wildcards):
     return FITS[wildcards.material]
+
+
+def get_material_spec(wildcards):
+    return CONFIG_MATERIALS[wildcards.name]
+
+
+def get_material_table(wildcards):
+    """A config Prony material's CSV table (an input: editing it re-runs what uses the material)."""
+    spec = CONFIG_MATERIALS[wildcards.name]
+    return [spec["file"]] if "file" in spec else []
 
 
 def get_scene_fitted_names(wildcards):

@@ -2,8 +2,6 @@
 
 
 rule convergence_case:
-    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
-    priority: 10
     input:
         materials=get_fitted_inputs,
     output:
@@ -12,6 +10,8 @@ rule convergence_case:
         "results/{scene}/logs/convergence/{material_case}.log",
     benchmark:
         "results/{scene}/benchmarks/convergence/{material_case}.tsv"
+    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
+    priority: 10
     params:
         code=CODE,
         material="{material_case}",

@@ -1,9 +1,25 @@
-# Material fits: built only when a scene names a fitted material.
+# Material fits: built only when a scene names a fitted material; config materials likewise.
+
+
+rule config_material:
+    # a material of the config's materials block, written like a fit
+    input:
+        get_material_table,
+    output:
+        f"{MATERIAL_DIR}/{{name}}.nc",
+    log:
+        f"{MATERIAL_DIR}/logs/{{name}}.log",
+    wildcard_constraints:
+        name="|".join(re.escape(m) for m in sorted(CONFIG_MATERIALS))
+        or "no-config-material",
+    params:
+        code=CODE,
+        spec=get_material_spec,
+    script:
+        "../scripts/config_material.py"
 
 
 rule fit_material:
-    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
-    priority: 10
     output:
         nc=f"{MATERIAL_DIR}/{{material}}.nc",
         table=f"{MATERIAL_DIR}/{{material}}.txt",
@@ -11,6 +27,8 @@ rule fit_material:
         f"{MATERIAL_DIR}/logs/{{material}}.log",
     benchmark:
         f"{MATERIAL_DIR}/benchmarks/{{material}}.tsv"
+    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
+    priority: 10
     params:
         code=CODE,
         spec=get_fit_spec,

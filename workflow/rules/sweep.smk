@@ -56,8 +56,6 @@ rule moduli:
 
 
 rule histories:
-    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
-    priority: 10
     input:
         materials=get_fitted_inputs,
     output:
@@ -66,6 +64,8 @@ rule histories:
         "results/{scene}/logs/histories.log",
     benchmark:
         "results/{scene}/benchmarks/histories.tsv"
+    # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
+    priority: 10
     params:
         code=CODE,
         histories=get_histories_spec,

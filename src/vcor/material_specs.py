@@ -1,0 +1,185 @@
+"""Materials from config specs (the ``materials:`` block of ``config.yaml``; issue 12).
+
+A spec is a mapping with ``model`` and the parameters named as the material classes name them (SI):
+
+* ``sls``: E_glassy (Pa), alpha, beta (1/s)
+* ``prony``, one of three forms (a table may instead come from a CSV ``file``, see below):
+    - ``{E_inf, E: [...], beta: [...]}``     moduli Pa, rates 1/s (the class's own form),
+    - ``{E_inf, E: [...], tau: [...]}``      relaxation times s (beta = 1/tau),
+    - ``{E_0, g: [...], tau: [...]}``        normalised finite-element form (Abaqus, Ansys):
+      E(t) = E_0 (1 - sum g_i (1 - e^{-t/tau_i})), instantaneous modulus E_0 (Pa), relative moduli
+      g_i >= 0 with sum g_i < 1 (E_inf = E_0 (1 - sum g_i), E_i = E_0 g_i).
+* ``fractional``: E0, E1 (Pa; E(t) = E0 + E1/sqrt(pi t))
+* ``cerf``: E0, E1 (Pa), b1 (s^-1/2)
+* ``kelvin-voigt``: E (Pa), tau (s)
+* ``elastic``: E (Pa)
+
+A Prony table from a file: ``{model: prony, E_inf or E_0, file: table.csv}``; the CSV has a header row
+with ``tau`` or ``beta`` and ``E`` or ``g`` (``g`` needs ``E_0``, ``E`` needs ``E_inf``), one term per
+row; a relative path is taken from the config's folder. Errors name the key (``materials.<name>.<key>``)
+or the file, line and column, with the allowed range; the classes check the values (positive moduli:
+a non-increasing E(t)).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+from . import materials as _materials
+
+__all__ = ["MODELS", "from_spec", "read_prony_csv", "write_material"]
+
+#: model -> (required keys, optional keys)
+MODELS = {
+    "sls": ({"E_glassy", "alpha", "beta"}, set()),
+    "prony": (set(), {"E_inf", "E", "beta", "tau", "E_0", "g", "file"}),
+    "fractional": ({"E0", "E1"}, set()),
+    "cerf": ({"E0", "E1", "b1"}, set()),
+    "kelvin-voigt": ({"E", "tau"}, set()),
+    "elastic": ({"E"}, set()),
+}
+
+
+def _number(where, value, unit, *, positive=False):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{where} must be a finite number ({unit}), got {value!r}")
+    if positive and not value > 0:
+        raise ValueError(f"{where} must be in (0, inf) {unit}, got {value!r}")
+    return float(value)
+
+
+def _numbers(where, values, unit):
+    if not isinstance(values, (list, tuple)) or not values:
+        raise ValueError(f"{where} must be a non-empty list of numbers ({unit}), got {values!r}")
+    return [_number(f"{where}[{i}]", v, unit) for i, v in enumerate(values)]
+
+
+def read_prony_csv(path) -> dict:
+    """{column: [floats]} of a Prony table (header ``tau`` or ``beta``, ``E`` or ``g``). Errors name the
+    file, the line (1-based, the header is line 1) and the column."""
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"Prony table {str(path)!r} does not exist")
+    with path.open(newline="") as fh:
+        rows = list(csv.reader(fh))
+    if not rows:
+        raise ValueError(f"{path}: empty file (expected a header row: tau or beta, and E or g)")
+    header = [h.strip() for h in rows[0]]
+    time_cols = [c for c in ("tau", "beta") if c in header]
+    mod_cols = [c for c in ("E", "g") if c in header]
+    unknown = [h for h in header if h not in ("tau", "beta", "E", "g")]
+    if unknown or len(time_cols) != 1 or len(mod_cols) != 1:
+        raise ValueError(f"{path}, line 1: header {header} must name exactly one of tau (s) or beta (1/s) and "
+                         f"one of E (Pa) or g (1); unknown columns: {unknown}")
+    out = {time_cols[0]: [], mod_cols[0]: []}
+    for lineno, row in enumerate(rows[1:], start=2):
+        if not any(cell.strip() for cell in row):
+            continue
+        if len(row) != len(header):
+            raise ValueError(f"{path}, line {lineno}: {len(row)} cells, the header has {len(header)}")
+        for col, cell in zip(header, row):
+            try:
+                value = float(cell)
+            except ValueError:
+                raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell!r} is not a number") from None
+            if not math.isfinite(value) or value < 0 or (col in ("tau", "beta") and value == 0):
+                allowed = "(0, inf)" if col in ("tau", "beta") else "[0, inf)"
+                raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell.strip()} is outside {allowed}")
+            out[col].append(value)
+    if not out[time_cols[0]]:
+        raise ValueError(f"{path}: no terms below the header")
+    return out
+
+
+def _prony(where, spec, base_dir):
+    keys = set(spec) - {"model"}
+    table = dict(spec)
+    if "file" in keys:
+        path = Path(spec["file"])
+        path = path if path.is_absolute() else Path(base_dir) / path
+        clash = keys & {"E", "beta", "tau", "g"}
+        if clash:
+            raise ValueError(f"{where}: give the terms either in file or as {sorted(clash)}, not both")
+        table.update(read_prony_csv(path))
+    if "tau" in table and "beta" in table:
+        raise ValueError(f"{where}: give relaxation times tau (s) or rates beta (1/s), not both")
+    if "tau" in table:
+        tau = _numbers(f"{where}.tau", table["tau"], "s")
+        for i, t in enumerate(tau):
+            _number(f"{where}.tau[{i}]", t, "s", positive=True)
+        beta = [1.0 / t for t in tau]
+    elif "beta" in table:
+        beta = _numbers(f"{where}.beta", table["beta"], "1/s")
+    else:
+        raise ValueError(f"{where}: a prony material needs rates beta (1/s) or times tau (s), or a file")
+    if "g" in table:  # normalised finite-element form
+        if "E_0" not in spec or "E_inf" in spec or "E" in table:
+            raise ValueError(f"{where}: the normalised form needs E_0 (instantaneous modulus, Pa) and g, "
+                             f"without E_inf or E")
+        e0 = _number(f"{where}.E_0", spec["E_0"], "Pa", positive=True)
+        g = _numbers(f"{where}.g", table["g"], "1")
+        if any(x < 0 for x in g) or not sum(g) < 1:
+            raise ValueError(f"{where}.g: relative moduli must be >= 0 with sum < 1 (the long-term modulus "
+                             f"E_0 (1 - sum g) must stay > 0), got {g} (sum {sum(g):g})")
+        e_inf, moduli = e0 * (1.0 - sum(g)), [e0 * x for x in g]
+    else:
+        if "E_0" in spec:
+            raise ValueError(f"{where}.E_0 belongs to the normalised form (with g); with moduli E give E_inf")
+        if "E" not in table or "E_inf" not in spec:
+            raise ValueError(f"{where}: a prony material needs E_inf (Pa) and moduli E (Pa), or E_0 and g")
+        e_inf = _number(f"{where}.E_inf", spec["E_inf"], "Pa")
+        moduli = _numbers(f"{where}.E", table["E"], "Pa")
+    if len(moduli) != len(beta):
+        raise ValueError(f"{where}: {len(moduli)} moduli but {len(beta)} relaxation times/rates")
+    try:
+        return _materials.Prony(e_inf, tuple(moduli), tuple(beta))
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+
+
+def from_spec(spec: dict, *, name: str = "material", base_dir=".") -> _materials.Material:
+    """A material from a config spec (module docstring); errors name ``materials.<name>.<key>``."""
+    where = f"materials.{name}"
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where} must be a mapping with 'model' and parameters, got {spec!r}")
+    model = spec.get("model")
+    if model not in MODELS:
+        raise ValueError(f"{where}.model must be one of {sorted(MODELS)}, got {model!r}")
+    required, optional = MODELS[model]
+    keys = set(spec) - {"model"}
+    missing, unknown = required - keys, keys - required - optional
+    if missing or unknown:
+        raise ValueError(f"{where} ({model}): " + "; ".join(
+            x for x in (f"missing {sorted(missing)}" if missing else "", f"unknown {sorted(unknown)}" if unknown else "")
+            if x) + f"; a {model} material takes {sorted(required | optional)}")
+    if model == "prony":
+        return _prony(where, spec, base_dir)
+    params = {k: _number(f"{where}.{k}", spec[k], "SI") for k in required}
+    cls = {"sls": _materials.SLS, "fractional": _materials.FractionalPower, "cerf": _materials.Cerf,
+           "kelvin-voigt": _materials.KelvinVoigt, "elastic": _materials.Elastic}[model]
+    try:
+        return cls(**params)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+
+
+def write_material(name: str, spec: dict, path, *, base_dir=".") -> None:
+    """Write the material of ``spec`` as ``path`` (NetCDF: attribute ``material`` = its ``to_dict`` JSON,
+    attribute ``spec`` = the config spec, E(t) on a log grid), readable by ``materials.from_file`` like
+    a fitted material. Same bytes for the same spec (no time stamp)."""
+    import json
+
+    import numpy as np
+    import xarray as xr
+
+    from .io import write_dataset
+
+    mat = from_spec(spec, name=name, base_dir=base_dir)
+    t = np.geomspace(1e-9, 1e3, 121)
+    ds = xr.Dataset({"E_t": ("t", mat.relaxation_modulus(t), {"units": "Pa", "long_name": "relaxation modulus E(t)"})},
+                    coords={"t": ("t", t, {"units": "s", "long_name": "time"})})
+    write_dataset(ds, path, title=f"vcor material {name} (config materials block)",
+                  extra_attrs={"material": json.dumps(mat.to_dict()), "spec": json.dumps(spec, sort_keys=True)},
+                  command="vcor.material_specs.write_material (deterministic: no time stamp)", timestamp=False)

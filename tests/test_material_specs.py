@@ -1,0 +1,137 @@
+"""Your own materials (issue 12, part 1): the config's ``materials:`` block, ``vcor.material_specs``,
+the CLI's ``--config`` and the workflow. README, "Your own materials"."""
+
+import json
+
+import pytest
+import xarray as xr
+import yaml
+from test_workflow import make_project, smk
+
+import vcor
+from vcor import cli
+from vcor.material_specs import from_spec
+
+PRONY3 = vcor.materials.get("butyl-prony3")
+E_INF, MODULI, RATES = 10.421e6, [20.181e6, 38.204e6, 87.344e6], [972.0, 6426.0, 34221.0]
+E_0 = E_INF + sum(MODULI)
+
+
+def _forms(tmp_path):
+    (tmp_path / "prony3_tau.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
+    (tmp_path / "prony3_g.csv").write_text("tau,g\n" + "".join(f"{1 / b!r},{e / E_0!r}\n" for b, e in zip(RATES, MODULI)))
+    return {
+        "class form": {"model": "prony", "E_inf": E_INF, "E": MODULI, "beta": RATES},
+        "relaxation times": {"model": "prony", "E_inf": E_INF, "E": MODULI, "tau": [1 / b for b in RATES]},
+        "normalised (finite-element) form": {"model": "prony", "E_0": E_0, "g": [e / E_0 for e in MODULI],
+                                             "tau": [1 / b for b in RATES]},
+        "CSV, tau and E": {"model": "prony", "E_inf": E_INF, "file": "prony3_tau.csv"},
+        "CSV, tau and g": {"model": "prony", "E_0": E_0, "file": "prony3_g.csv"},
+    }
+
+
+def test_inline_prony_gives_the_presets_cor(tmp_path):
+    """Issue 12 acceptance: an inline Prony material equal to butyl-prony3 gives its COR to 1e-12
+    (every form: rates, times, normalised, CSV)."""
+    ref = vcor.simulate(PRONY3, 10.0, method="adaptive").cor
+    for label, spec in _forms(tmp_path).items():
+        mat = from_spec(spec, name="p3", base_dir=tmp_path)
+        assert abs(vcor.simulate(mat, 10.0, method="adaptive").cor - ref) <= 1e-12, label
+
+
+@pytest.mark.parametrize("preset, spec", [
+    ("sls", {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200}),
+    ("butyl-fc", {"model": "fractional", "E0": 3 * 7.6e5, "E1": 3 * 2.95e5}),
+    ("butyl-cerf", {"model": "cerf", "E0": 0.442e6, "E1": 0.6765e9, "b1": 700.0}),
+    ("kelvin-voigt", {"model": "kelvin-voigt", "E": 15e6, "tau": 1e-4}),
+    ("elastic", {"model": "elastic", "E": 15e6}),
+])
+def test_every_model_builds_its_class(preset, spec):
+    assert from_spec(spec, name=preset) == vcor.materials.get(preset)
+
+
+BAD = [
+    ({"model": "maxwell"}, ["materials.m.model", "one of"]),
+    ({"model": "sls", "E_glassy": 1e6, "alpha": 10}, ["materials.m", "missing ['beta']"]),
+    ({"model": "sls", "E_glassy": 1e6, "alpha": 10, "beta": 20, "eta": 1}, ["unknown ['eta']"]),
+    ({"model": "sls", "E_glassy": "soft", "alpha": 10, "beta": 20}, ["materials.m.E_glassy", "number"]),
+    ({"model": "sls", "E_glassy": 1e6, "alpha": 30, "beta": 20}, ["materials.m", "alpha must be in [0, beta]"]),
+    ({"model": "prony", "E_inf": 1e6, "E": [-2e6], "beta": [10]}, ["materials.m", "E[0]", "[0, inf) Pa"]),
+    ({"model": "prony", "E_inf": 1e6, "E": [2e6, 1e6], "beta": [10]}, ["2 moduli but 1"]),
+    ({"model": "prony", "E_inf": 1e6, "E": [2e6], "beta": [10], "tau": [0.1]}, ["tau", "beta", "not both"]),
+    ({"model": "prony", "E_0": 1e7, "g": [0.6, 0.5], "tau": [1, 2]}, ["materials.m.g", "sum < 1"]),
+    ({"model": "prony", "E_0": 1e7, "g": [0.5], "tau": [0.0]}, ["materials.m.tau[0]", "(0, inf) s"]),
+    ({"model": "prony", "E_inf": 1e6, "E": [2e6]}, ["needs rates beta"]),
+    ({"model": "prony", "E_inf": 1e6, "file": "missing.csv"}, ["missing.csv", "does not exist"]),
+]
+
+
+@pytest.mark.parametrize("spec, words", BAD)
+def test_bad_specs_name_the_key(tmp_path, spec, words):
+    with pytest.raises(ValueError) as err:
+        from_spec(spec, name="m", base_dir=tmp_path)
+    for w in words:
+        assert w in str(err.value), (w, str(err.value))
+
+
+@pytest.mark.parametrize("table, words", [
+    ("tau,E\n0.1,1e6\n0.01,lots\n", ["t.csv, line 3, column 'E'", "'lots' is not a number"]),
+    ("tau,modulus\n0.1,1e6\n", ["t.csv, line 1", "one of E (Pa) or g"]),
+    ("tau,E\n0.1,-1e6\n", ["t.csv, line 2, column 'E'", "[0, inf)"]),
+    ("tau,E\n0.1\n", ["t.csv, line 2", "1 cells"]),
+    ("tau,E\n", ["no terms"]),
+])
+def test_bad_csv_names_file_line_and_column(tmp_path, table, words):
+    (tmp_path / "t.csv").write_text(table)
+    with pytest.raises(ValueError) as err:
+        from_spec({"model": "prony", "E_inf": 1e6, "file": "t.csv"}, name="m", base_dir=tmp_path)
+    for w in words:
+        assert w in str(err.value), (w, str(err.value))
+
+
+def test_cli_takes_a_config_material(tmp_path, capsys):
+    cfg = tmp_path / "config.yaml"
+    cfg.write_text(yaml.safe_dump({"materials": {"mine": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200}}}))
+    assert cli.main(["impact", "--config", str(cfg), "--material", "mine", "--v0", "10", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["cor"]["value"] == vcor.simulate("sls", 10.0).cor
+    assert cli.main(["impact", "--config", str(cfg), "--material", "other", "--v0", "10"]) == 2
+    assert "names there: ['mine']" in capsys.readouterr().err
+
+
+CONFIG = {
+    "shard_size": 100,
+    "material_dir": "results/materials",
+    "materials": {
+        "my-prony": {"model": "prony", "E_inf": E_INF, "file": "data/prony3.csv"},
+        "my-sls": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200},
+    },
+    "scenes": {"own": {"materials": ["my-prony", "my-sls", "sls"], "grid": {"v0": [5.0, 10.0]},
+                       "figures": {"fig8": {}}}},
+}
+
+
+def test_workflow_uses_config_materials_like_presets(tmp_path):
+    path = make_project(tmp_path, CONFIG)
+    (path / "data").mkdir()
+    (path / "data/prony3.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
+    smk(path, "-j2")
+    ds = xr.open_dataset(path / "results/own/sweep.nc")
+    cor = ds["cor"].sel(v0=10.0)
+    assert cor.sel(material="my-prony").item() == vcor.simulate(PRONY3, 10.0, method="adaptive").cor
+    assert cor.sel(material="my-sls").item() == cor.sel(material="sls").item()
+    # the table is an input: editing it recomputes the shard that uses it
+    (path / "data/prony3.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{2 * e!r}\n" for b, e in zip(RATES, MODULI)))
+    dry = smk(path, "-n", "-j1").stdout
+    assert "sweep_shard" in dry and "config_material" in dry
+
+
+def test_workflow_refuses_a_bad_config_material(tmp_path):
+    bad = {**CONFIG, "materials": {"my-sls": {"model": "sls", "E_glassy": 15e6, "alpha": 3000, "beta": 1200}},
+           "scenes": {"own": {"materials": ["my-sls"], "grid": {"v0": [5.0]}}}}
+    out = smk(make_project(tmp_path, bad), "-n", check=False)
+    assert out.returncode != 0
+    assert "materials.my-sls" in out.stdout + out.stderr and "alpha must be in [0, beta]" in out.stdout + out.stderr
+    taken = {**CONFIG, "materials": {"sls": {"model": "elastic", "E": 1e6}}, "scenes": bad["scenes"]}
+    (tmp_path / "t").mkdir()
+    out = smk(make_project(tmp_path / "t", taken), "-n", check=False)
+    assert "materials.sls: the name is taken by a preset" in out.stdout + out.stderr
