@@ -135,3 +135,17 @@ def test_workflow_refuses_a_bad_config_material(tmp_path):
     (tmp_path / "t").mkdir()
     out = smk(make_project(tmp_path / "t", taken), "-n", check=False)
     assert "materials.sls: the name is taken by a preset" in out.stdout + out.stderr
+
+
+@pytest.mark.parametrize("case, sphere, plate", [(1, 7800.0, 1100.0), (2, 1100.0, 1100.0), (3, 7800.0, 1100.0),
+                                                 (4, 1100.0, 7800.0)])
+def test_the_cases_are_shortcuts_with_their_densities(case, sphere, plate):
+    """Issue 12: the viscoelastic body has the polymer's density, a stiff elastic one steel's (cases 2
+    and 4 used to take case 3's steel sphere and polymer plate); given densities still win."""
+    from vcor.impact import Geometry
+
+    g = Geometry(case=case)
+    assert (g.sphere_density, g.plate_density) == (sphere, plate)
+    assert Geometry(case=case, rho_a=2000.0, rho_b=3000.0).sphere_density == 2000.0
+    assert Geometry(case=case, rho_a=2000.0, rho_b=3000.0).plate_density == 3000.0
+    assert g.mass == pytest.approx(4 / 3 * 3.141592653589793 * 0.01**3 * sphere, rel=1e-15)

@@ -41,7 +41,8 @@ def build_parser():
             kind = int if name in _INTEGER_OPTIONS else float
             imp.add_argument(flag, dest=name, type=kind, default=None, help=help_text)
     for key in ("r", "rho_a", "rho_b", "h", "nu", "E_plate", "nu_plate"):
-        imp.add_argument(f"--{key}", type=float, default=None, help=f"geometry (default {GEOMETRY_DEFAULTS[key]})")
+        default = GEOMETRY_DEFAULTS[key] if GEOMETRY_DEFAULTS[key] is not None else "by case: polymer 1100, steel 7800"
+        imp.add_argument(f"--{key}", type=float, default=None, help=f"geometry (default {default})")
     imp.add_argument("--case", type=int, default=None, choices=(1, 2, 3, 4))
     imp.add_argument("--rigid", action="store_true", help="rigid, immovable target (alpha = 0)")
     imp.add_argument("--json", action="store_true", help="print JSON with units")

@@ -14,6 +14,10 @@ Cases (which body is viscoelastic, Eq. 1):
 3. (default, the paper's) stiff elastic sphere on a viscoelastic plate: E' = E'_b = E/(1-nu^2).
 4. viscoelastic sphere on a stiff elastic plate: E' = E/(1 - nu^2); alpha is constant, from the
    plate's own modulus ``E_plate`` and ``nu_plate`` (defaults: steel, 200 GPa, 0.3).
+
+Densities not given follow the case (``DENSITIES``): the viscoelastic body is the paper's polymer,
+1100 kg/m^3, a stiff elastic one steel, 7800 kg/m^3 (before, cases 2 and 4 silently used case 3's
+steel sphere and polymer plate).
 """
 
 from __future__ import annotations
@@ -26,12 +30,19 @@ import numpy as np
 from . import materials as _materials
 from .checks import number
 
-__all__ = ["GEOMETRY_DEFAULTS", "Geometry", "Impact"]
+__all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "Geometry", "Impact"]
+
+#: densities (kg/m^3) used when rho_a / rho_b are not given: the viscoelastic body is the paper's polymer
+#: (1100), a stiff elastic one steel (7800). Case 1 and 3: steel sphere on a polymer plate; case 2: both
+#: polymer; case 4: polymer sphere on a steel plate.
+DENSITIES = {"polymer": 1100.0, "steel": 7800.0}
+_SPHERE_IS_POLYMER = {1: False, 2: True, 3: False, 4: True}
+_PLATE_IS_POLYMER = {1: True, 2: True, 3: True, 4: False}
 
 GEOMETRY_DEFAULTS = {
     "r": 0.010,  # sphere radius, m
-    "rho_a": 7800.0,  # sphere density (steel), kg/m^3
-    "rho_b": 1100.0,  # plate density, kg/m^3
+    "rho_a": None,  # sphere density, kg/m^3 (None: by case, see DENSITIES)
+    "rho_b": None,  # plate density, kg/m^3 (None: by case)
     "h": None,  # plate half-thickness, m (None -> 2 r, as in the paper)
     "nu": 0.5,  # Poisson ratio of the viscoelastic body
     "case": 3,
@@ -46,8 +57,8 @@ class Geometry:
     """Sphere-plate geometry. Units: m, kg/m^3, Pa."""
 
     r: float = GEOMETRY_DEFAULTS["r"]
-    rho_a: float = GEOMETRY_DEFAULTS["rho_a"]
-    rho_b: float = GEOMETRY_DEFAULTS["rho_b"]
+    rho_a: float | None = None
+    rho_b: float | None = None
     h: float | None = None
     nu: float = GEOMETRY_DEFAULTS["nu"]
     case: int = 3
@@ -57,8 +68,9 @@ class Geometry:
 
     def __post_init__(self):
         number("r", self.r, 0, math.inf, unit="m")
-        number("rho_a", self.rho_a, 0, math.inf, unit="kg/m^3")
-        number("rho_b", self.rho_b, 0, math.inf, unit="kg/m^3")
+        for name in ("rho_a", "rho_b"):
+            if getattr(self, name) is not None:
+                number(name, getattr(self, name), 0, math.inf, unit="kg/m^3")
         if self.h is not None:
             number("h", self.h, 0, math.inf, unit="m")
         number("nu", self.nu, -1, 0.5, hi_open=False)
@@ -74,9 +86,23 @@ class Geometry:
         return 2.0 * self.r if self.h is None else float(self.h)
 
     @property
+    def sphere_density(self) -> float:
+        """rho_a, or by case (``DENSITIES``), kg/m^3."""
+        if self.rho_a is not None:
+            return float(self.rho_a)
+        return DENSITIES["polymer" if _SPHERE_IS_POLYMER[self.case] else "steel"]
+
+    @property
+    def plate_density(self) -> float:
+        """rho_b, or by case (``DENSITIES``), kg/m^3."""
+        if self.rho_b is not None:
+            return float(self.rho_b)
+        return DENSITIES["polymer" if _PLATE_IS_POLYMER[self.case] else "steel"]
+
+    @property
     def mass(self) -> float:
         """Sphere mass, kg."""
-        return 4.0 / 3.0 * math.pi * self.r**3 * self.rho_a
+        return 4.0 / 3.0 * math.pi * self.r**3 * self.sphere_density
 
 
 @dataclass(frozen=True)
@@ -117,7 +143,8 @@ class Impact:
         """alpha(t) sqrt(E'_b(t)) = sqrt(3 rho_b) / (16 rho_b h^2), m N^-1 s^-1 Pa^0.5."""
         g = self.geometry
         h = g.half_thickness
-        return math.sqrt(3.0 * g.rho_b) / (16.0 * g.rho_b * h * h)
+        rho = g.plate_density
+        return math.sqrt(3.0 * rho) / (16.0 * rho * h * h)
 
     def _plate_modulus(self, t):
         """E'_b(t) in Pa (plane-strain modulus of the plate)."""
