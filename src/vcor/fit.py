@@ -47,6 +47,8 @@ class FitData:
     omega: np.ndarray | None = None
     E_star: np.ndarray | None = None
     name: str = "data"
+    #: measured data: noise may make E' or E(t) locally non-monotone (not an error then)
+    measured: bool = False
 
     def __post_init__(self):
         has_t = self.t is not None or self.E_t is not None
@@ -57,7 +59,7 @@ class FitData:
             t, e = _axis_and_values("t", "s", self.t, "E_t", self.E_t, float)
             if not (np.all(np.isfinite(e)) and np.all(e > 0)):
                 raise ValueError("E_t must be finite and > 0 Pa")
-            if np.any(np.diff(e) > 1e-12 * e[:-1]):
+            if not self.measured and np.any(np.diff(e) > 1e-12 * e[:-1]):
                 i = int(np.argmax(np.diff(e) > 1e-12 * e[:-1]))
                 raise ValueError(
                     f"E_t is not a relaxation modulus: it increases between t = {t[i]:.4g} s and {t[i + 1]:.4g} s"
@@ -73,7 +75,7 @@ class FitData:
                     i = int(np.argmax(values <= 0))
                     raise ValueError(f"E_star {part} modulus must be > 0 Pa (the fit's tan delta residual is "
                                      f"relative), got {float(values[i])!r} Pa at omega = {w[i]:.6g} rad/s")
-            if np.any(np.diff(es.real) < -1e-12 * es.real[:-1]):
+            if not self.measured and np.any(np.diff(es.real) < -1e-12 * es.real[:-1]):
                 raise ValueError("E_star is not a viscoelastic solid's: the storage modulus decreases with omega")
             object.__setattr__(self, "omega", w)
             object.__setattr__(self, "E_star", es)

@@ -23,11 +23,11 @@ a non-increasing E(t)).
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
 from . import materials as _materials
+from .csvfile import cell_number, data_rows, read_rows
 
 __all__ = ["MODELS", "from_spec", "read_prony_csv", "write_material"]
 
@@ -60,12 +60,7 @@ def read_prony_csv(path) -> dict:
     """{column: [floats]} of a Prony table (header ``tau`` or ``beta``, ``E`` or ``g``). Errors name the
     file, the line (1-based, the header is line 1) and the column."""
     path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"Prony table {str(path)!r} does not exist")
-    with path.open(newline="") as fh:
-        rows = list(csv.reader(fh))
-    if not rows:
-        raise ValueError(f"{path}: empty file (expected a header row: tau or beta, and E or g)")
+    rows = read_rows(path, "Prony table")
     header = [h.strip() for h in rows[0]]
     time_cols = [c for c in ("tau", "beta") if c in header]
     mod_cols = [c for c in ("E", "g") if c in header]
@@ -74,17 +69,10 @@ def read_prony_csv(path) -> dict:
         raise ValueError(f"{path}, line 1: header {header} must name exactly one of tau (s) or beta (1/s) and "
                          f"one of E (Pa) or g (1); unknown columns: {unknown}")
     out = {time_cols[0]: [], mod_cols[0]: []}
-    for lineno, row in enumerate(rows[1:], start=2):
-        if not any(cell.strip() for cell in row):
-            continue
-        if len(row) != len(header):
-            raise ValueError(f"{path}, line {lineno}: {len(row)} cells, the header has {len(header)}")
+    for lineno, row in data_rows(path, rows, header, 1):
         for col, cell in zip(header, row):
-            try:
-                value = float(cell)
-            except ValueError:
-                raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell!r} is not a number") from None
-            if not math.isfinite(value) or value < 0 or (col in ("tau", "beta") and value == 0):
+            value = cell_number(path, lineno, col, cell)
+            if value < 0 or (col in ("tau", "beta") and value == 0):
                 allowed = "(0, inf)" if col in ("tau", "beta") else "[0, inf)"
                 raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell.strip()} is outside {allowed}")
             out[col].append(value)
@@ -143,7 +131,8 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".") -> _materials
     """A material from a config spec (module docstring); errors name ``materials.<name>.<key>``."""
     where = f"materials.{name}"
     if not isinstance(spec, dict):
-        raise ValueError(f"{where} must be a mapping with 'model' and parameters, got {spec!r}")
+        # a config value: reported as ValueError, like every bad input
+        raise ValueError(f"{where} must be a mapping with 'model' and parameters, got {spec!r}")  # noqa: TRY004
     model = spec.get("model")
     if model not in MODELS:
         raise ValueError(f"{where}.model must be one of {sorted(MODELS)}, got {model!r}")
