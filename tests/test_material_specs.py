@@ -149,3 +149,57 @@ def test_the_cases_are_shortcuts_with_their_densities(case, sphere, plate):
     assert Geometry(case=case, rho_a=2000.0, rho_b=3000.0).sphere_density == 2000.0
     assert Geometry(case=case, rho_a=2000.0, rho_b=3000.0).plate_density == 3000.0
     assert g.mass == pytest.approx(4 / 3 * 3.141592653589793 * 0.01**3 * sphere, rel=1e-15)
+
+
+WLF = {"model": "wlf", "C1": 8.86, "C2": 101.6, "T_ref": 20.0}
+T_CONFIG = {
+    "shard_size": 100,
+    "material_dir": "results/materials",
+    "materials": {"warm-prony": {"model": "prony", "E_inf": E_INF, "E": MODULI, "beta": RATES, "shift": WLF}},
+    "scenes": {"temp": {"materials": ["warm-prony"], "grid": {"v0": [1.0, 10.0], "T": [0.0, 20.0, 40.0]}}},
+}
+
+
+def test_temperature_axis_shifts_the_material(tmp_path):
+    """Issue 12: a material with a shift function; T (deg C) as a grid axis, E(t; T) = E(t / a_T)."""
+    from vcor import dma
+
+    path = make_project(tmp_path, T_CONFIG)
+    smk(path, "-j2")
+    ds = xr.open_dataset(path / "results/temp/sweep.nc")
+    assert ds["T"].attrs["units"] == "degC"
+    shift = dma.ShiftFunction.from_spec(WLF)
+    for T in (0.0, 20.0, 40.0):
+        mat = dma.shifted(PRONY3, shift.log_aT(T))
+        assert ds["cor"].sel(material="warm-prony", v0=10.0, T=T).item() == vcor.simulate(mat, 10.0, method="adaptive").cor
+    assert ds["cor"].sel(material="warm-prony", v0=10.0, T=20.0).item() == vcor.simulate(PRONY3, 10.0, method="adaptive").cor
+    # colder is stiffer-and-slower: the curve moves, it is not the same number
+    assert ds["cor"].sel(v0=10.0, T=0.0).item() != ds["cor"].sel(v0=10.0, T=40.0).item()
+
+
+@pytest.mark.parametrize("change, words", [
+    (lambda c: c["scenes"]["temp"].update(materials=["sls"]), ["scenes.temp", "'sls'", "no shift function"]),
+    (lambda c: c["scenes"]["temp"]["grid"].update(T=[-90.0, 20.0]), ["scenes.temp.grid.T", "(-81.6, inf) deg C"]),
+    (lambda c: c["materials"]["warm-prony"]["shift"].update(C2=-5), ["materials.warm-prony.shift.C2", "(0, inf)"]),
+])
+def test_temperature_axis_errors_name_the_key(tmp_path, change, words):
+    import copy
+
+    cfg = copy.deepcopy(T_CONFIG)
+    change(cfg)
+    out = smk(make_project(tmp_path, cfg), "-n", check=False)
+    text = out.stdout + out.stderr
+    assert out.returncode != 0
+    for w in words:
+        assert w in text, (w, text[-2000:])
+
+
+def test_a_changed_shift_function_changes_the_identity():
+    from vcor import shards
+
+    other = {**T_CONFIG["materials"]["warm-prony"], "shift": {**WLF, "C1": 9.0}}
+    a = shards.material_identity("warm-prony", materials=T_CONFIG["materials"])
+    b = shards.material_identity("warm-prony", materials={"warm-prony": other})
+    assert a != b
+    with pytest.raises(ValueError, match="materials.f.shift: temperature shifting is implemented for prony"):
+        from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": WLF}, name="f")

@@ -32,7 +32,7 @@ import numpy as np
 from . import materials as _materials
 from .csvfile import cell_number, data_rows, read_rows
 
-__all__ = ["DMATable", "Superposition", "arrhenius_fit", "fit_master", "read_table", "shifted", "superpose", "wlf_fit",
+__all__ = ["DMATable", "ShiftFunction", "Superposition", "arrhenius_fit", "fit_master", "read_table", "shift_from_file", "shifted", "superpose", "wlf_fit",
            "wlf_log_aT"]
 
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
@@ -261,3 +261,67 @@ def fit_master(sp: Superposition, n_terms: int | None = None):
                         measured=True)
     n = n_terms or max(1, math.ceil(math.log10(sp.f_reduced.max() / sp.f_reduced.min())))
     return _fit.fit_prony(data, n_terms=n)
+
+
+@dataclass(frozen=True)
+class ShiftFunction:
+    """log10 a_T(T) of a material: ``model`` "wlf" (C1, C2 in K) or "arrhenius" (E_a in J/mol), at the
+    reference temperature ``T_ref`` (deg C). Built from a config spec by :meth:`from_spec`."""
+
+    model: str
+    T_ref: float
+    C1: float = math.nan
+    C2: float = math.nan
+    E_a: float = math.nan
+
+    @classmethod
+    def from_spec(cls, spec: dict, where: str = "shift") -> ShiftFunction:
+        if not isinstance(spec, dict) or spec.get("model") not in ("wlf", "arrhenius"):
+            raise ValueError(f"{where}: a mapping with model wlf (C1, C2 [K], T_ref [deg C]) or arrhenius "
+                             f"(E_a [J/mol], T_ref [deg C]), got {spec!r}")
+        need = {"wlf": ("C1", "C2", "T_ref"), "arrhenius": ("E_a", "T_ref")}[spec["model"]]
+        extra = set(spec) - set(need) - {"model"}
+        missing = [k for k in need if k not in spec]
+        if missing or extra:
+            raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; takes {list(need)}")
+        values = {}
+        for k in need:
+            v = spec[k]
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or (k != "T_ref" and v <= 0):
+                rng = "a finite number, deg C" if k == "T_ref" else "in (0, inf)"
+                raise ValueError(f"{where}.{k} must be {rng}, got {v!r}")
+            values[k] = float(v)
+        if spec["model"] == "arrhenius" and values["T_ref"] <= -273.15:
+            raise ValueError(f"{where}.T_ref must be above absolute zero (-273.15 deg C), got {values['T_ref']}")
+        return cls(spec["model"], **values)
+
+    def valid_range(self) -> tuple[float, float]:
+        """Temperatures (deg C, open interval) where a_T is defined: T > T_ref - C2 (WLF), T > -273.15."""
+        lo = self.T_ref - self.C2 if self.model == "wlf" else -273.15
+        return lo, math.inf
+
+    def log_aT(self, T: float) -> float:
+        lo, _ = self.valid_range()
+        if not (math.isfinite(T) and T > lo):
+            raise ValueError(f"temperature T must be in ({lo:g}, inf) deg C for this {self.model} shift function "
+                             f"(T_ref = {self.T_ref:g} deg C), got {T!r}")
+        if self.model == "wlf":
+            return float(wlf_log_aT(T, self.T_ref, self.C1, self.C2))
+        R = 8.314462618
+        return self.E_a / (R * math.log(10.0)) * (1.0 / (T + 273.15) - 1.0 / (self.T_ref + 273.15))
+
+    def to_dict(self) -> dict:
+        d = {"model": self.model, "T_ref": self.T_ref}
+        d.update({"C1": self.C1, "C2": self.C2} if self.model == "wlf" else {"E_a": self.E_a})
+        return d
+
+
+def shift_from_file(path):
+    """The ShiftFunction stored with a material file (attribute ``shift``), or None."""
+    import json
+
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        text = ds.attrs.get("shift")
+    return ShiftFunction.from_spec(json.loads(text)) if text else None

@@ -14,6 +14,10 @@ A spec is a mapping with ``model`` and the parameters named as the material clas
 * ``kelvin-voigt``: E (Pa), tau (s)
 * ``elastic``: E (Pa)
 
+Optional ``shift: {model: wlf, C1, C2 [K], T_ref [deg C]}`` or ``{model: arrhenius, E_a [J/mol],
+T_ref}`` (Prony, SLS, elastic): the material is then E(t; T) = E(t / a_T(T)) at temperature T, and a
+scene may use ``T`` (deg C) as a grid axis.
+
 A Prony table from a file: ``{model: prony, E_inf or E_0, file: table.csv}``; the CSV has a header row
 with ``tau`` or ``beta`` and ``E`` or ``g`` (``g`` needs ``E_0``, ``E`` needs ``E_inf``), one term per
 row; a relative path is taken from the config's folder. Errors name the key (``materials.<name>.<key>``)
@@ -29,7 +33,7 @@ from pathlib import Path
 from . import materials as _materials
 from .csvfile import cell_number, data_rows, read_rows
 
-__all__ = ["MODELS", "from_spec", "read_prony_csv", "write_material"]
+__all__ = ["MODELS", "from_spec", "read_prony_csv", "shift_function", "write_material"]
 
 #: model -> (required keys, optional keys)
 MODELS = {
@@ -137,12 +141,18 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".") -> _materials
     if model not in MODELS:
         raise ValueError(f"{where}.model must be one of {sorted(MODELS)}, got {model!r}")
     required, optional = MODELS[model]
-    keys = set(spec) - {"model"}
+    keys = set(spec) - {"model", "shift"}
     missing, unknown = required - keys, keys - required - optional
     if missing or unknown:
         raise ValueError(f"{where} ({model}): " + "; ".join(
             x for x in (f"missing {sorted(missing)}" if missing else "", f"unknown {sorted(unknown)}" if unknown else "")
             if x) + f"; a {model} material takes {sorted(required | optional)}")
+    if "shift" in spec:
+        shift_function(spec, name)  # checked here, applied per temperature (``dma.shifted``)
+        if model not in ("prony", "sls", "elastic"):
+            raise ValueError(f"{where}.shift: temperature shifting is implemented for prony, sls and elastic "
+                             f"materials, not {model}")
+    spec = {k: v for k, v in spec.items() if k != "shift"}
     if model == "prony":
         return _prony(where, spec, base_dir)
     params = {k: _number(f"{where}.{k}", spec[k], "SI") for k in required}
@@ -152,6 +162,13 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".") -> _materials
         return cls(**params)
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
+
+
+def shift_function(spec: dict, name: str = "material"):
+    """The material's shift function (``shift:`` in its spec; ``vcor.dma.ShiftFunction``) or None."""
+    from .dma import ShiftFunction
+
+    return ShiftFunction.from_spec(spec["shift"], f"materials.{name}.shift") if "shift" in spec else None
 
 
 def write_material(name: str, spec: dict, path, *, base_dir=".") -> None:
@@ -169,6 +186,9 @@ def write_material(name: str, spec: dict, path, *, base_dir=".") -> None:
     t = np.geomspace(1e-9, 1e3, 121)
     ds = xr.Dataset({"E_t": ("t", mat.relaxation_modulus(t), {"units": "Pa", "long_name": "relaxation modulus E(t)"})},
                     coords={"t": ("t", t, {"units": "s", "long_name": "time"})})
-    write_dataset(ds, path, title=f"vcor material {name} (config materials block)",
-                  extra_attrs={"material": json.dumps(mat.to_dict()), "spec": json.dumps(spec, sort_keys=True)},
+    attrs = {"material": json.dumps(mat.to_dict()), "spec": json.dumps(spec, sort_keys=True)}
+    shift = shift_function(spec, name)
+    if shift is not None:
+        attrs["shift"] = json.dumps(shift.to_dict())
+    write_dataset(ds, path, title=f"vcor material {name} (config materials block)", extra_attrs=attrs,
                   command="vcor.material_specs.write_material (deterministic: no time stamp)", timestamp=False)

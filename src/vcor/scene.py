@@ -32,6 +32,7 @@ __all__ = [
     "build_point",
     "canon",
     "check_material_name",
+    "check_temperature_axis",
     "material_params",
     "resolve_material",
     "scene_axes",
@@ -59,6 +60,7 @@ AXIS_UNITS = {
     "E_inf": ("Pa", "rubbery modulus"),
     "b1": ("s-1/2", "CERF rate parameter"),
     "tau": ("s", "retardation time"),
+    "T": ("degC", "temperature (materials with a shift function: E(t; T) = E(t / a_T))"),
 }
 
 
@@ -197,6 +199,28 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
                 raise ValueError(f"{where}: point {point}: {exc}") from None
 
 
+def check_temperature_axis(name: str, scene: dict, config_materials: dict) -> None:
+    """A grid axis T (deg C) needs every material of the scene to have a shift function (a config
+    material with ``shift:``), valid at the axis' ends; ValueError naming the key otherwise."""
+    from .material_specs import shift_function
+
+    grid = scene.get("grid") or {}
+    if "T" not in grid:
+        return
+    temps = axis_values(grid["T"])
+    for mat in scene["materials"]:
+        spec = config_materials.get(mat)
+        shift = shift_function(spec, mat) if spec else None
+        if shift is None:
+            raise ValueError(f"scenes.{name}.grid.T: material {mat!r} has no shift function (a temperature axis "
+                             f"needs materials.{mat}.shift in the config)")
+        for T in (temps[0], temps[-1]):
+            try:
+                shift.log_aT(T)
+            except ValueError as exc:
+                raise ValueError(f"scenes.{name}.grid.T: material {mat!r}: {exc}") from None
+
+
 def build_point(point, settings, material_dir):
     """(material, v0, geometry) of one point: grid axes are v0, geometry keywords or material
     parameters; ties set a material parameter from an axis."""
@@ -204,7 +228,7 @@ def build_point(point, settings, material_dir):
     overrides = {}
     v0 = None
     for key, value in point.items():
-        if key in ("material", "material_id"):
+        if key in ("material", "material_id", "T"):
             continue
         if key == "v0":
             v0 = float(value)
@@ -214,7 +238,22 @@ def build_point(point, settings, material_dir):
             overrides[key] = value
     for target, spec in settings["tie"].items():
         overrides[target] = float(spec["ratio"]) * float(point[spec["to"]])
-    return resolve_material(point["material"], overrides, material_dir), v0, geometry
+    material = resolve_material(point["material"], overrides, material_dir)
+    if "T" in point:
+        material = at_temperature(point["material"], material, float(point["T"]), material_dir)
+    return material, v0, geometry
+
+
+def at_temperature(name, material, T, material_dir):
+    """``material`` at temperature T (deg C) through the shift function stored with it."""
+    from .dma import shift_from_file, shifted
+
+    path = Path(material_dir) / f"{name}.nc"
+    shift = shift_from_file(path) if path.exists() else None
+    if shift is None:
+        raise ValueError(f"material {name!r} has no shift function: a temperature axis T needs one "
+                         f"(materials.{name}.shift in the config)")
+    return shifted(material, shift.log_aT(T))
 
 
 def material_params(names, material_dir="results/materials") -> dict:

@@ -56,9 +56,12 @@ def material_identity(name: str, *, fits: dict | None = None, material_dir="resu
 
         return content_hash({"fit": fit_identity(fits[name])})
     if materials and name in materials:
-        from .material_specs import from_spec
+        from .material_specs import from_spec, shift_function
 
-        return content_hash({"material": from_spec(materials[name], name=name, base_dir=base_dir).to_dict()})
+        spec = materials[name]
+        shift = shift_function(spec, name)
+        return content_hash({"material": from_spec(spec, name=name, base_dir=base_dir).to_dict(),
+                             "shift": shift.to_dict() if shift else None})
     return content_hash({"material": resolve_material(name, material_dir=material_dir).to_dict()})
 
 

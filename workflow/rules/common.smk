@@ -65,6 +65,7 @@ def _check_scenes():
         need = vplots.needs(figures)
         if "grid" in scene:
             vscene.validate_scene(name, scene, MATERIAL_DIR, FILE_MATERIALS)
+            vscene.check_temperature_axis(name, scene, CONFIG_MATERIALS)
         if "sweep" in need and "grid" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
