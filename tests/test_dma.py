@@ -107,3 +107,31 @@ def test_pyvisco_raw_sets_superposed_both_ways():
     fit = dma.fit_master(ours)
     print(f"master-curve Prony fit ({len(fit.material.E)} terms): {fit.metrics}")
     assert fit.metrics["abs_E_star_rms"] < 0.1
+
+
+def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
+    """A fit to raw DMA sets in the config (superposition, WLF, Prony master curve): the material
+    file carries its shift function, and a scene sweeps T with it."""
+    import xarray as xr
+
+    from test_workflow import make_project, smk
+
+    cfg = {"shard_size": 100, "material_dir": "results/materials",
+           "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": T_REF}}},
+           "scenes": {"temp": {"materials": ["measured"], "grid": {"v0": [1.0], "T": [0.0, 20.0, 40.0]},
+                               "geometry": {"rigid": True}}}}
+    path = make_project(tmp_path, cfg)
+    (path / "data").mkdir()
+    _synthetic(path / "data/dma.csv", 1)
+    smk(path, "-j2")
+    nc = path / "results/materials/measured.nc"
+    shift = dma.shift_from_file(nc)
+    assert shift.model == "wlf" and abs(shift.C1 - C1) < 0.5
+    mat = vcor.materials.from_file(nc)
+    ds = xr.open_dataset(path / "results/temp/sweep.nc")
+    for T in (0.0, 20.0, 40.0):
+        want = vcor.simulate(dma.shifted(mat, shift.log_aT(T)), 1.0, method="adaptive", rigid=True).cor
+        assert ds["cor"].sel(material="measured", v0=1.0, T=T).item() == want
+        true = vcor.simulate(dma.shifted(TRUE, float(dma.wlf_log_aT(T, T_REF, C1, C2))), 1.0, method="adaptive",
+                             rigid=True).cor
+        assert abs(want / true - 1) <= 0.01

@@ -261,10 +261,11 @@ class Prony(Material):
         safe = np.where(x > 0.05, x, 1.0)
         closed = dt**2 * ((-np.expm1(-safe)) / safe**2 - np.exp(-safe) / safe - 0.5 * (-np.expm1(-safe)) / safe)
         series = np.zeros_like(x)
+        small = np.where(x > 0.05, 0.0, x)  # the series is used (and evaluated) only where x <= 0.05
         fact = 1.0
         for k in range(1, 16):
             fact *= k
-            series = series + (-x) ** k / fact * k / (2.0 * (k + 1) * (k + 2))
+            series = series + (-small) ** k / fact * k / (2.0 * (k + 1) * (k + 2))
         phi = np.where(x > 0.05, closed, dt**2 * series)
         return e * phi * np.exp(-np.multiply.outer(i, x))
 

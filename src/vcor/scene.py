@@ -199,9 +199,11 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
                 raise ValueError(f"{where}: point {point}: {exc}") from None
 
 
-def check_temperature_axis(name: str, scene: dict, config_materials: dict) -> None:
+def check_temperature_axis(name: str, scene: dict, config_materials: dict, fits: dict | None = None) -> None:
     """A grid axis T (deg C) needs every material of the scene to have a shift function (a config
-    material with ``shift:``), valid at the axis' ends; ValueError naming the key otherwise."""
+    material with ``shift:``, valid at the axis' ends, or a fit to raw multi-temperature data, whose
+    shift function is known only after the fit: a T outside its range is then that point's
+    invalid-input status); ValueError naming the key otherwise."""
     from .material_specs import shift_function
 
     grid = scene.get("grid") or {}
@@ -209,6 +211,8 @@ def check_temperature_axis(name: str, scene: dict, config_materials: dict) -> No
         return
     temps = axis_values(grid["T"])
     for mat in scene["materials"]:
+        if mat in (fits or {}) and "file" in ((fits[mat].get("data")) or {}):
+            continue
         spec = config_materials.get(mat)
         shift = shift_function(spec, mat) if spec else None
         if shift is None:

@@ -65,7 +65,7 @@ def _check_scenes():
         need = vplots.needs(figures)
         if "grid" in scene:
             vscene.validate_scene(name, scene, MATERIAL_DIR, FILE_MATERIALS)
-            vscene.check_temperature_axis(name, scene, CONFIG_MATERIALS)
+            vscene.check_temperature_axis(name, scene, CONFIG_MATERIALS, FITS)
         if "sweep" in need and "grid" not in scene:
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need a sweep: add scenes.{name}.grid"
@@ -194,6 +194,12 @@ def get_fitted_inputs(wildcards):
 
 def get_fit_spec(wildcards):
     return FITS[wildcards.material]
+
+
+def get_fit_data_files(wildcards):
+    """Measured data a fit reads (inputs: editing them refits)."""
+    d = FITS[wildcards.material].get("data") or {}
+    return [d[k] for k in ("file", "shift_file") if k in d]
 
 
 def get_material_spec(wildcards):

@@ -20,6 +20,8 @@ rule config_material:
 
 
 rule fit_material:
+    input:
+        get_fit_data_files,
     output:
         nc=f"{MATERIAL_DIR}/{{material}}.nc",
         table=f"{MATERIAL_DIR}/{{material}}.txt",

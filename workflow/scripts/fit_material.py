@@ -7,10 +7,10 @@ sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 from vcor import fit, io
 
 spec = snakemake.params.spec  # noqa: F821
-data = fit.data_from_spec(spec)
-result = fit.fit(spec, data)
+result, data, attrs = fit.run_fit(spec)
 print(f"fit {snakemake.wildcards.material}: {result.fit_time:.3f} s, {result.settings}", file=sys.stderr)  # noqa: F821
 ds = fit.result_dataset(result, data, spec)
+ds.attrs.update(attrs)
 io.write_dataset(ds, snakemake.output.nc, title=f"vcor fitted material {snakemake.wildcards.material}",  # noqa: F821
                  command="vcor.fit (deterministic: no time stamp)", timestamp=False)
 with open(snakemake.output.table, "w") as fh:  # noqa: F821
