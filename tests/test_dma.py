@@ -118,11 +118,12 @@ def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
     cfg = {"shard_size": 100, "material_dir": "results/materials",
            "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": T_REF}}},
            "scenes": {"temp": {"materials": ["measured"], "grid": {"v0": [1.0], "T": [0.0, 20.0, 40.0]},
-                               "geometry": {"rigid": True}}}}
+                               "geometry": {"rigid": True}, "figures": {"cor_temperature": {}}}}}
     path = make_project(tmp_path, cfg)
     (path / "data").mkdir()
     _synthetic(path / "data/dma.csv", 1)
     smk(path, "-j2")
+    assert (path / "results/temp/figures/cor_temperature.png").stat().st_size > 0
     nc = path / "results/materials/measured.nc"
     shift = dma.shift_from_file(nc)
     assert shift.model == "wlf" and abs(shift.C1 - C1) < 0.5

@@ -416,7 +416,29 @@ def json_materials(ds) -> dict:
     return json.loads(ds.attrs["materials"])
 
 
+def cor_temperature(sweep, opts):
+    """Issue 12: COR against temperature T (deg C), one line per material and impact speed v0
+    (the first value of any other axis); points not ok as red crosses."""
+    if "T" not in sweep.dims:
+        raise ValueError("figure cor_temperature needs a sweep with a temperature axis T (deg C)")
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
+    nbad = 0
+    others = [d for d in sweep["cor"].dims if d not in ("material", "T", "v0")]
+    for m in sweep["material"].values:
+        for v0 in sweep["v0"].values:
+            d = sweep.sel(material=m, v0=v0).isel({o: 0 for o in others})
+            ok = d["status"].values == 0
+            ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
+            nbad += _mark_failed(ax, d["T"].values, ok)
+    ax.set_xlabel("T [deg C]")
+    ax.set_ylabel("COR")
+    ax.set_title("COR against temperature" + (f" ({nbad} not ok)" if nbad else ""))
+    ax.legend(fontsize=8)
+    return fig
+
+
 FIGURES = {
+    "cor_temperature": (cor_temperature, ("sweep",)),
     "fig1": (fig1, ("sweep", "moduli")),
     "fig2": (fig2, ("histories",)),
     "fig3": (fig3, ("histories",)),
