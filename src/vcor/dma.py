@@ -22,6 +22,7 @@ material at T relaxes a_T times slower than at T_ref: E(t; T) = E_ref(t / a_T) (
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -30,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from . import materials as _materials
+from .checks import number, positive
 from .csvfile import cell_number, data_rows, read_rows
 
 __all__ = ["DMATable", "ShiftFunction", "Superposition", "arrhenius_fit", "fit_master", "read_table", "shift_from_file", "shifted", "superpose", "wlf_fit",
@@ -284,15 +286,9 @@ class ShiftFunction:
         missing = [k for k in need if k not in spec]
         if missing or extra:
             raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; takes {list(need)}")
-        values = {}
-        for k in need:
-            v = spec[k]
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or (k != "T_ref" and v <= 0):
-                rng = "a finite number, deg C" if k == "T_ref" else "in (0, inf)"
-                raise ValueError(f"{where}.{k} must be {rng}, got {v!r}")
-            values[k] = float(v)
-        if spec["model"] == "arrhenius" and values["T_ref"] <= -273.15:
-            raise ValueError(f"{where}.T_ref must be above absolute zero (-273.15 deg C), got {values['T_ref']}")
+        units = {"C1": "", "C2": "K", "E_a": "J/mol"}
+        values = {k: (number(f"{where}.T_ref", spec[k], -273.15, unit="deg C") if k == "T_ref"
+                      else positive(f"{where}.{k}", spec[k], unit=units[k])) for k in need}
         return cls(spec["model"], **values)
 
     def valid_range(self) -> tuple[float, float]:
@@ -317,7 +313,14 @@ class ShiftFunction:
 
 
 def shift_from_file(path):
-    """The ShiftFunction stored with a material file (attribute ``shift``), or None."""
+    """The ShiftFunction stored with a material file (attribute ``shift``), or None. Read once per
+    file version (cached on path and modification time: a sweep asks for it at every point)."""
+    path = Path(path)
+    return _shift_cached(str(path.resolve()), path.stat().st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=64)
+def _shift_cached(path: str, mtime_ns: int):
     import json
 
     import xarray as xr

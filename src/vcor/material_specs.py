@@ -27,10 +27,10 @@ a non-increasing E(t)).
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from . import materials as _materials
+from .checks import number, positive
 from .csvfile import cell_number, data_rows, read_rows
 
 __all__ = ["MODELS", "from_spec", "read_prony_csv", "shift_function", "write_material"]
@@ -46,18 +46,10 @@ MODELS = {
 }
 
 
-def _number(where, value, unit, *, positive=False):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{where} must be a finite number ({unit}), got {value!r}")
-    if positive and not value > 0:
-        raise ValueError(f"{where} must be in (0, inf) {unit}, got {value!r}")
-    return float(value)
-
-
 def _numbers(where, values, unit):
     if not isinstance(values, (list, tuple)) or not values:
         raise ValueError(f"{where} must be a non-empty list of numbers ({unit}), got {values!r}")
-    return [_number(f"{where}[{i}]", v, unit) for i, v in enumerate(values)]
+    return [number(f"{where}[{i}]", v, unit=unit) for i, v in enumerate(values)]
 
 
 def read_prony_csv(path) -> dict:
@@ -100,7 +92,7 @@ def _prony(where, spec, base_dir):
     if "tau" in table:
         tau = _numbers(f"{where}.tau", table["tau"], "s")
         for i, t in enumerate(tau):
-            _number(f"{where}.tau[{i}]", t, "s", positive=True)
+            positive(f"{where}.tau[{i}]", t, unit="s")
         beta = [1.0 / t for t in tau]
     elif "beta" in table:
         beta = _numbers(f"{where}.beta", table["beta"], "1/s")
@@ -110,7 +102,7 @@ def _prony(where, spec, base_dir):
         if "E_0" not in spec or "E_inf" in spec or "E" in table:
             raise ValueError(f"{where}: the normalised form needs E_0 (instantaneous modulus, Pa) and g, "
                              f"without E_inf or E")
-        e0 = _number(f"{where}.E_0", spec["E_0"], "Pa", positive=True)
+        e0 = positive(f"{where}.E_0", spec["E_0"], unit="Pa")
         g = _numbers(f"{where}.g", table["g"], "1")
         if any(x < 0 for x in g) or not sum(g) < 1:
             raise ValueError(f"{where}.g: relative moduli must be >= 0 with sum < 1 (the long-term modulus "
@@ -121,7 +113,7 @@ def _prony(where, spec, base_dir):
             raise ValueError(f"{where}.E_0 belongs to the normalised form (with g); with moduli E give E_inf")
         if "E" not in table or "E_inf" not in spec:
             raise ValueError(f"{where}: a prony material needs E_inf (Pa) and moduli E (Pa), or E_0 and g")
-        e_inf = _number(f"{where}.E_inf", spec["E_inf"], "Pa")
+        e_inf = number(f"{where}.E_inf", spec["E_inf"], unit="Pa")
         moduli = _numbers(f"{where}.E", table["E"], "Pa")
     if len(moduli) != len(beta):
         raise ValueError(f"{where}: {len(moduli)} moduli but {len(beta)} relaxation times/rates")
@@ -155,7 +147,7 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".") -> _materials
     spec = {k: v for k, v in spec.items() if k != "shift"}
     if model == "prony":
         return _prony(where, spec, base_dir)
-    params = {k: _number(f"{where}.{k}", spec[k], "SI") for k in required}
+    params = {k: number(f"{where}.{k}", spec[k], unit="(SI)") for k in required}
     cls = {"sls": _materials.SLS, "fractional": _materials.FractionalPower, "cerf": _materials.Cerf,
            "kelvin-voigt": _materials.KelvinVoigt, "elastic": _materials.Elastic}[model]
     try:

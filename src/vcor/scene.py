@@ -16,6 +16,7 @@ This module validates scenes and builds points; shard identity and planning are 
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from pathlib import Path
@@ -102,6 +103,13 @@ def check_material_name(name: str, fitted=(), where: str = "materials") -> None:
                          f"fitted {sorted(fitted)}")
 
 
+@functools.lru_cache(maxsize=64)
+def _file_material(path: str, mtime_ns: int):
+    """A fitted or config material file, read once per file version (a sweep resolves it at every
+    point; materials are immutable)."""
+    return _materials.from_file(path)
+
+
 def resolve_material(name: str, overrides: dict | None = None, material_dir: str | Path = "results/materials"):
     """Material by preset name or fitted file ``<material_dir>/<name>.nc``, with parameter overrides."""
     if name in _materials.PRESETS:
@@ -112,7 +120,7 @@ def resolve_material(name: str, overrides: dict | None = None, material_dir: str
             raise ValueError(
                 f"unknown material {name!r}: not a preset ({sorted(_materials.PRESETS)}) and no fitted file {path}"
             )
-        mat = _materials.from_file(path)
+        mat = _file_material(str(path.resolve()), path.stat().st_mtime_ns)
     if overrides:
         d = mat.to_dict()
         for key, value in overrides.items():

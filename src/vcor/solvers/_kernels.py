@@ -386,6 +386,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
                                               0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h)
         # local error estimate and step control
+        est = -1.0
         if not frozen and ok and n >= 2 and math.isfinite(gn):
             tol_abs = step_tol * min(v0, abs(gn) + abs(sn) * inv_tc)
             dd = ((gn - g[n - 1]) / h - (g[n - 1] - g[n - 2]) / hp) / (h + hp)
@@ -436,10 +437,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         if state[1] >= 0:
             frozen = True
             state[7] = 1
-        elif not frozen and n >= 2:
-            # grow: est computed above for this accepted step
-            dd = ((gn - g[n - 1]) / h - (g[n - 1] - g[n - 2]) / hp) / (h + hp)
-            est = h * h * abs(dd) / 6.0
+        elif est >= 0.0:
+            # grow, from the estimate of this accepted step
             up = 0
             while up < 2 and est * 4.0 ** (up + 1) < 0.5 * tol_abs and l + up + 1 <= lev_max:
                 up += 1
