@@ -137,6 +137,8 @@ class Superposition:
     source: str
     overlap_rms: float = math.nan
     notes: list = field(default_factory=list)
+    #: temperature (deg C) of the set of each master-curve point (None: a master curve as given)
+    T_point: np.ndarray | None = None
 
 
 def _sets(raw: DMATable):
@@ -202,11 +204,12 @@ def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None) -> Su
         # log a_T(k) = cum_k + const; zero at T_ref (interpolated)
         log_aT = cum - np.interp(T_ref, T, cum)
         source = "found from the data (E' overlaps of adjacent sets)"
-    fr, es, el, mism = [], [], [], []
+    fr, es, el, tp, mism = [], [], [], [], []
     for (t, f, e1, e2), la in zip(sets, log_aT):
         fr.append(f * 10.0**la)
         es.append(e1)
         el.append(e2)
+        tp.append(np.full(f.size, t))
     for (fa, ea), (fb, eb) in itertools.pairwise(zip(fr, es)):
         lo, hi = max(fa.min(), fb.min()), min(fa.max(), fb.max())
         if lo < hi:
@@ -214,9 +217,9 @@ def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None) -> Su
             mism.append(np.interp(np.log10(g), np.log10(fa), np.log10(ea))
                         - np.interp(np.log10(g), np.log10(fb), np.log10(eb)))
     rms = float(np.sqrt(np.mean(np.concatenate(mism) ** 2))) if mism else math.nan
-    fr, es, el = map(np.concatenate, (fr, es, el))
-    order = np.argsort(fr)
-    return Superposition(T, log_aT, float(T_ref), fr[order], es[order], el[order], source, rms, notes)
+    fr, es, el, tp = map(np.concatenate, (fr, es, el, tp))
+    order = np.argsort(fr, kind="stable")
+    return Superposition(T, log_aT, float(T_ref), fr[order], es[order], el[order], source, rms, notes, tp[order])
 
 
 def wlf_fit(T, log_aT, T_ref):

@@ -416,29 +416,121 @@ def json_materials(ds) -> dict:
     return json.loads(ds.attrs["materials"])
 
 
+def _fixed_axes(sweep, opts, free):
+    """Selection of the axes a line figure does not draw: an option naming the axis picks its value
+    (e.g. ``nu: 0.5``), else the first value. Returns (selection dict, label suffix)."""
+    sel = {}
+    for d in sweep["cor"].dims:
+        if d in free:
+            continue
+        if d in opts:
+            values = sweep[d].values
+            if opts[d] not in values:
+                raise ValueError(f"figure option {d}: {opts[d]!r} is not on the sweep's {d} axis {list(values)}")
+            sel[d] = opts[d]
+        else:
+            sel[d] = sweep[d].values[0]
+    units = {d: sweep[d].attrs.get("units", "") for d in sel}
+    text = ", ".join(f"{d} = {v:g} {units[d] if units[d] != '1' else ''}".rstrip() for d, v in sel.items())
+    return sel, (f" ({text})" if text else "")
+
+
 def cor_temperature(sweep, opts):
-    """Issue 12: COR against temperature T (deg C), one line per material and impact speed v0
-    (the first value of any other axis); points not ok as red crosses."""
+    """Issue 12: COR against temperature T (deg C), one line per material and impact speed v0; any other
+    axis at the value the options name (e.g. ``nu: 0.5``) or its first; points not ok as red crosses."""
     if "T" not in sweep.dims:
         raise ValueError("figure cor_temperature needs a sweep with a temperature axis T (deg C)")
     fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
     nbad = 0
-    others = [d for d in sweep["cor"].dims if d not in ("material", "T", "v0")]
+    sel, fixed = _fixed_axes(sweep, opts, ("material", "T", "v0"))
+    v0s = opts.get("v0s", list(sweep["v0"].values))
     for m in sweep["material"].values:
-        for v0 in sweep["v0"].values:
-            d = sweep.sel(material=m, v0=v0).isel({o: 0 for o in others})
+        for v0 in v0s:
+            d = sweep.sel(material=m, v0=v0, **sel)
             ok = d["status"].values == 0
             ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
             nbad += _mark_failed(ax, d["T"].values, ok)
     ax.set_xlabel("T [deg C]")
     ax.set_ylabel("COR")
-    ax.set_title("COR against temperature" + (f" ({nbad} not ok)" if nbad else ""))
-    ax.legend(fontsize=8)
+    ax.set_title("COR against temperature" + fixed + (f", {nbad} not ok" if nbad else ""), fontsize=9)
+    ax.legend(fontsize=7)
+    return fig
+
+
+def cor_v0_temperature(sweep, opts):
+    """Issue 12: COR against v0 (m/s), one line per temperature (option ``T``: a list of values on the
+    sweep's T axis; default: five spread over it), one panel per material; other axes as in
+    :func:`cor_temperature`."""
+    if "T" not in sweep.dims:
+        raise ValueError("figure cor_v0_temperature needs a sweep with a temperature axis T (deg C)")
+    temps = sweep["T"].values
+    chosen = opts.get("T", list(temps[np.unique(np.linspace(0, temps.size - 1, min(5, temps.size)).round().astype(int))]))
+    missing = [t for t in chosen if t not in temps]
+    if missing:
+        raise ValueError(f"figure option T: {missing} not on the sweep's T axis {list(temps)}")
+    sel, fixed = _fixed_axes(sweep, {k: v for k, v in opts.items() if k != "T"}, ("material", "T", "v0"))
+    mats = sweep["material"].values
+    fig, axes = plt.subplots(1, len(mats), figsize=(5.0 * len(mats), 4.2), layout="constrained", squeeze=False)
+    colors = plt.cm.coolwarm(np.linspace(0, 1, len(chosen)))
+    for ax, m in zip(axes[0], mats):
+        nbad = 0
+        for c, t in zip(colors, chosen):
+            d = sweep.sel(material=m, T=t, **sel)
+            ok = d["status"].values == 0
+            ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, color=c, label=f"T = {t:g} deg C")
+            nbad += _mark_failed(ax, d["v0"].values, ok)
+        ax.set_xscale("log")
+        ax.set_xlabel("v0 [m/s]")
+        ax.set_ylabel("COR")
+        ax.set_title(f"{m}" + (f" ({nbad} not ok)" if nbad else ""), fontsize=9)
+        ax.legend(fontsize=7)
+    fig.suptitle("COR against impact speed at several temperatures" + fixed, fontsize=10)
+    return fig
+
+
+def master_curve(fits, opts):
+    """Issue 12: measured-data fits' master curves at T_ref, a column per fit: the shifted data (E', E''
+    coloured by the temperature of their set) and the Prony fit, and tan delta, against reduced
+    frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta."""
+    import json
+
+    fig, axes = plt.subplots(2, len(fits), figsize=(5.5 * len(fits), 7.0), layout="constrained", sharex="col",
+                             squeeze=False)
+    for (ax1, ax2), fit in zip(axes.T, fits):
+        f = fit["omega"].values / (2 * np.pi)
+        shift = json.loads(fit.attrs.get("shift", "{}"))
+        c = fit["T_set"].values if "T_set" in fit else np.zeros(f.size)
+        for var, marker, sym, style in (("storage", "o", "E'", "k-"), ("loss", "s", "E''", "k--")):
+            sc = ax1.scatter(f, fit[f"{var}_data"].values, c=c, cmap="coolwarm", s=5, marker=marker,
+                             label=f"{sym} data")
+            ax1.plot(f, fit[f"{var}_fit"].values, style, lw=1, label=f"{sym} Prony fit")
+        if "T_set" in fit:
+            fig.colorbar(sc, ax=ax1, label="T of the set [deg C]")
+        ax1.set_xscale("log")
+        ax1.set_yscale("log")
+        ax1.set_ylabel("modulus [Pa]")
+        ax1.legend(fontsize=7)
+        ax2.scatter(f, fit["loss_data"].values / fit["storage_data"].values, c=c, cmap="coolwarm", s=5,
+                    label="tan delta data")
+        ax2.plot(f, fit["loss_fit"].values / fit["storage_fit"].values, "k-", lw=1, label="tan delta fit")
+        ax2.set_yscale("log")
+        ax2.set_xlabel("reduced frequency f a_T [Hz]")
+        ax2.set_ylabel("tan delta")
+        ax2.legend(fontsize=7)
+        met = json.loads(fit.attrs.get("metrics", "{}"))
+        name = json.loads(fit.attrs.get("fit_spec", "{}")).get("data", {}).get("shift_file", "shifts from the data")
+        title = f"{fit.attrs.get('data', '')}\nT_ref = {shift.get('T_ref', '?')} deg C; {name}"
+        title += "\nrms relative error: " + ", ".join(
+            f"{lab} {100 * met[k]:.1f} %" for lab, k in (("E'", "storage_rms"), ("E''", "loss_rms"),
+                                                        ("tan delta", "tan_delta_rms")) if k in met)
+        ax1.set_title(title, fontsize=8)
     return fig
 
 
 FIGURES = {
     "cor_temperature": (cor_temperature, ("sweep",)),
+    "cor_v0_temperature": (cor_v0_temperature, ("sweep",)),
+    "master_curve": (master_curve, ("material_fit",)),
     "fig1": (fig1, ("sweep", "moduli")),
     "fig2": (fig2, ("histories",)),
     "fig3": (fig3, ("histories",)),
@@ -455,6 +547,10 @@ FIGURES = {
     "work_precision": (work_precision, ("convergence",)),
     "stability_map": (stability_map, ("sweep",)),
 }
+
+
+#: figures that need a grid axis besides v0
+NEEDS_AXIS = {"cor_temperature": "T", "cor_v0_temperature": "T"}
 
 
 def needs(figures) -> set[str]:

@@ -86,6 +86,21 @@ def _check_scenes():
             raise ValueError(
                 f"config.yaml: scenes.{name}.figures: {sorted(figures)} need scenes.{name}.histories"
             )
+        for fig, opts in figures.items():
+            axis = vplots.NEEDS_AXIS.get(fig)
+            if axis and axis not in scene.get("grid", {}):
+                raise ValueError(
+                    f"config.yaml: scenes.{name}.figures.{fig} needs a sweep with a "
+                    f"{'temperature axis T' if axis == 'T' else 'grid axis ' + axis}: add scenes.{name}.grid.{axis}"
+                )
+            fits = opts.get("materials")
+            if "material_fit" in vplots.FIGURES[fig][1] and (
+                not isinstance(fits, list) or not fits or not set(fits) <= FITTED
+            ):
+                raise ValueError(
+                    f"config.yaml: scenes.{name}.figures.{fig}.materials must be a list of fits "
+                    f"(of {sorted(FITTED)}), got {fits!r}"
+                )
         for mat, method in scene.get("histories", {}).get("runs", []):
             if method not in METHODS or method == "paper":
                 raise ValueError(
@@ -227,7 +242,15 @@ def get_moduli_materials(wildcards):
 
 def get_figure_inputs(wildcards):
     need = vplots.FIGURES[wildcards.fig][1]
-    return {n: f"results/{wildcards.scene}/{n}.nc" for n in need}
+    fits = get_figure_options(wildcards).get("materials", [])
+    return {
+        n: (
+            [f"{MATERIAL_DIR}/{m}.nc" for m in fits]
+            if n == "material_fit"
+            else f"results/{wildcards.scene}/{n}.nc"
+        )
+        for n in need
+    }
 
 
 def get_figure_options(wildcards):

@@ -9,7 +9,9 @@ import xarray as xr
 from vcor import plots
 
 fn, needs = plots.FIGURES[snakemake.wildcards.fig]  # noqa: F821
-data = [xr.load_dataset(snakemake.input[n]) for n in needs]  # noqa: F821
+# a need is one file, or a list of files (master_curve: one fit per column)
+files = [snakemake.input[n] for n in needs]  # noqa: F821
+data = [xr.load_dataset(f) if isinstance(f, str) else [xr.load_dataset(x) for x in f] for f in files]
 fig = fn(*data, dict(snakemake.params.options))  # noqa: F821
 fig.savefig(snakemake.output.png, dpi=130)  # noqa: F821
 fig.savefig(snakemake.output.pdf, metadata={"CreationDate": None})  # noqa: F821
