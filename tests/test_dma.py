@@ -225,7 +225,7 @@ def test_pyvisco_loss_peak_temperature(pyvisco_fits):
             r = vcor.simulate(dma.shifted(mat, shift.log_aT(100.0)), v0, method="adaptive", nu=0.5, r=0.01, case=3)
             target = math.log10(f_peak * 2 * r.t0)
             lo = shift.valid_range()[0] + 1e-6
-            T_star = brentq(lambda T: shift.log_aT(T) - target, max(lo, -50.0), 400.0)
+            T_star = brentq(lambda T, s=shift, y=target: s.log_aT(T) - y, max(lo, -50.0), 400.0)
             stars.append(T_star)
             print(f"{name:9s} {f_peak:18.3g}  {v0:8g}  {1e6 * r.t0:7.0f}  {T_star:10.1f}")
         assert stars[0] >= 90.0 and stars[1] > stars[0]
