@@ -123,7 +123,7 @@ def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
                                "figures": {"cor_temperature": {}, "cor_v0_temperature": {"T": [0.0, 40.0]},
                                            "master_curve": {"materials": ["measured"]}}}}}
     path = make_project(tmp_path, cfg)
-    (path / "data").mkdir()
+    (path / "data").mkdir(exist_ok=True)
     _synthetic(path / "data/dma.csv", 1)
     smk(path, "-j2")
     for fig in ("cor_temperature", "cor_v0_temperature", "master_curve"):
@@ -153,15 +153,22 @@ def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
 def pyvisco_fits():
     """The default scene's two fits of pyvisco's raw data (T_ref = -5 deg C): shifts found from the
     data, and pyvisco's shipped shift factors."""
+    import json
+
     from vcor import fit
 
+    class Fits(dict):
+        residuals: dict
+        T: list
+
     data = {"file": str(DATA / "freq_user_raw.csv"), "T_ref": -5}
-    out = {}
+    out = Fits()
+    out.residuals = {}
     for name, extra in (("ours", {}), ("pyvisco", {"shift_file": str(DATA / "freq_user_master__shift_factors.csv")})):
         result, _, attrs = fit.run_fit({"model": "prony", "data": {**data, **extra}})
-        import json
-
         out[name] = (result.material, dma.ShiftFunction.from_spec(json.loads(attrs["shift"])), result.metrics)
+        sup = json.loads(attrs["superposition"])
+        out.residuals[name], out.T = sup["shift_fit_residual"], sup["T_degC"]
     return out
 
 
@@ -201,11 +208,34 @@ def test_pyvisco_cor_against_temperature(pyvisco_fits):
                 assert rise < 0.01, (name, nu, v0, rise)
                 ripple[name] = max(ripple.get(name, 0.0), rise)
             assert np.all(cor[name, nu, 10.0] < cor[name, nu, 1.0])
-        for v0 in (1.0, 10.0):
-            assert np.max(np.abs(cor[name, 0.5, v0] - cor[name, 0.35, v0])) < 0.01
+        dnu = max(np.max(np.abs(cor[name, 0.5, v0] - cor[name, 0.35, v0])) for v0 in (1.0, 10.0))
+        print(f"{name}: largest COR change nu 0.35 -> 0.5: {dnu:.4f}")
+        assert dnu < 0.01
         print(f"{name}: largest COR rise between 5 K neighbours, -20..90 deg C (fit ripple): {ripple[name]:.4f}")
         print(f"{name}: t0 at 100 deg C, nu = 0.5: {1e6 * cor[name, 't0', 1.0]:.0f} us (1 m/s), "
               f"{1e6 * cor[name, 't0', 10.0]:.0f} us (10 m/s)")
+
+
+    mid = slice(temps.index(-20), temps.index(60) + 1)
+    for v0 in (1.0, 10.0):
+        d = np.abs(cor["ours", 0.5, v0] - cor["pyvisco", 0.5, v0])
+        print(f"v0 = {v0:g} m/s: |COR ours - COR pyvisco's shifts| <= {d[mid].max():.4f} on -20..60 deg C, "
+              f"{d.max():.4f} overall; COR below -20 deg C in [{cor['ours', 0.5, v0][:mid.start].min():.3f}, "
+              f"{cor['ours', 0.5, v0][:mid.start].max():.3f}] (ours)")
+        assert d[mid].max() < 0.01
+
+
+def test_pyvisco_fit_report(pyvisco_fits):
+    """README: the two fits' master-curve errors (E', E'', tan delta) and WLF functions with their
+    residuals against the per-set shift factors."""
+    print()
+    for name, (mat, shift, met) in pyvisco_fits.items():
+        res = np.asarray(pyvisco_fits.residuals[name])
+        print(f"{name:8s} {len(mat.E)} terms; rms/worst E' {met['storage_rms']:.3f}/{met['storage_max']:.3f}, "
+              f"E'' {met['loss_rms']:.3f}/{met['loss_max']:.3f}, tan delta {met['tan_delta_rms']:.3f}/"
+              f"{met['tan_delta_max']:.3f}; WLF C1 {shift.C1:.1f}, C2 {shift.C2:.0f} K, largest |residual| "
+              f"{np.max(np.abs(res)):.2f} (at {pyvisco_fits.T[int(np.argmax(np.abs(res)))]:.0f} deg C)")
+        assert met["storage_rms"] < 0.25 and met["tan_delta_rms"] < 0.3
 
 
 def test_pyvisco_loss_peak_temperature(pyvisco_fits):

@@ -112,7 +112,7 @@ CONFIG = {
 
 def test_workflow_uses_config_materials_like_presets(tmp_path):
     path = make_project(tmp_path, CONFIG)
-    (path / "data").mkdir()
+    (path / "data").mkdir(exist_ok=True)
     (path / "data/prony3.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
     smk(path, "-j2")
     ds = xr.open_dataset(path / "results/own/sweep.nc")

@@ -50,7 +50,7 @@ TINY = {
 
 
 def make_project(tmp_path, config):
-    for name in ("Snakefile", "workflow"):
+    for name in ("Snakefile", "workflow", "data"):
         src = ROOT / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, tmp_path / name)
     (tmp_path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))

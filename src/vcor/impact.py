@@ -48,7 +48,10 @@ GEOMETRY_DEFAULTS = {
     "case": 3,
     "rigid": False,  # rigid, immovable target: alpha = 0
     "E_plate": 200e9,  # case 4 only: elastic plate modulus, Pa
-    "nu_plate": 0.3,  # case 4 only
+    "nu_plate": 0.3,  # case 4, and the plate of plate_material
+    # the plate's own material when it differs from the contact modulus (vcor.bodies: Eq. 1 with two
+    # deformable bodies); the plate's plane-strain modulus is then E_b(t) / (1 - nu_plate^2)
+    "plate_material": None,
 }
 
 
@@ -65,6 +68,7 @@ class Geometry:
     rigid: bool = False
     E_plate: float = GEOMETRY_DEFAULTS["E_plate"]
     nu_plate: float = GEOMETRY_DEFAULTS["nu_plate"]
+    plate_material: _materials.Material | None = None
 
     def __post_init__(self):
         number("r", self.r, 0, math.inf, unit="m")
@@ -80,6 +84,12 @@ class Geometry:
             raise ValueError(f"case must be one of 1, 2, 3, 4, got {self.case!r}")
         if not isinstance(self.rigid, (bool, np.bool_)):
             raise ValueError(f"rigid must be true or false, got {self.rigid!r}")
+        if self.plate_material is not None:
+            if not isinstance(self.plate_material, _materials.Material) or self.plate_material.viscosity > 0:
+                raise ValueError(f"plate_material must be a material without a Dirac (Kelvin-Voigt) term, "
+                                 f"got {self.plate_material!r}")
+            if self.case != 3:
+                raise ValueError(f"plate_material goes with case 3 (vcor.bodies), got case {self.case}")
 
     @property
     def half_thickness(self) -> float:
@@ -152,6 +162,8 @@ class Impact:
         t = np.asarray(t, dtype=float)
         if g.case == 4:
             return np.full_like(t, g.E_plate / (1.0 - g.nu_plate**2))
+        if g.plate_material is not None:
+            return g.plate_material.relaxation_modulus(t) / (1.0 - g.nu_plate**2)
         return self.material.relaxation_modulus(t) / (1.0 - g.nu**2)
 
     def alpha(self, t):
@@ -169,7 +181,10 @@ class Impact:
         if g.rigid or g.case == 4:
             return np.zeros_like(t)
         eb = self._plate_modulus(t)
-        deb = self.material.relaxation_rate(t) / (1.0 - g.nu**2)
+        if g.plate_material is not None:
+            deb = g.plate_material.relaxation_rate(t) / (1.0 - g.nu_plate**2)
+        else:
+            deb = self.material.relaxation_rate(t) / (1.0 - g.nu**2)
         with np.errstate(divide="ignore", invalid="ignore"):
             out = -0.5 * self.mobility_scale * deb / eb**1.5
         return np.where(t > 0, out, 0.0)
@@ -183,7 +198,7 @@ class Impact:
         if g.case == 4:
             return float(self.alpha(t)), 0.0
         mat = self.material
-        if not mat.is_prony:
+        if not mat.is_prony or g.plate_material is not None:
             return float(self.alpha(t)), float(self.alpha_rate(t))
         e_inf, e, b = mat.prony_terms()
         c = 1.0 / (1.0 - g.nu**2)

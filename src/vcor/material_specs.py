@@ -123,9 +123,10 @@ def _prony(where, spec, base_dir):
         raise ValueError(f"{where}: {exc}") from None
 
 
-def from_spec(spec: dict, *, name: str = "material", base_dir=".") -> _materials.Material:
-    """A material from a config spec (module docstring); errors name ``materials.<name>.<key>``."""
-    where = f"materials.{name}"
+def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | None = None) -> _materials.Material:
+    """A material from a config spec (module docstring); errors name ``materials.<name>.<key>`` (or
+    ``<where>.<key>``: an inline material, e.g. a scene's sphere)."""
+    where = where or f"materials.{name}"
     if not isinstance(spec, dict):
         # a config value: reported as ValueError, like every bad input
         raise ValueError(f"{where} must be a mapping with 'model' and parameters, got {spec!r}")  # noqa: TRY004

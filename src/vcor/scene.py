@@ -7,6 +7,9 @@ A *scene* (as in ``config.yaml``) names materials, grid axes and solver settings
     tie: {alpha: {to: beta, ratio: 0.25}}  # alpha = 0.25 * beta at every point
     solver: {method: direct, steps_per_contact: 2000}   # vcor.options.SolverOptions (default: adaptive)
     geometry: {}                          # fixed geometry keywords (r, rho_a, rho_b, h, nu, case, rigid)
+    # or, instead of geometry, two bodies (vcor.bodies; the one without material takes the swept one):
+    sphere: {material: {model: elastic, E: 200.0e+9}, r: 0.01, rho: 7800, nu: 0.3}
+    plate: {h: 0.02, rho: 1100, nu: 0.5}
 
 Grid axes are ``v0`` (m/s), any geometry keyword, or any scalar parameter of the material
 (``Material.params()``: E_glassy, alpha, beta for ``sls``; E0, E1 for ``butyl-fc``; ...).
@@ -159,12 +162,33 @@ def solver_options_of(scene) -> SolverOptions:
 def settings_of(scene) -> dict:
     """Everything except the grid values and the materials that determines a point's result
     (solver options complete and canonical, as ``SolverOptions.to_dict()``)."""
-    return {
+    out = {
         "solver": solver_options_of(scene).to_dict(),
         "geometry": dict(scene.get("geometry") or {}),
         "tie": dict(scene.get("tie") or {}),
         "error_estimate": bool(scene.get("error_estimate", False)),
     }
+    if "sphere" in scene or "plate" in scene:
+        out["bodies"] = {k: dict(scene.get(k) or {}) for k in ("sphere", "plate")}
+    return out
+
+
+def _check_bodies(where, scene, axes):
+    """A scene with bodies: no case geometry, no geometry axes, one body takes the swept material, and a
+    method that can solve the combination (README, "Bodies")."""
+    if not ("sphere" in scene or "plate" in scene):
+        return
+    if scene.get("geometry"):
+        raise ValueError(f"{where}.geometry: a scene with sphere/plate bodies takes no geometry keywords "
+                         f"(they are the bodies' r, h, rho, nu), got {sorted(scene['geometry'])}")
+    geo_axes = sorted(set(axes) & set(GEOMETRY_DEFAULTS))
+    if geo_axes:
+        raise ValueError(f"{where}.grid: with sphere/plate bodies, geometry axes {geo_axes} are not available "
+                         f"(grid axes: v0, T and the swept material's parameters)")
+    specs = [scene.get(k) or {} for k in ("sphere", "plate")]
+    if all("material" in sp for sp in specs):
+        raise ValueError(f"{where}: both bodies name a material, so the scene's materials would not be used: "
+                         f"omit material in the body that takes them")
 
 
 def validate_scene(name: str, scene: dict, material_dir="results/materials", fitted=()) -> None:
@@ -192,6 +216,7 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
     for target, spec in tie.items():
         if spec["to"] not in axes:
             raise ValueError(f"{where}.tie.{target}: 'to' must name a grid axis, got {spec['to']!r}")
+    _check_bodies(where, scene, axes)
     settings = settings_of(scene)
     for mat in scene["materials"]:
         check_material_name(mat, fitted, f"{where}.materials")
@@ -205,6 +230,11 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
                 make_impact(material, v0, geometry)
             except ValueError as exc:
                 raise ValueError(f"{where}: point {point}: {exc}") from None
+            method = settings["solver"]["method"]
+            if _needs_direct(material, geometry) and method not in ("direct", "paper"):
+                raise ValueError(f"{where}.solver.method: {method!r} cannot solve two deformable bodies combined "
+                                 f"by Eq. 1 (contact modulus {material.kind!r}, a viscoelastic body on a "
+                                 f"deformable one): set solver: {{method: direct}}")
 
 
 def check_temperature_axis(name: str, scene: dict, config_materials: dict, fits: dict | None = None) -> None:
@@ -253,7 +283,20 @@ def build_point(point, settings, material_dir):
     material = resolve_material(point["material"], overrides, material_dir)
     if "T" in point:
         material = at_temperature(point["material"], material, float(point["T"]), material_dir)
+    if "bodies" in settings:
+        from .bodies import body_from_spec, impact_inputs
+
+        sphere = body_from_spec("sphere", settings["bodies"]["sphere"], swept=material)
+        plate = body_from_spec("plate", settings["bodies"]["plate"], swept=material)
+        material, geometry = impact_inputs(sphere, plate)
     return material, v0, geometry
+
+
+def _needs_direct(material, geometry) -> bool:
+    """A contact modulus only ``direct`` solves: Eq. 1's pointwise combination, or a viscoelastic plate
+    whose modulus differs from the contact modulus."""
+    plate = geometry.get("plate_material")
+    return material.kind == "eq1" or (plate is not None and not plate.is_elastic)
 
 
 def at_temperature(name, material, T, material_dir):

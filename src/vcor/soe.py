@@ -100,7 +100,9 @@ def _transient(material):
     if material.kind == "cerf":
         e1, b = material.E1, material.b1
         return (lambda t: e1 * erfcx(b * np.sqrt(t))), (lambda s: e1 * b / math.pi / (np.sqrt(s) * (s + b * b)))
-    raise ValueError(f"no SOE construction for material kind {material.kind!r}")
+    raise ValueError(f"no exponential-sum (SOE) construction for material kind {material.kind!r}"
+                     + (": the pointwise Eq. 1 combination of two bodies is solved by method 'direct'"
+                        if material.kind == "eq1" else ""))
 
 
 def soe(material, t_min: float, t_max: float, tol: float = 1e-10) -> SOE:

@@ -90,8 +90,12 @@ def _plate(impact):
     g = impact.geometry
     if g.rigid:
         return 0, 0.0, 0.0, 0.0
-    if g.case == 4:
+    if g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
         return 0, 0.0, 0.0, float(impact.alpha(0.0))
+    if g.plate_material is not None:
+        raise ValueError("method 'adaptive' carries the plate modulus on the contact kernel's exponentials; "
+                         "with a deformable sphere on a viscoelastic plate (vcor.bodies, Eq. 1) the plate's "
+                         "modulus differs from the contact modulus: use method 'direct'")
     return 1, impact.mobility_scale, 1.0 / (1.0 - g.nu**2), 0.0
 
 
