@@ -17,6 +17,7 @@ include: "workflow/rules/sweep.smk"
 include: "workflow/rules/spheres.smk"
 include: "workflow/rules/convergence.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/calibrate.smk"
 
 
 rule all:

@@ -47,10 +47,19 @@ def content_hash(obj, n: int = 12) -> str:
 
 
 def material_identity(name: str, *, fits: dict | None = None, material_dir="results/materials",
-                      materials: dict | None = None, base_dir=".") -> str:
+                      materials: dict | None = None, base_dir=".", calibrations: dict | None = None) -> str:
     """Identity of a material's content (see the module docstring); ``materials``: the config's
-    material specs (identity = the built material's parameters, so a CSV table's values count)."""
+    material specs (identity = the built material's parameters, so a CSV table's values count);
+    ``calibrations``: calibrated materials (identity = spec, data file, start material, code)."""
     fits = fits or {}
+    if calibrations and name in calibrations:
+        from .calibrate import calibration_identity
+
+        spec = calibrations[name]
+        start = spec.get("material")
+        start_id = (material_identity(start, fits=fits, material_dir=material_dir, materials=materials,
+                                      base_dir=base_dir) if isinstance(start, str) else None)
+        return content_hash({"calibration": calibration_identity(spec, base_dir, start_id)})
     if name in fits:
         from .fit import fit_identity
 

@@ -4,6 +4,7 @@ import re
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+import vcor.calibrate as vcalibrate
 import vcor.fit as vfit
 import vcor.material_specs as vspecs
 import vcor.materials as vmaterials
@@ -52,6 +53,36 @@ except ValueError as exc:
     raise WorkflowError(str(exc))
 # materials that live in MATERIAL_DIR: fitted ones and the config's own
 FILE_MATERIALS = FITTED | set(CONFIG_MATERIALS)
+# calibrations from measured COR (vcor.calibrate): results/calibrations/<name>.nc, and the calibrated
+# material in MATERIAL_DIR, usable by name like a fit
+CALIBRATIONS = config.get("calibrations") or {}
+
+
+def _check_calibrations():
+    for name, spec in CALIBRATIONS.items():
+        where = f"config.yaml: calibrations.{name}"
+        if not re.fullmatch(r"[A-Za-z0-9_.-]+", name):
+            raise ValueError(f"{where}: names may use letters, digits, ., - and _")
+        if name in vmaterials.PRESETS or name in FILE_MATERIALS:
+            raise ValueError(
+                f"{where}: the name is taken by a preset, a fit or a config material; choose another"
+            )
+        start = spec.get("material") if isinstance(spec, dict) else None
+        if isinstance(start, str) and start in CONFIG_MATERIALS:
+            vspecs.from_spec(CONFIG_MATERIALS[start], name=start, base_dir=".")
+        vcalibrate.check_spec(
+            spec,
+            where=where,
+            material_dir=MATERIAL_DIR,
+            pending=FITTED | set(CONFIG_MATERIALS) | set(CALIBRATIONS),
+        )
+
+
+try:
+    _check_calibrations()
+except ValueError as exc:
+    raise WorkflowError(str(exc))
+FILE_MATERIALS = FILE_MATERIALS | set(CALIBRATIONS)
 
 
 def _check_scenes():
@@ -135,7 +166,11 @@ def material_identities(scene):
     if scene not in _IDENTITIES:
         _IDENTITIES[scene] = {
             m: vshards.material_identity(
-                m, fits=FITS, material_dir=MATERIAL_DIR, materials=CONFIG_MATERIALS
+                m,
+                fits=FITS,
+                material_dir=MATERIAL_DIR,
+                materials=CONFIG_MATERIALS,
+                calibrations=CALIBRATIONS,
             )
             for m in SCENES[scene]["materials"]
         }
@@ -283,5 +318,27 @@ def scene_targets(scene):
     return out
 
 
+def get_calibration_spec(wildcards):
+    return CALIBRATIONS[wildcards.cal]
+
+
+def get_calibration_inputs(wildcards):
+    """The data file and a named start material's file (config, fitted or calibrated)."""
+    spec = CALIBRATIONS[wildcards.cal]
+    start = spec.get("material")
+    files = [spec["data"]]
+    if isinstance(start, str) and start in FILE_MATERIALS:
+        files.append(f"{MATERIAL_DIR}/{start}.nc")
+    return files
+
+
+def calibration_targets():
+    return [
+        f"results/calibrations/{c}.{ext}"
+        for c in CALIBRATIONS
+        for ext in ("nc", "png", "pdf")
+    ]
+
+
 def get_all_targets():
-    return [f"results/{s}/MANIFEST.txt" for s in SCENES]
+    return [f"results/{s}/MANIFEST.txt" for s in SCENES] + calibration_targets()

@@ -1,0 +1,480 @@
+"""Calibration from measured COR(v0): material parameters and their uncertainty (issue 13).
+
+A calibration (``calibrations.<name>`` in ``config.yaml``, or :func:`calibrate` from Python) fits
+free parameters of a material to COR data at several impact speeds with the forward model of a sweep
+(``vcor.simulate``, the sweep's default method unless ``solver`` says otherwise):
+
+* data: CSV ``v0,cor[,cor_std]`` (m/s, dimensionless; a units row ``m/s,-,-`` or ``cm/s`` is allowed);
+* free parameters: any scalar parameter of the material (``Material.params()``: E_glassy, alpha,
+  beta for sls; E0, E1 for fractional; ...), and for any material ``modulus_scale`` (all moduli times
+  a factor) and ``log_aT`` (the time scale: E(t) -> E(t / a_T), log10 a_T); each with bounds
+  ``[lo, hi]`` that contain its start value;
+* weighted least squares (``scipy.optimize.least_squares``, trust-region reflective, central
+  differences) on ln(p / p_start) for positive parameters (log_aT as it is), residual
+  (COR_model - COR) / cor_std (cor_std omitted: unweighted).
+
+Uncertainty (linearised at the estimate): J the Jacobian of the weighted residuals in the fitted
+coordinates, cov = s^2 (J^T J)^-1 with s^2 = RSS / (m - n) when the data carry no cor_std, and
+cov = (J^T J)^-1 when they do (the stated standard deviations are taken as known). The 95 % interval is
+x +- q sigma_x in the fitted coordinates (Student t with m - n degrees of freedom when s^2 is
+estimated, normal otherwise), mapped back (asymmetric for positive parameters); ``stderr`` is the
+delta-method standard error of the parameter itself. The band of the fitted curve propagates cov
+through the model's sensitivities on a grid of speeds.
+
+Identifiability: a parameter is reported as not identified (flag and note, in the dataset and the
+log) when the Jacobian is rank-deficient or ill-conditioned along a direction it takes part in
+(singular value below ``COND_LIMIT`` times the largest), when its estimate ends at a bound, or when
+its standard error exceeds a factor of 10 (sigma of ln p > ln 10). Such a result is not a confident
+estimate: its interval is reported as infinite.
+
+During the search, a trial point where the material refuses its parameters (e.g. an SLS with
+beta < alpha) returns a large residual so that the trust region rejects it; a trial point where the
+forward model does not end ``ok`` stops the calibration with the point's status and message.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import materials as _materials
+from .csvfile import cell_number, data_rows, read_rows
+
+__all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "calibration_identity",
+           "check_spec", "read_cor_data", "run_calibration", "scaled"]
+
+#: scale parameters every material has (besides its own scalar parameters)
+SCALE_PARAMS = ("modulus_scale", "log_aT")
+#: relative singular value below which a direction of the parameters is not identified
+COND_LIMIT = 1e-6
+#: a parameter whose 1-sigma uncertainty is more than this factor is reported as not identified
+FACTOR_LIMIT = 10.0
+#: keys of a calibration spec
+SPEC_KEYS = {"data", "material", "free", "geometry", "solver"}
+_UNITS = {"v0": {"m/s": 1.0, "cm/s": 0.01}, "cor": {"-": 1.0, "": 1.0, "1": 1.0},
+          "cor_std": {"-": 1.0, "": 1.0, "1": 1.0}}
+#: residual of a trial point the material refuses (large against any COR misfit)
+_REFUSED = 10.0
+
+
+@dataclass(frozen=True)
+class CorData:
+    """Measured COR: impact speeds ``v0`` (m/s), ``cor``, optional standard deviations ``cor_std``,
+    the file and the line of each point."""
+
+    v0: np.ndarray
+    cor: np.ndarray
+    cor_std: np.ndarray | None = None
+    path: str = "data"
+    lines: tuple = ()
+
+
+def read_cor_data(path) -> CorData:
+    """Read ``v0,cor[,cor_std]`` (module docstring); every error names the file, the line and the column:
+    a missing or unknown column, a non-numeric or non-finite cell (NaN), v0 <= 0, a COR outside (0, 1],
+    cor_std <= 0."""
+    rows = read_rows(path, "COR data file")
+    header = [c.strip() for c in rows[0]]
+    for col in ("v0", "cor"):
+        if col not in header:
+            raise ValueError(f"{path}, line 1: missing column {col!r} (columns: v0, cor, optional cor_std), "
+                             f"got {header}")
+    unknown = [c for c in header if c not in _UNITS]
+    if unknown:
+        raise ValueError(f"{path}, line 1, column {unknown[0]!r}: unknown column; allowed: v0, cor, cor_std")
+    scale, start = {c: 1.0 for c in header}, 1
+    if len(rows) > 1 and rows[1] and not _is_number(rows[1][0]):
+        for col, unit in zip(header, rows[1]):
+            unit = unit.strip()
+            if unit not in _UNITS[col]:
+                raise ValueError(f"{path}, line 2, column {col!r}: unknown unit {unit!r}; allowed: "
+                                 f"{sorted(u for u in _UNITS[col] if u)}")
+            scale[col] = _UNITS[col][unit]
+        start = 2
+    cols, lines = {c: [] for c in header}, []
+    for lineno, row in data_rows(path, rows, header, start):
+        for col, cell in zip(header, row):
+            value = cell_number(path, lineno, col, cell) * scale[col]
+            where = f"{path}, line {lineno}, column {col!r}"
+            if col == "v0" and not value > 0:
+                raise ValueError(f"{where}: impact speed must be > 0 m/s, got {cell.strip()}")
+            if col == "cor" and not 0 < value <= 1:
+                raise ValueError(f"{where}: a COR must be in (0, 1], got {cell.strip()}")
+            if col == "cor_std" and not value > 0:
+                raise ValueError(f"{where}: cor_std must be > 0, got {cell.strip()}")
+            cols[col].append(value)
+        lines.append(lineno)
+    if not lines:
+        raise ValueError(f"{path}: no data rows")
+    std = np.array(cols["cor_std"]) if "cor_std" in cols else None
+    return CorData(np.array(cols["v0"]), np.array(cols["cor"]), std, str(path), tuple(lines))
+
+
+def _is_number(cell) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def scaled(material, modulus_scale: float = 1.0, log_aT: float = 0.0):
+    """``material`` with every modulus times ``modulus_scale`` and time stretched by a_T = 10^log_aT:
+    E(t) -> modulus_scale E(t / a_T) (rates / a_T, relaxation times * a_T; the fractional E1 * sqrt(a_T),
+    CERF b1 / sqrt(a_T))."""
+    d = material.to_dict()
+    kind, s, a = d["kind"], float(modulus_scale), 10.0 ** float(log_aT)
+    if kind == "eq1":
+        raise ValueError("modulus_scale / log_aT: a two-body (Eq. 1) contact modulus is not calibrated here")
+    for key in ("E_glassy", "E_inf", "E", "E0", "E1"):
+        if key in d:
+            d[key] = [x * s for x in d[key]] if isinstance(d[key], list) else d[key] * s
+    for key in ("alpha", "beta"):
+        if key in d:
+            d[key] = [x / a for x in d[key]] if isinstance(d[key], list) else d[key] / a
+    if kind == "kelvin-voigt":
+        d["tau"] *= a
+    if kind == "fractional":
+        d["E1"] *= math.sqrt(a)
+    if kind == "cerf":
+        d["b1"] /= math.sqrt(a)
+    return _materials.from_dict(d)
+
+
+def _free_names(material) -> list[str]:
+    return [k for k, v in material.params().items() if not isinstance(v, (list, tuple))] + list(SCALE_PARAMS)
+
+
+def _check_free(material, free: dict, m: int, where: str = "free") -> tuple[list, np.ndarray, np.ndarray, np.ndarray]:
+    """(names, start values, lower, upper) of the free parameters, checked: known names, bounds
+    lo < hi (> 0 for positive parameters), start inside, no more parameters than data points."""
+    if not isinstance(free, dict) or not free:
+        raise ValueError(f"{where}: a mapping parameter -> [lower, upper] with at least one parameter, got {free!r}")
+    allowed = _free_names(material)
+    params = material.params()
+    names, start, lo, hi = [], [], [], []
+    for name, bounds in free.items():
+        if name not in allowed:
+            raise ValueError(f"{where}.{name}: not a free parameter of a {material.kind!r} material; allowed: {allowed}")
+        if not (isinstance(bounds, (list, tuple)) and len(bounds) == 2
+                and all(isinstance(b, (int, float)) and not isinstance(b, bool) and math.isfinite(b) for b in bounds)
+                and bounds[0] < bounds[1]):
+            raise ValueError(f"{where}.{name}: bounds must be [lower, upper], finite numbers, lower < upper; got {bounds!r}")
+        value = {"modulus_scale": 1.0, "log_aT": 0.0}.get(name, params.get(name))
+        if name != "log_aT" and bounds[0] <= 0:
+            raise ValueError(f"{where}.{name}: bounds of a positive parameter must be > 0 (fitted in log space), "
+                             f"got {bounds!r}")
+        if not bounds[0] <= value <= bounds[1]:
+            raise ValueError(f"{where}.{name}: the start value {value:g} is outside its bounds "
+                             f"[{bounds[0]:g}, {bounds[1]:g}]")
+        names.append(name)
+        start.append(float(value))
+        lo.append(float(bounds[0]))
+        hi.append(float(bounds[1]))
+    if m < len(names):
+        raise ValueError(f"{where}: {len(names)} free parameters but only {m} data points: at least as many points "
+                         f"as free parameters are needed")
+    return names, np.array(start), np.array(lo), np.array(hi)
+
+
+@dataclass
+class Calibration:
+    """Result of :func:`calibrate` (SI; module docstring for the statistics)."""
+
+    names: list
+    estimate: np.ndarray
+    stderr: np.ndarray
+    lower95: np.ndarray
+    upper95: np.ndarray
+    correlation: np.ndarray
+    identified: np.ndarray
+    notes: list
+    start: np.ndarray
+    bounds: np.ndarray
+    material: _materials.Material
+    data: CorData
+    cor_fit: np.ndarray
+    residual: np.ndarray
+    chi2: float
+    dof: int
+    sigma_known: bool
+    singular_values: np.ndarray
+    cov_x: np.ndarray
+    nfev: int
+    wall_time: float
+    message: str
+    geometry: dict = field(default_factory=dict)
+    options: dict = field(default_factory=dict)
+    base: _materials.Material | None = None
+
+    def report(self) -> str:
+        """A plain-text table of the estimates (for logs)."""
+        lines = [f"# calibration: {len(self.data.v0)} points, {len(self.names)} free, chi2 = {self.chi2:.4g}, "
+                 f"dof = {self.dof}, {'stated' if self.sigma_known else 'estimated'} COR errors, "
+                 f"{self.nfev} model evaluations, {self.wall_time:.2f} s; {self.message}",
+                 f"{'parameter':14s} {'estimate':>13s} {'stderr':>11s} {'lower95':>13s} {'upper95':>13s}  identified"]
+        for i, n in enumerate(self.names):
+            lines.append(f"{n:14s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} {self.lower95[i]:13.6g} "
+                         f"{self.upper95[i]:13.6g}  {'yes' if self.identified[i] else 'NO: ' + self.notes[i]}")
+        return "\n".join(lines) + "\n"
+
+
+class _Model:
+    """The forward model in fitted coordinates x: p = start * exp(x) (positive) or start + x (log_aT)."""
+
+    def __init__(self, base, names, start, geometry, options):
+        self.base, self.names, self.start = base, names, start
+        self.geometry, self.options = dict(geometry), dict(options)
+        self.linear = np.array([n == "log_aT" for n in names])
+        self.nfev = 0
+
+    def params(self, x):
+        return np.where(self.linear, self.start + x, self.start * np.exp(np.where(self.linear, 0.0, x)))
+
+    def to_x(self, p):
+        p = np.asarray(p, float)
+        with np.errstate(divide="ignore"):
+            return np.where(self.linear, p - self.start, np.log(np.where(self.linear, 1.0, p / self.start)))
+
+    def material(self, x):
+        values = dict(zip(self.names, self.params(x)))
+        d = self.base.to_dict()
+        for k, v in values.items():
+            if k not in SCALE_PARAMS:
+                d[k] = float(v)
+        mat = _materials.from_dict(d)
+        return scaled(mat, values.get("modulus_scale", 1.0), values.get("log_aT", 0.0))
+
+    def cor(self, x, v0s):
+        from .solvers.simulate import simulate
+
+        mat = self.material(x)
+        out = np.empty(len(v0s))
+        for i, v in enumerate(v0s):
+            r = simulate(mat, float(v), options=self.options, **self.geometry)
+            self.nfev += 1
+            if r.status != "ok":
+                raise ValueError(f"calibration: the forward model at v0 = {v:g} m/s with "
+                                 f"{dict(zip(self.names, self.params(x)))} ended {r.status}: {r.message}")
+            out[i] = r.cor
+        return out
+
+
+def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = None, options: dict | None = None,
+              where: str = "free") -> Calibration:
+    """Fit the ``free`` parameters (name -> [lower, upper]) of ``material`` (its values are the start) to
+    ``data`` (module docstring). ``geometry``: keywords of ``vcor.simulate``; ``options``: solver options
+    (default: the sweeps' method, ``vcor.options.SWEEP_METHOD``)."""
+    from scipy.optimize import least_squares
+    from scipy.stats import norm, t as student_t
+
+    from .options import SWEEP_METHOD
+
+    base = _materials.get(material) if isinstance(material, str) else material
+    geometry = dict(geometry or {})
+    options = {"method": SWEEP_METHOD, **(options or {})}
+    names, start, lo, hi = _check_free(base, free, len(data.v0), where)
+    model = _Model(base, names, start, geometry, options)
+    model.material(np.zeros(len(names)))  # the start must be a valid material (else: an error now)
+    w = 1.0 / data.cor_std if data.cor_std is not None else np.ones_like(data.cor)
+
+    def residual(x):
+        try:
+            model.material(x)
+        except ValueError:
+            return np.full(data.cor.size, _REFUSED)
+        return (model.cor(x, data.v0) - data.cor) * w
+
+    xlo, xhi = model.to_x(lo), model.to_x(hi)
+    t_start = time.perf_counter()
+    fit = least_squares(residual, np.zeros(len(names)), bounds=(xlo, xhi), jac="3-point", diff_step=1e-4,
+                        x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=200)
+    wall = time.perf_counter() - t_start
+    x, J, r = fit.x, fit.jac, fit.fun
+    m, n = J.shape
+    dof = m - n
+    chi2 = float(r @ r)
+    sigma_known = data.cor_std is not None
+    U, sv, Vt = np.linalg.svd(J, full_matrices=False)
+    small = sv < COND_LIMIT * (sv[0] if sv.size and sv[0] > 0 else 1.0)
+    inv = np.where(small, 0.0, 1.0 / np.where(small, 1.0, sv) ** 2)
+    cov = (Vt.T * inv) @ Vt
+    if not sigma_known:
+        cov = cov * (chi2 / dof if dof > 0 else math.nan)
+    sx = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    notes = [""] * n
+    identified = np.ones(n, dtype=bool)
+    for k in np.flatnonzero(small):
+        involved = [names[i] for i in range(n) if abs(Vt[k, i]) > 0.1]
+        for i in range(n):
+            if abs(Vt[k, i]) > 0.1:
+                identified[i] = False
+                notes[i] = (f"the data constrain only a combination of {involved} (Jacobian singular value "
+                            f"{sv[k]:.2e} of {sv[0]:.2e})")
+    span = xhi - xlo
+    for i in range(n):
+        if identified[i] and (fit.active_mask[i] != 0 or min(x[i] - xlo[i], xhi[i] - x[i]) < 1e-6 * span[i]):
+            identified[i], notes[i] = False, "the estimate is at its bound: the data push it beyond the allowed range"
+        elif identified[i] and not math.isfinite(sx[i]):
+            identified[i], notes[i] = False, "no degrees of freedom left to estimate the COR errors (give cor_std)"
+        elif identified[i] and sx[i] > math.log(FACTOR_LIMIT) and not model.linear[i]:
+            identified[i], notes[i] = False, f"1-sigma uncertainty larger than a factor {FACTOR_LIMIT:g}"
+    q = float(norm.ppf(0.975) if sigma_known else (student_t.ppf(0.975, dof) if dof > 0 else math.nan))
+    p = model.params(x)
+    lower, upper = model.params(x - q * sx), model.params(x + q * sx)
+    stderr = np.where(model.linear, sx, p * sx)
+    lower = np.where(identified, lower, -np.inf)
+    upper = np.where(identified, upper, np.inf)
+    stderr = np.where(identified, stderr, np.inf)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        corr = cov / np.outer(sx, sx)
+    corr[~np.isfinite(corr)] = np.nan
+    np.fill_diagonal(corr, 1.0)
+    mat = model.material(x)
+    cor_fit = model.cor(x, data.v0)
+    return Calibration(names, p, stderr, lower, upper, corr, identified, notes, start, np.stack([lo, hi], axis=1),
+                       mat, data, cor_fit, data.cor - cor_fit, chi2, dof, sigma_known, sv, cov, model.nfev, wall,
+                       str(fit.message), geometry, options, base)
+
+
+def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(COR, lower, upper) of the fitted curve at ``v0s`` (m/s) with the 95 % band from the parameters'
+    covariance (linearised; directions not identified are left out, so the band is then too narrow: the
+    dataset flags them)."""
+    from scipy.stats import norm, t as student_t
+
+    model = _Model(cal.base, cal.names, cal.start, cal.geometry, cal.options)
+    x = model.to_x(cal.estimate)
+    v0s = np.asarray(v0s, float)
+    c = model.cor(x, v0s)
+    h = 1e-4
+    G = np.empty((v0s.size, x.size))
+    for i in range(x.size):
+        e = np.zeros_like(x)
+        e[i] = h
+        G[:, i] = (model.cor(x + e, v0s) - model.cor(x - e, v0s)) / (2 * h)
+    cov = np.nan_to_num(cal.cov_x, nan=0.0)
+    sd = np.sqrt(np.clip(np.einsum("ij,jk,ik->i", G, cov, G), 0.0, None))
+    q = float(norm.ppf(0.975) if cal.sigma_known else (student_t.ppf(0.975, cal.dof) if cal.dof > 0 else math.nan))
+    return c, c - q * sd, c + q * sd
+
+
+def _start_material(spec, where, base_dir, material_dir):
+    from .material_specs import from_spec
+    from .scene import resolve_material
+
+    mat = spec["material"]
+    if isinstance(mat, dict):
+        return from_spec(mat, where=f"{where}.material", base_dir=base_dir)
+    if not isinstance(mat, str):
+        raise ValueError(f"{where}.material: a material name or a spec {{model: ...}}, got {mat!r}")
+    return resolve_material(mat, material_dir=material_dir)
+
+
+def check_spec(spec: dict, *, where: str = "calibration", base_dir=".", material_dir="results/materials",
+               pending=()) -> CorData:
+    """Everything about a calibration spec that can be checked before solving: its keys, the data file
+    (file, line, column), the start material, the free parameters' names, bounds and start values, and
+    the number of points. ``pending``: material names whose files do not exist yet (fits): only the
+    scale parameters can be checked for them. Returns the data."""
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where}: a mapping with keys {sorted(SPEC_KEYS)}, got {spec!r}")
+    unknown = set(spec) - SPEC_KEYS
+    missing = {"data", "material", "free"} - set(spec)
+    if unknown or missing:
+        raise ValueError(f"{where}: keys {sorted(SPEC_KEYS)} (data, material, free required); "
+                         f"unknown {sorted(unknown)}, missing {sorted(missing)}")
+    if not isinstance(spec["data"], str):
+        raise ValueError(f"{where}.data: the path of a CSV file (v0,cor[,cor_std]), got {spec['data']!r}")
+    data = read_cor_data(Path(base_dir) / spec["data"])
+    if isinstance(spec["material"], str) and spec["material"] in pending:
+        return data
+    material = _start_material(spec, where, base_dir, material_dir)
+    _check_free(material, spec["free"], len(data.v0), f"{where}.free")
+    return data
+
+
+def run_calibration(spec: dict, *, base_dir=".", material_dir="results/materials", where="calibration") -> Calibration:
+    """A calibration from a config spec (``data``, ``material``: a spec {model: ...} or a material name,
+    ``free``, optional ``geometry`` and ``solver``); errors name ``<where>.<key>`` or the data file's
+    line and column."""
+    data = check_spec(spec, where=where, base_dir=base_dir, material_dir=material_dir)
+    material = _start_material(spec, where, base_dir, material_dir)
+    return calibrate(data, material, spec["free"], geometry=spec.get("geometry"), options=spec.get("solver"),
+                     where=f"{where}.free")
+
+
+def calibration_identity(spec: dict, base_dir=".", material_identity: str | None = None) -> dict:
+    """What determines a calibration's result: its spec, the data file's content, the start material's
+    content identity (a named material) and the code."""
+    import hashlib
+
+    from .provenance import code_fingerprint
+
+    path = Path(base_dir) / str(spec.get("data", ""))
+    data = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else "missing"
+    return {"spec": spec, "data": data, "start": material_identity, "code": code_fingerprint()}
+
+
+def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int = 40):
+    """NetCDF-ready record: dimension ``parameter`` (estimate, stderr, 95 % interval, start, bounds,
+    identified, note; ``correlation`` parameter x parameter_2), the data with the fitted COR and the
+    residuals, the fitted curve with its 95 % band; attribute ``material`` = the calibrated material
+    (``vcor.materials.from_file`` reads the file like a fit)."""
+    import json
+
+    import xarray as xr
+
+    from .solvers.common import UNITS
+
+    units = {"modulus_scale": "1", "log_aT": "1 (log10 of a_T)"}
+    param_units = [units.get(n, _param_unit(n, cal.base.kind if cal.base else "")) for n in cal.names]
+    ds = xr.Dataset(coords={"parameter": ("parameter", cal.names), "parameter_2": ("parameter_2", cal.names)})
+    for name, values, long in (("estimate", cal.estimate, "estimate"), ("stderr", cal.stderr, "standard error"),
+                               ("lower95", cal.lower95, "95 % interval, lower end"),
+                               ("upper95", cal.upper95, "95 % interval, upper end"), ("start", cal.start, "start value"),
+                               ("lower_bound", cal.bounds[:, 0], "lower bound"),
+                               ("upper_bound", cal.bounds[:, 1], "upper bound")):
+        ds[name] = ("parameter", np.asarray(values, float), {"long_name": long, "units_by_parameter": json.dumps(
+            dict(zip(cal.names, param_units)))})
+    ds["identified"] = ("parameter", cal.identified.astype(np.int8),
+                        {"long_name": "1: identified by the data; 0: see note", "units": "1"})
+    ds["note"] = ("parameter", np.array(cal.notes, dtype=str), {"long_name": "why a parameter is not identified"})
+    ds["correlation"] = (("parameter", "parameter_2"), cal.correlation, {"units": "1", "long_name": "correlation"})
+    ds = ds.assign_coords(point=("point", np.arange(cal.data.v0.size)))
+    ds["v0"] = ("point", cal.data.v0, {"units": UNITS.get("v0", "m s-1"), "long_name": "impact speed (data)"})
+    ds["cor"] = ("point", cal.data.cor, {"units": "1", "long_name": "COR, data"})
+    if cal.data.cor_std is not None:
+        ds["cor_std"] = ("point", cal.data.cor_std, {"units": "1", "long_name": "COR standard deviation, data"})
+    ds["cor_fit"] = ("point", cal.cor_fit, {"units": "1", "long_name": "COR, calibrated model"})
+    ds["residual"] = ("point", cal.residual, {"units": "1", "long_name": "data - model"})
+    lo, hi = cal.data.v0.min(), cal.data.v0.max()
+    grid = np.geomspace(lo, hi, n_curve) if hi > lo else np.array([lo])
+    c, cl, ch = band(cal, grid)
+    ds = ds.assign_coords(v0_curve=("v0_curve", grid, {"units": "m s-1", "long_name": "impact speed (curve)"}))
+    ds["cor_curve"] = ("v0_curve", c, {"units": "1", "long_name": "COR, calibrated model"})
+    ds["cor_lower95"] = ("v0_curve", cl, {"units": "1", "long_name": "95 % band of the model (parameters)"})
+    ds["cor_upper95"] = ("v0_curve", ch, {"units": "1", "long_name": "95 % band of the model (parameters)"})
+    ds.attrs.update({
+        "material": json.dumps(cal.material.to_dict(), sort_keys=True),
+        "calibration_spec": json.dumps(spec or {}, sort_keys=True, default=str),
+        "chi2": cal.chi2, "dof": cal.dof,
+        "cor_errors": "stated (cor_std)" if cal.sigma_known else "estimated from the residuals",
+        "model_evaluations": cal.nfev, "optimizer_message": cal.message,
+        "singular_values": json.dumps(cal.singular_values.tolist()),
+        "not_identified": json.dumps({n: note for n, note, ok in zip(cal.names, cal.notes, cal.identified) if not ok}),
+        "data": cal.data.path,
+    })
+    return ds
+
+
+def _param_unit(name: str, kind: str = "") -> str:
+    if name == "E1" and kind == "fractional":
+        return "Pa s0.5"
+    if name.startswith("E"):
+        return "Pa"
+    return {"alpha": "s-1", "beta": "s-1", "tau": "s", "b1": "s-0.5"}.get(name, "1")

@@ -1,0 +1,151 @@
+"""Calibration from measured COR (issue 13): vcor.calibrate."""
+
+import numpy as np
+import pytest
+
+import vcor
+from vcor import calibrate as C
+from vcor import materials as M
+
+TRUE = M.SLS(15e6, 300.0, 1200.0)
+START = M.SLS(10e6, 300.0, 2000.0)
+FREE = {"E_glassy": [1e6, 1e9], "beta": [400.0, 1e6]}
+V0 = np.geomspace(1.0, 30.0, 10)
+
+
+@pytest.fixture(scope="module")
+def clean():
+    return np.array([vcor.simulate(TRUE, v, method="adaptive").cor for v in V0])
+
+
+def test_noise_free_data_recover_the_true_values(clean):
+    cal = C.calibrate(C.CorData(V0, clean), START, FREE)
+    print("\n" + cal.report())
+    assert cal.identified.all()
+    assert np.all(np.abs(cal.estimate / np.array([15e6, 1200.0]) - 1) < 1e-4)
+
+
+@pytest.mark.parametrize("stated", [False, True])
+def test_95_percent_intervals_cover_the_truth(clean, stated):
+    """10 speeds 1..30 m/s, 0.5 % noise, E_glassy and beta free, 20 seeds: each parameter's 95 %
+    interval covers its true value in at least 17 of 20 seeds (README prints the counts). ``stated``:
+    the data carry cor_std = 0.5 % of the COR (else the errors are estimated from the residuals)."""
+    truth = np.array([15e6, 1200.0])
+    hits, joint = np.zeros(2, int), 0
+    for seed in range(20):
+        rng = np.random.default_rng(seed)
+        cor = clean * (1 + 0.005 * rng.standard_normal(V0.size))
+        cal = C.calibrate(C.CorData(V0, cor, 0.005 * cor if stated else None), START, FREE)
+        assert cal.identified.all(), cal.report()
+        inside = (cal.lower95 <= truth) & (truth <= cal.upper95)
+        hits += inside
+        joint += inside.all()
+    print(f"\ncor_std {'stated' if stated else 'estimated'}: coverage E_glassy {hits[0]}/20, beta {hits[1]}/20, "
+          f"both {joint}/20")
+    assert np.all(hits >= 17)
+
+
+def test_one_speed_is_reported_unidentifiable(clean):
+    """Data at one speed, two free parameters: the Jacobian has rank 1; both are flagged, with a note,
+    and get no finite interval (not a confident estimate)."""
+    rng = np.random.default_rng(0)
+    cor = clean[5] * (1 + 0.005 * rng.standard_normal(5))
+    cal = C.calibrate(C.CorData(np.full(5, V0[5]), cor), START, FREE)
+    print("\n" + cal.report())
+    assert not cal.identified.any()
+    assert all("combination" in n for n in cal.notes)
+    assert np.all(np.isinf(cal.stderr)) and np.all(np.isinf(cal.upper95))
+
+
+def test_estimate_at_a_bound_is_flagged(clean):
+    cal = C.calibrate(C.CorData(V0, clean), START, {"E_glassy": [1e6, 12e6], "beta": [400.0, 1e6]})
+    assert not cal.identified[0] and "bound" in cal.notes[0]
+
+
+def test_scale_parameters():
+    """modulus_scale and log_aT: E(t) -> s E(t / a_T) for every kind."""
+    t = np.geomspace(1e-7, 1e-1, 30)
+    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic"):
+        m = M.get(name)
+        got = C.scaled(m, 2.5, 0.7).relaxation_modulus(t)
+        assert np.allclose(got, 2.5 * m.relaxation_modulus(t / 10**0.7), rtol=1e-12), name
+    kv = C.scaled(M.get("kelvin-voigt"), 2.0, 1.0)
+    assert kv.E == 2 * 15e6 and kv.tau == pytest.approx(1e-3)
+
+
+def test_three_free_parameters_with_scales(clean):
+    """A modulus scale and a time scale on top of a material parameter (the benchmark's case)."""
+    v0 = np.geomspace(1.0, 30.0, 20)
+    truth = C.scaled(TRUE, 1.3, -0.2)
+    cor = np.array([vcor.simulate(truth, v, method="adaptive").cor for v in v0])
+    free = {"alpha": [30.0, 1000.0], "modulus_scale": [0.1, 10.0], "log_aT": [-2.0, 2.0]}
+    cal = C.calibrate(C.CorData(v0, cor), TRUE, free)
+    print("\n" + cal.report())
+    assert cal.estimate[1] == pytest.approx(1.3, rel=1e-3) and cal.estimate[2] == pytest.approx(-0.2, abs=1e-3)
+
+
+def _csv(tmp_path, text):
+    p = tmp_path / "cor.csv"
+    p.write_text(text)
+    return p
+
+
+@pytest.mark.parametrize("text, words", [
+    ("v0,cor\n1,0.5\n2,1.2\n", ["line 3", "column 'cor'", "(0, 1]"]),
+    ("v0,cor\n1,0.5\n-2,0.4\n", ["line 3", "column 'v0'", "> 0 m/s"]),
+    ("v0,cor\n1,0.5\n2,nan\n", ["line 3", "column 'cor'", "not finite"]),
+    ("v0,cor\n1,0.5\n2,abc\n", ["line 3", "column 'cor'", "not a number"]),
+    ("v0,cr\n1,0.5\n", ["line 1", "missing column 'cor'"]),
+    ("v0,cor\nkm/h,-\n1,0.5\n", ["line 2", "column 'v0'", "unknown unit"]),
+    ("v0,cor,cor_std\n1,0.5,0\n", ["line 2", "column 'cor_std'", "> 0"]),
+])
+def test_bad_data_name_file_line_and_column(tmp_path, text, words):
+    path = _csv(tmp_path, text)
+    with pytest.raises(ValueError) as exc:
+        C.read_cor_data(path)
+    assert str(path) in str(exc.value)
+    for w in words:
+        assert w in str(exc.value), (w, str(exc.value))
+
+
+@pytest.mark.parametrize("free, words", [
+    ({"E_glassy": [1e6, 1e9], "beta": [400, 1e6]}, ["2 free parameters but only 1 data points"]),
+    ({"E_glassy": [1e6, 5e6]}, ["free.E_glassy", "start value", "outside its bounds"]),
+    ({"E_glasy": [1e6, 1e9]}, ["free.E_glasy", "allowed"]),
+    ({"beta": [0, 1e6]}, ["free.beta", "> 0"]),
+    ({"beta": [1e6, 10]}, ["free.beta", "lower < upper"]),
+])
+def test_bad_calibration_specs_name_the_key(tmp_path, free, words):
+    spec = {"data": str(_csv(tmp_path, "v0,cor\n1,0.5\n")), "material": "sls", "free": free}
+    with pytest.raises(ValueError) as exc:
+        C.run_calibration(spec, where="calibrations.c")
+    for w in words:
+        assert w in str(exc.value), (w, str(exc.value))
+
+
+def test_workflow_calibrates_and_a_scene_uses_the_result(tmp_path, clean):
+    """A calibrations block: the record (estimate, stderr, correlation, data, fit, residuals, band), the
+    figure, and the calibrated material used by name in a scene; bad data stop the run before any job."""
+    import xarray as xr
+    from test_workflow import make_project, smk
+
+    rng = np.random.default_rng(5)
+    cor = clean * (1 + 0.005 * rng.standard_normal(V0.size))
+    cfg = {"shard_size": 100, "material_dir": "results/materials",
+           "calibrations": {"cal": {"data": "cor.csv", "material": {"model": "sls", "E_glassy": 10e6, "alpha": 300,
+                                                                    "beta": 2000}, "free": FREE}},
+           "scenes": {"use": {"materials": ["cal"], "grid": {"v0": [1.0, 10.0]}}}}
+    path = make_project(tmp_path, cfg)
+    (path / "cor.csv").write_text("v0,cor\nm/s,-\n" + "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(V0, cor)))
+    smk(path, "-j2")
+    ds = xr.open_dataset(path / "results/calibrations/cal.nc")
+    assert list(ds["parameter"].values) == ["E_glassy", "beta"]
+    assert ds["correlation"].shape == (2, 2) and ds["identified"].values.tolist() == [1, 1]
+    assert (path / "results/calibrations/cal.png").stat().st_size > 0
+    mat = M.from_file(path / "results/materials/cal.nc")
+    assert mat.params()["beta"] == float(ds["estimate"].sel(parameter="beta"))
+    sweep = xr.open_dataset(path / "results/use/sweep.nc")
+    assert sweep["cor"].sel(material="cal", v0=10.0).item() == vcor.simulate(mat, 10.0, method="adaptive").cor
+    (path / "cor.csv").write_text("v0,cor\n1,0.5\n2,1.5\n")
+    out = smk(path, "-n", check=False)
+    assert out.returncode != 0 and "cor.csv, line 3, column 'cor'" in out.stdout + out.stderr
