@@ -1,20 +1,11 @@
 """Fit benchmark: time of each fit (median of 5) and its worst relative error. Run:
 python benchmarks/bench_fit.py"""
 
-import statistics
-import time
 from pathlib import Path
 
+from timing import timed
+
 from vcor import fit
-
-
-def timed(fn, repeat=5):
-    ts, out = [], None
-    for _ in range(repeat):
-        t = time.perf_counter()
-        out = fn()
-        ts.append(time.perf_counter() - t)
-    return statistics.median(ts), out
 
 
 def main():

@@ -15,3 +15,14 @@ def median_time(fn, repeat=15):
         fn()
         ts.append(time.perf_counter() - t)
     return statistics.median(ts)
+
+
+def timed(fn, repeat=5, warmup=False):
+    """(median wall time of ``repeat`` calls, the last call's result); ``warmup``: one untimed call first."""
+    out = fn() if warmup else None
+    ts = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        out = fn()
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts), out

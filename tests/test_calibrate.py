@@ -149,3 +149,22 @@ def test_workflow_calibrates_and_a_scene_uses_the_result(tmp_path, clean):
     (path / "cor.csv").write_text("v0,cor\n1,0.5\n2,1.5\n")
     out = smk(path, "-n", check=False)
     assert out.returncode != 0 and "cor.csv, line 3, column 'cor'" in out.stdout + out.stderr
+
+
+def test_ice_g_star_against_the_paper():
+    """README table: g* (cm/s) of the Ramirez model fitted to the Bridges law eps = 0.32 g^-0.234 as the
+    paper quotes it: vcor's exact eps with both separation rules, and the Pade (the paper's procedure,
+    g* = 0.32 cm/s), on several ranges and spacings of g. Asserts what the README says: on every range
+    force < Pade < overlap; the numbers (how g* moves with the range and the spacing) are printed."""
+    rows = [(0.05, 5.0, "log", 21), (0.05, 5.0, "linear", 21), (0.05, 5.0, "linear", 101), (0.1, 10.0, "log", 21),
+            (0.01, 1.0, "log", 21), (1.0, 5.0, "log", 21)]
+    print("\ng range [cm/s]  spacing     n  Pade g*             overlap g*          force g*            "
+          "(rms misfit)")
+    for lo, hi, spacing, n in rows:
+        g = np.geomspace(lo, hi, n) if spacing == "log" else np.linspace(lo, hi, n)
+        eps = C.bridges_ice(g)
+        fits = [C.fit_g_star(g, eps, model="pade"), C.fit_g_star(g, eps, rule="overlap"),
+                C.fit_g_star(g, eps, rule="force")]
+        print(f"{lo:5g} .. {hi:<5g}   {spacing:7s} {n:4d}  " + " ".join(f"{f.g_star:6.3f} +- {f.stderr:5.3f} ({f.rms:.3f})"
+                                                           for f in fits))
+        assert fits[2].g_star < fits[0].g_star < fits[1].g_star

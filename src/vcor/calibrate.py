@@ -213,9 +213,9 @@ class Calibration:
 
     def report(self) -> str:
         """A plain-text table of the estimates (for logs)."""
-        lines = [f"# calibration: {len(self.data.v0)} points, {len(self.names)} free, chi2 = {self.chi2:.4g}, "
-                 f"dof = {self.dof}, {'stated' if self.sigma_known else 'estimated'} COR errors, "
-                 f"{self.nfev} model evaluations, {self.wall_time:.2f} s; {self.message}",
+        lines = [(f"# calibration: {len(self.data.v0)} points, {len(self.names)} free, chi2 = {self.chi2:.4g}, "
+                  f"dof = {self.dof}, {'stated' if self.sigma_known else 'estimated'} COR errors, "
+                  f"{self.nfev} model evaluations, {self.wall_time:.2f} s; {self.message}"),
                  f"{'parameter':14s} {'estimate':>13s} {'stderr':>11s} {'lower95':>13s} {'upper95':>13s}  identified"]
         for i, n in enumerate(self.names):
             lines.append(f"{n:14s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} {self.lower95[i]:13.6g} "
@@ -270,7 +270,8 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
     ``data`` (module docstring). ``geometry``: keywords of ``vcor.simulate``; ``options``: solver options
     (default: the sweeps' method, ``vcor.options.SWEEP_METHOD``)."""
     from scipy.optimize import least_squares
-    from scipy.stats import norm, t as student_t
+    from scipy.stats import norm
+    from scipy.stats import t as student_t
 
     from .options import SWEEP_METHOD
 
@@ -299,7 +300,7 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
     dof = m - n
     chi2 = float(r @ r)
     sigma_known = data.cor_std is not None
-    U, sv, Vt = np.linalg.svd(J, full_matrices=False)
+    _, sv, Vt = np.linalg.svd(J, full_matrices=False)
     small = sv < COND_LIMIT * (sv[0] if sv.size and sv[0] > 0 else 1.0)
     inv = np.where(small, 0.0, 1.0 / np.where(small, 1.0, sv) ** 2)
     cov = (Vt.T * inv) @ Vt
@@ -345,7 +346,8 @@ def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(COR, lower, upper) of the fitted curve at ``v0s`` (m/s) with the 95 % band from the parameters'
     covariance (linearised; directions not identified are left out, so the band is then too narrow: the
     dataset flags them)."""
-    from scipy.stats import norm, t as student_t
+    from scipy.stats import norm
+    from scipy.stats import t as student_t
 
     model = _Model(cal.base, cal.names, cal.start, cal.geometry, cal.options)
     x = model.to_x(cal.estimate)
@@ -371,7 +373,7 @@ def _start_material(spec, where, base_dir, material_dir):
     if isinstance(mat, dict):
         return from_spec(mat, where=f"{where}.material", base_dir=base_dir)
     if not isinstance(mat, str):
-        raise ValueError(f"{where}.material: a material name or a spec {{model: ...}}, got {mat!r}")
+        raise ValueError(f"{where}.material: a material name or a spec {{model: ...}}, got {mat!r}")  # noqa: TRY004 (config values)
     return resolve_material(mat, material_dir=material_dir)
 
 
@@ -382,14 +384,14 @@ def check_spec(spec: dict, *, where: str = "calibration", base_dir=".", material
     the number of points. ``pending``: material names whose files do not exist yet (fits): only the
     scale parameters can be checked for them. Returns the data."""
     if not isinstance(spec, dict):
-        raise ValueError(f"{where}: a mapping with keys {sorted(SPEC_KEYS)}, got {spec!r}")
+        raise ValueError(f"{where}: a mapping with keys {sorted(SPEC_KEYS)}, got {spec!r}")  # noqa: TRY004 (config values)
     unknown = set(spec) - SPEC_KEYS
     missing = {"data", "material", "free"} - set(spec)
     if unknown or missing:
         raise ValueError(f"{where}: keys {sorted(SPEC_KEYS)} (data, material, free required); "
                          f"unknown {sorted(unknown)}, missing {sorted(missing)}")
     if not isinstance(spec["data"], str):
-        raise ValueError(f"{where}.data: the path of a CSV file (v0,cor[,cor_std]), got {spec['data']!r}")
+        raise ValueError(f"{where}.data: the path of a CSV file (v0,cor[,cor_std]), got {spec['data']!r}")  # noqa: TRY004 (config values)
     data = read_cor_data(Path(base_dir) / spec["data"])
     if isinstance(spec["material"], str) and spec["material"] in pending:
         return data
@@ -478,3 +480,60 @@ def _param_unit(name: str, kind: str = "") -> str:
     if name.startswith("E"):
         return "Pa"
     return {"alpha": "s-1", "beta": "s-1", "tau": "s", "b1": "s-0.5"}.get(name, "1")
+
+
+# ----------------------------------------------------------------------------- the sphere limit: g*
+#: Bridges et al. (1984) ice law as Ramirez et al. (1999) quote it: eps = 0.32 g^-0.234, g in cm/s
+BRIDGES_ICE = (0.32, -0.234)
+
+
+def bridges_ice(g_cm_s):
+    """eps of the Bridges et al. ice law as Ramirez et al. quote it (g in cm/s)."""
+    return BRIDGES_ICE[0] * np.asarray(g_cm_s, float) ** BRIDGES_ICE[1]
+
+
+@dataclass(frozen=True)
+class GStarFit:
+    """g* (in the units of g) of the Ramirez model fitted to eps(g): ``model`` "numeric" (vcor's exact
+    eps, separation ``rule``) or "pade" (Ramirez Eq. 35, the paper's procedure); ``stderr`` from the
+    residual scatter (the misfit of the model's shape, since a law is not noisy data), ``rms`` the rms
+    residual in eps."""
+
+    g_star: float
+    stderr: float
+    rms: float
+    model: str
+    rule: str
+    g_range: tuple
+    n_points: int
+
+
+def fit_g_star(g, eps, *, model: str = "numeric", rule: str = "overlap", start: float = 0.32) -> GStarFit:
+    """Least squares in ln g* of eps_model(b = (g / g*)^(1/5) / C1) to ``eps`` at speeds ``g``
+    (vcor.spheres: x = (g/g*)^(1/5) = C1 b). The exact numerical eps uses ``spheres.cor_numeric``
+    (Kelvin-Voigt, rigid target, Richardson-extrapolated, error ~1e-9)."""
+    from scipy.optimize import least_squares
+
+    from . import spheres as S
+
+    g, eps = np.asarray(g, float), np.asarray(eps, float)
+    if g.ndim != 1 or g.size < 2 or g.shape != eps.shape or np.any(g <= 0) or not np.all(np.isfinite(eps)):
+        raise ValueError("fit_g_star: g (> 0) and eps must be 1-D arrays of equal length >= 2, finite")
+    if model not in ("numeric", "pade"):
+        raise ValueError(f"fit_g_star: model must be 'numeric' or 'pade', got {model!r}")
+    c1 = abs(S.C[0])
+
+    def eps_model(ln_gs):
+        b = (g / math.exp(ln_gs)) ** 0.2 / c1
+        return S.cor_pade(b) if model == "pade" else np.array([S.cor_numeric(x, rule) for x in b])
+
+    fit = least_squares(lambda x: eps_model(x[0]) - eps, [math.log(start)], jac="3-point", diff_step=1e-4,
+                        xtol=1e-12, ftol=1e-12, gtol=1e-12)
+    r = fit.fun
+    dof = g.size - 1
+    s2 = float(r @ r) / dof
+    J = fit.jac
+    sx = math.sqrt(s2 / float(J[:, 0] @ J[:, 0]))
+    gs = math.exp(fit.x[0])
+    return GStarFit(gs, gs * sx, float(np.sqrt(np.mean(r**2))), model, rule if model == "numeric" else "-",
+                    (float(g.min()), float(g.max())), int(g.size))

@@ -124,10 +124,12 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     return ds
 
 
-def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), steps_per_contact=2000):
+def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), steps_per_contact=2000, ice=None):
     """Viscoelastic spheres: eps(b) numerically (Kelvin-Voigt, both rules; SLS variants with
     relaxation time tau = tau_ratio * t_c), the series at orders 1..4, both Pades and the root of
-    Ramirez Eq. 27. A failed point is stored as NaN with its message in ``message`` (never raised)."""
+    Ramirez Eq. 27. A failed point is stored as NaN with its message in ``message`` (never raised).
+    ``ice`` ({g_min_cm_s, g_max_cm_s, n}): g* fitted to the Bridges ice law on that range
+    (``vcor.calibrate.fit_g_star``; the numerical eps for each rule, and the Pade) and the fitted curves."""
     import xarray as xr
 
     from . import spheres as S
@@ -178,4 +180,34 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
         },
     )
     ds.attrs.update(C=list(S.C), pade_d=list(S.pade_coefficients()), C1_closed_form=S.C1_CLOSED_FORM)
+    if ice is not None:
+        ds = ds.merge(_ice_fits(ice, rules))
     return ds
+
+
+def _ice_fits(ice, rules):
+    """g* of the Ramirez model fitted to the Bridges ice law (see :func:`spheres_dataset`)."""
+    import xarray as xr
+
+    from . import spheres as S
+    from .calibrate import bridges_ice, fit_g_star
+
+    g = np.geomspace(float(ice.get("g_min_cm_s", 0.05)), float(ice.get("g_max_cm_s", 5.0)), int(ice.get("n", 21)))
+    eps = bridges_ice(g)
+    fits = [fit_g_star(g, eps, model="numeric", rule=r) for r in rules] + [fit_g_star(g, eps, model="pade")]
+    names = [f"numeric-{r}" for r in rules] + ["pade"]
+    gs = np.array([f.g_star for f in fits])
+    curves = np.array([S.cor_pade((g / f.g_star) ** 0.2 / abs(S.C[0])) if f.model == "pade"
+                       else S.cor_numeric((g / f.g_star) ** 0.2 / abs(S.C[0]), f.rule) for f in fits])
+    return xr.Dataset(
+        {
+            "ice_g_star": ("ice_model", gs, {"units": "cm s-1", "long_name": "g* fitted to the Bridges ice law"}),
+            "ice_g_star_stderr": ("ice_model", np.array([f.stderr for f in fits]),
+                                  {"units": "cm s-1", "long_name": "standard error of g* (residual scatter)"}),
+            "ice_rms": ("ice_model", np.array([f.rms for f in fits]), {"units": "1", "long_name": "rms misfit in eps"}),
+            "ice_eps_law": ("ice_g", eps, {"units": "1", "long_name": "Bridges et al. law 0.32 g^-0.234"}),
+            "ice_eps_fit": (("ice_model", "ice_g"), curves, {"units": "1", "long_name": "fitted model"}),
+        },
+        coords={"ice_model": ("ice_model", np.array(names, dtype=str)),
+                "ice_g": ("ice_g", g, {"units": "cm s-1", "long_name": "impact speed g"})},
+    )

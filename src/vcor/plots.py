@@ -305,7 +305,8 @@ def spheres_eps(sph, opts):
 
 def spheres_ice(sph, opts):
     """Ramirez Fig. 1: ice, experimental fit eps = 0.32 g^-0.234 (g in cm/s, Bridges et al. 1984),
-    the Pade with g* = 0.32 cm/s and the numerical curve with the same g*."""
+    the Pade with g* = 0.32 cm/s and the numerical curve with the same g*; with the dataset's ice fits
+    (issue 13) the curves with g* fitted to the law (numerical eps per rule, and the Pade)."""
     from . import spheres as S
 
     gs = float(opts.get("g_star_cm_s", 0.32))
@@ -317,6 +318,12 @@ def spheres_ice(sph, opts):
     if "overlap" in sph["rule"].values:
         num = np.interp(np.log(b_of_g), np.log(sph["b"].values), sph["eps_numeric"].sel(rule="overlap").values)
         ax.plot(g, num, ":", lw=2, label="numerical (overlap rule), same g*")
+    if "ice_g_star" in sph:
+        for m in sph["ice_model"].values:
+            gs_fit = float(sph["ice_g_star"].sel(ice_model=m))
+            se = float(sph["ice_g_star_stderr"].sel(ice_model=m))
+            ax.plot(sph["ice_g"].values, sph["ice_eps_fit"].sel(ice_model=m).values, "-", lw=1,
+                    label=f"{m} fitted: g* = {gs_fit:.3f} +- {se:.3f} cm/s")
     ax.set_xlabel("g [cm/s]")
     ax.set_ylabel("ε [-]")
     ax.set_ylim(0, 1.05)
