@@ -168,3 +168,16 @@ def test_ice_g_star_against_the_paper():
         print(f"{lo:5g} .. {hi:<5g}   {spacing:7s} {n:4d}  " + " ".join(f"{f.g_star:6.3f} +- {f.stderr:5.3f} ({f.rms:.3f})"
                                                            for f in fits))
         assert fits[2].g_star < fits[0].g_star < fits[1].g_star
+
+
+def test_spheres_dataset_carries_the_ice_fits():
+    """The spheres scene's dataset (figure spheres_ice) holds the same g* as fit_g_star; a fit that fails
+    is stored with its status and message, not raised."""
+    from vcor import datasets
+
+    ds = datasets.spheres_dataset([0.5], rules=("overlap",), ice={"g_min_cm_s": 0.05, "g_max_cm_s": 5.0, "n": 21})
+    g = np.geomspace(0.05, 5.0, 21)
+    assert float(ds["ice_g_star"].sel(ice_model="numeric-overlap")) == C.fit_g_star(g, C.bridges_ice(g)).g_star
+    assert float(ds["ice_g_star"].sel(ice_model="pade")) == C.fit_g_star(g, C.bridges_ice(g), model="pade").g_star
+    bad = datasets.spheres_dataset([0.5], rules=("overlap",), ice={"g_min_cm_s": 0.05, "g_max_cm_s": 5.0, "n": 1})
+    assert np.all(np.isnan(bad["ice_g_star"].values)) and all("fit_g_star" in m for m in bad["ice_message"].values)

@@ -215,7 +215,7 @@ def test_default_config_dry_run_and_scene_selection(tmp_path):
         (lambda c: c["scenes"]["thin"].update(figures={"fig2": {}}), ["scenes.thin", "histories"]),
         (lambda c: c["scenes"]["thin"].update(figures={"master_curve": {"materials": ["sls"]}}),
          ["scenes.thin.figures.master_curve.materials", "list of fits"]),
-        (lambda c: c["scenes"]["tiny"]["figures"].update(cor_temperature={}), ["cor_temperature", "temperature axis T"]),
+        (lambda c: c["scenes"]["tiny"]["figures"].update(cor_temperature={}), ["cor_temperature", "grid axis T"]),
     ],
 )
 def test_bad_config_fails_before_any_job(tmp_path, mutate, words):

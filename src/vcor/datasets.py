@@ -194,19 +194,35 @@ def _ice_fits(ice, rules):
 
     g = np.geomspace(float(ice.get("g_min_cm_s", 0.05)), float(ice.get("g_max_cm_s", 5.0)), int(ice.get("n", 21)))
     eps = bridges_ice(g)
-    fits = [fit_g_star(g, eps, model="numeric", rule=r) for r in rules] + [fit_g_star(g, eps, model="pade")]
-    names = [f"numeric-{r}" for r in rules] + ["pade"]
-    gs = np.array([f.g_star for f in fits])
-    curves = np.array([S.cor_pade((g / f.g_star) ** 0.2 / abs(S.C[0])) if f.model == "pade"
-                       else S.cor_numeric((g / f.g_star) ** 0.2 / abs(S.C[0]), f.rule) for f in fits])
+    c1 = abs(S.C[0])
+
+    def one(model, rule):
+        f = fit_g_star(g, eps, model=model, rule=rule)
+        b = (g / f.g_star) ** 0.2 / c1
+        curve = S.cor_pade(b) if model == "pade" else S.cor_numeric(b, rule)
+        return f, curve
+
+    names, gs, se, rms, curves, st, msg = [], [], [], [], [], [], []
+    for model, rule in [("numeric", r) for r in rules] + [("pade", "overlap")]:
+        out, name, message = _status.guarded(one, model, rule)  # a failed fit is stored, never raised
+        names.append(f"numeric-{rule}" if model == "numeric" else "pade")
+        f, curve = out if out is not None else (None, np.full(g.size, np.nan))
+        gs.append(f.g_star if f else np.nan)
+        se.append(f.stderr if f else np.nan)
+        rms.append(f.rms if f else np.nan)
+        curves.append(curve)
+        st.append(_status.code(name))
+        msg.append(message)
     return xr.Dataset(
         {
-            "ice_g_star": ("ice_model", gs, {"units": "cm s-1", "long_name": "g* fitted to the Bridges ice law"}),
-            "ice_g_star_stderr": ("ice_model", np.array([f.stderr for f in fits]),
+            "ice_g_star": ("ice_model", np.array(gs), {"units": "cm s-1", "long_name": "g* fitted to the Bridges ice law"}),
+            "ice_g_star_stderr": ("ice_model", np.array(se),
                                   {"units": "cm s-1", "long_name": "standard error of g* (residual scatter)"}),
-            "ice_rms": ("ice_model", np.array([f.rms for f in fits]), {"units": "1", "long_name": "rms misfit in eps"}),
+            "ice_rms": ("ice_model", np.array(rms), {"units": "1", "long_name": "rms misfit in eps"}),
+            "ice_status": ("ice_model", np.array(st, dtype=np.int8), _status.cf_attrs()),
+            "ice_message": ("ice_model", np.array(msg, dtype=str), {"long_name": "fit message (empty when ok)"}),
             "ice_eps_law": ("ice_g", eps, {"units": "1", "long_name": "Bridges et al. law 0.32 g^-0.234"}),
-            "ice_eps_fit": (("ice_model", "ice_g"), curves, {"units": "1", "long_name": "fitted model"}),
+            "ice_eps_fit": (("ice_model", "ice_g"), np.array(curves), {"units": "1", "long_name": "fitted model"}),
         },
         coords={"ice_model": ("ice_model", np.array(names, dtype=str)),
                 "ice_g": ("ice_g", g, {"units": "cm s-1", "long_name": "impact speed g"})},

@@ -1,4 +1,5 @@
 # Calibrations from measured COR (vcor.calibrate): the full record and the calibrated material.
+import os
 
 
 rule calibrate:
@@ -16,7 +17,8 @@ rule calibrate:
     params:
         code=CODE,
         spec=get_calibration_spec,
-        material_dir=MATERIAL_DIR,
+        # a named start material is read from the folder the calibrated material is written to
+        material_dir=lambda wildcards, output: os.path.dirname(output.material),
     script:
         "../scripts/calibrate.py"
 

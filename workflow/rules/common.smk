@@ -122,7 +122,7 @@ def _check_scenes():
             if axis and axis not in scene.get("grid", {}):
                 raise ValueError(
                     f"config.yaml: scenes.{name}.figures.{fig} needs a sweep with a "
-                    f"{'temperature axis T' if axis == 'T' else 'grid axis ' + axis}: add scenes.{name}.grid.{axis}"
+                    f"grid axis {axis}: add scenes.{name}.grid.{axis}"
                 )
             fits = opts.get("materials")
             if "material_fit" in vplots.FIGURES[fig][1] and (
