@@ -181,3 +181,15 @@ def test_spheres_dataset_carries_the_ice_fits():
     assert float(ds["ice_g_star"].sel(ice_model="pade")) == C.fit_g_star(g, C.bridges_ice(g), model="pade").g_star
     bad = datasets.spheres_dataset([0.5], rules=("overlap",), ice={"g_min_cm_s": 0.05, "g_max_cm_s": 5.0, "n": 1})
     assert np.all(np.isnan(bad["ice_g_star"].values)) and all("fit_g_star" in m for m in bad["ice_message"].values)
+
+
+def test_prony_terms_are_free_parameters():
+    """A Prony term's modulus and rate (``E[i]``, ``beta[i]``) are parameters like any other."""
+    truth = M.get("butyl-prony3")
+    v0 = np.geomspace(1.0, 30.0, 8)
+    cor = np.array([vcor.simulate(truth, v, method="adaptive").cor for v in v0])
+    start = M.Prony(truth.E_inf, (25e6, *truth.E[1:]), (800.0, *truth.beta[1:]))
+    cal = C.calibrate(C.CorData(v0, cor), start, {"E[0]": [1e6, 1e9], "beta[0]": [10.0, 1e5]})
+    assert np.all(np.abs(cal.estimate / np.array([truth.E[0], truth.beta[0]]) - 1) < 1e-4), cal.report()
+    with pytest.raises(ValueError, match=r"free.E\[3\]"):
+        C.calibrate(C.CorData(v0, cor), start, {"E[3]": [1e6, 1e9]})

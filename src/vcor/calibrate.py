@@ -5,8 +5,8 @@ free parameters of a material to COR data at several impact speeds with the forw
 (``vcor.simulate``, the sweep's default method unless ``solver`` says otherwise):
 
 * data: CSV ``v0,cor[,cor_std]`` (m/s, dimensionless; a units row ``m/s,-,-`` or ``cm/s`` is allowed);
-* free parameters: any scalar parameter of the material (``Material.params()``: E_glassy, alpha,
-  beta for sls; E0, E1 for fractional; ...), and for any material ``modulus_scale`` (all moduli times
+* free parameters: any parameter of the material (``Material.params()``: E_glassy, alpha, beta for
+  sls; E0, E1 for fractional; a Prony term's modulus or rate as ``E[i]``, ``beta[i]``; ...), and for any material ``modulus_scale`` (all moduli times
   a factor) and ``log_aT`` (the time scale: E(t) -> E(t / a_T), log10 a_T); each with bounds
   ``[lo, hi]`` that contain its start value;
 * weighted least squares (``scipy.optimize.least_squares``, trust-region reflective, central
@@ -145,8 +145,19 @@ def scaled(material, modulus_scale: float = 1.0, log_aT: float = 0.0):
     return _materials.from_dict(d)
 
 
+def _flat_params(material) -> dict:
+    """Scalar parameters by name; list parameters (Prony E, beta) element-wise as ``E[0]``, ``beta[1]``."""
+    out = {}
+    for k, v in material.params().items():
+        if isinstance(v, (list, tuple)):
+            out.update({f"{k}[{i}]": float(x) for i, x in enumerate(v)})
+        else:
+            out[k] = float(v)
+    return out
+
+
 def _free_names(material) -> list[str]:
-    return [k for k, v in material.params().items() if not isinstance(v, (list, tuple))] + list(SCALE_PARAMS)
+    return [*_flat_params(material), *SCALE_PARAMS]
 
 
 def _check_free(material, free: dict, m: int, where: str = "free") -> tuple[list, np.ndarray, np.ndarray, np.ndarray]:
@@ -155,7 +166,7 @@ def _check_free(material, free: dict, m: int, where: str = "free") -> tuple[list
     if not isinstance(free, dict) or not free:
         raise ValueError(f"{where}: a mapping parameter -> [lower, upper] with at least one parameter, got {free!r}")
     allowed = _free_names(material)
-    params = material.params()
+    params = _flat_params(material)
     names, start, lo, hi = [], [], [], []
     for name, bounds in free.items():
         if name not in allowed:
@@ -244,7 +255,13 @@ class _Model:
         values = dict(zip(self.names, self.params(x)))
         d = self.base.to_dict()
         for k, v in values.items():
-            if k not in SCALE_PARAMS:
+            if k in SCALE_PARAMS:
+                continue
+            if k.endswith("]"):  # a Prony term, e.g. E[1]
+                key, i = k[:-1].split("[")
+                d[key] = list(d[key])
+                d[key][int(i)] = float(v)
+            else:
                 d[k] = float(v)
         mat = _materials.from_dict(d)
         return scaled(mat, values.get("modulus_scale", 1.0), values.get("log_aT", 0.0))
@@ -475,6 +492,7 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
 
 
 def _param_unit(name: str, kind: str = "") -> str:
+    name = name.split("[")[0]
     if name == "E1" and kind == "fractional":
         return "Pa s0.5"
     if name.startswith("E"):
