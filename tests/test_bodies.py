@@ -148,3 +148,25 @@ def test_workflow_scene_with_bodies(tmp_path):
     for v0 in (1.0, 10.0):
         want = _solve(SCENE["sphere"], SCENE["plate"], v0=v0, method="direct")
         assert ds["cor"].sel(material="sls", v0=v0).item() == want.cor
+
+
+def test_workflow_body_may_name_a_config_material(tmp_path):
+    """A body naming a config material: its parameters are inlined into the scene's settings, so editing
+    the material changes the shard names (its content is part of their identity)."""
+    import xarray as xr
+    from test_workflow import make_project, smk
+
+    scene = {"materials": ["sls"], "grid": {"v0": [10.0]}, "solver": {"method": "direct"},
+             "sphere": {"material": "my-ball"}, "plate": {}}
+    cfg = {"shard_size": 100, "material_dir": "results/materials",
+           "materials": {"my-ball": {"model": "elastic", "E": 5e8}}, "scenes": {"b": scene}}
+    path = make_project(tmp_path, cfg)
+    smk(path, "-j2", "results/b/sweep.nc")
+    want = _solve({"material": {"model": "elastic", "E": 5e8}}, {}, method="direct")
+    assert xr.open_dataset(path / "results/b/sweep.nc")["cor"].item() == want.cor
+    import yaml
+
+    cfg["materials"]["my-ball"]["E"] = 6e8
+    (path / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    out = smk(path, "-n", "results/b/sweep.nc")
+    assert "sweep_shard" in out.stdout + out.stderr

@@ -2,9 +2,10 @@
 material, size, density and Poisson ratio, combined as Green 2026 Eq. 1 says.
 
 * ``sphere: {material, r, rho, nu}``, ``plate: {material, h, rho, nu}``; ``material`` is a
-  material (a preset name, an inline spec ``{model: ...}`` as in the config's ``materials:`` block,
-  ``rigid``, or ``{model: elastic, E: ...}``); in a scene a body without ``material`` takes the
-  scene's swept material (its ``materials`` list). h is the plate's half-thickness (default 2 r).
+  material (a preset name, a config material's name (the workflow inlines its parameters:
+  :func:`inline_config_materials`), an inline spec ``{model: ...}`` as in the config's ``materials:``
+  block, ``rigid``, or ``{model: elastic, E: ...}``); in a scene a body without ``material`` takes the
+  scene's swept material (its ``materials`` list). A fitted material can only be the swept one. h is the plate's half-thickness (default 2 r).
 * Defaults: a rigid or elastic body is steel (rho 7800 kg/m^3, nu 0.3), a viscoelastic one the
   paper's polymer (rho 1100 kg/m^3, nu 0.5) (``vcor.impact.DENSITIES``).
 * Contact modulus, Eq. 1 as written: E'(t) = E'_a E'_b / (E'_a + E'_b) pointwise in time, E'_i =
@@ -38,7 +39,7 @@ from . import materials as _materials
 from .impact import DENSITIES, GEOMETRY_DEFAULTS
 from .material_specs import from_spec
 
-__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "series_modulus"]
+__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "inline_config_materials", "series_modulus"]
 
 #: keys of a body mapping (size: r for the sphere, h for the plate)
 BODY_KEYS = {"sphere": {"material", "r", "rho", "nu"}, "plate": {"material", "h", "rho", "nu"}}
@@ -78,9 +79,9 @@ def _material_of(value, where, swept):
         return None
     if isinstance(value, str):
         if value not in _materials.PRESETS:
-            raise ValueError(f"{where}.material: {value!r} is not a preset ({sorted(_materials.PRESETS)}) or "
-                             f"'rigid'; a config or fitted material goes into the scene's materials list (the "
-                             f"swept body, which then omits material) or inline as {{model: ...}}")
+            raise ValueError(f"{where}.material: {value!r} is not a preset ({sorted(_materials.PRESETS)}), a config "
+                             f"material or 'rigid'; a fitted material goes into the scene's materials list (the "
+                             f"swept body, which then omits material), another material inline as {{model: ...}}")
         return _materials.get(value)
     if isinstance(value, dict):
         return from_spec(value, where=f"{where}.material")
@@ -113,6 +114,23 @@ def body_from_spec(kind: str, spec: dict, swept=None, where: str | None = None) 
     if not (isinstance(nu, (int, float)) and -1 < nu <= 0.5):
         raise ValueError(f"{where}.nu must be in (-1, 0.5], got {nu!r}")
     return Body(material, None if size is None else float(size), float(rho), float(nu))
+
+
+def inline_config_materials(scene: dict, materials: dict, base_dir=".") -> dict:
+    """The scene with each body's ``material`` that names a config material (``materials:`` block)
+    replaced by that material's built parameters as an inline spec, so that the material's content
+    (CSV tables included) is part of the scene's settings and of its shards' identity."""
+    if not any(isinstance((scene.get(k) or {}).get("material"), str) for k in ("sphere", "plate")):
+        return scene
+    out = dict(scene)
+    for key in ("sphere", "plate"):
+        body = dict(scene.get(key) or {})
+        name = body.get("material")
+        if isinstance(name, str) and name in materials:
+            d = from_spec(materials[name], name=name, base_dir=base_dir).to_dict()
+            body["material"] = {"model": d.pop("kind"), **d}
+            out[key] = body
+    return out
 
 
 def impact_inputs(sphere: Body, plate: Body) -> tuple[_materials.Material, dict]:

@@ -4,6 +4,7 @@ import re
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+import vcor.bodies as vbodies
 import vcor.calibrate as vcalibrate
 import vcor.fit as vfit
 import vcor.material_specs as vspecs
@@ -83,6 +84,14 @@ try:
 except ValueError as exc:
     raise WorkflowError(str(exc))
 FILE_MATERIALS = FILE_MATERIALS | set(CALIBRATIONS)
+# a body (sphere/plate) naming a config material carries its parameters inline (shard identity)
+try:
+    SCENES = {
+        n: vbodies.inline_config_materials(sc, CONFIG_MATERIALS)
+        for n, sc in SCENES.items()
+    }
+except ValueError as exc:
+    raise WorkflowError(f"config.yaml: {exc}")
 
 
 def _check_scenes():
