@@ -30,6 +30,8 @@ exact for Prony bodies (the result is again a Prony series).
 
 from __future__ import annotations
 
+import functools
+import json
 import math
 from dataclasses import dataclass
 
@@ -39,7 +41,8 @@ from . import materials as _materials
 from .impact import DENSITIES, GEOMETRY_DEFAULTS
 from .material_specs import from_spec
 
-__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "inline_config_materials", "series_modulus"]
+__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "inline_config_materials", "scene_bodies",
+           "series_modulus"]
 
 #: keys of a body mapping (size: r for the sphere, h for the plate)
 BODY_KEYS = {"sphere": {"material", "r", "rho", "nu"}, "plate": {"material", "h", "rho", "nu"}}
@@ -131,6 +134,22 @@ def inline_config_materials(scene: dict, materials: dict, base_dir=".") -> dict:
             body["material"] = {"model": d.pop("kind"), **d}
             out[key] = body
     return out
+
+
+@functools.lru_cache(maxsize=64)
+def _fixed_body(kind: str, spec_json: str) -> Body:
+    return body_from_spec(kind, json.loads(spec_json))
+
+
+def scene_bodies(specs: dict, swept) -> tuple[Body, Body]:
+    """(sphere, plate) of a scene's ``{sphere: ..., plate: ...}`` at a point whose swept material is
+    ``swept``; a body that names its own material is built once per spec (cached), not per point."""
+    out = []
+    for kind in ("sphere", "plate"):
+        spec = specs.get(kind) or {}
+        out.append(_fixed_body(kind, json.dumps(spec, sort_keys=True)) if "material" in spec
+                   else body_from_spec(kind, spec, swept=swept))
+    return out[0], out[1]
 
 
 def impact_inputs(sphere: Body, plate: Body) -> tuple[_materials.Material, dict]:

@@ -42,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from . import materials as _materials
-from .csvfile import cell_number, data_rows, read_rows
+from .csvfile import cell_number, data_rows, read_rows, units_row
 
 __all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "calibration_identity",
            "check_spec", "read_cor_data", "run_calibration", "scaled"]
@@ -86,15 +86,7 @@ def read_cor_data(path) -> CorData:
     unknown = [c for c in header if c not in _UNITS]
     if unknown:
         raise ValueError(f"{path}, line 1, column {unknown[0]!r}: unknown column; allowed: v0, cor, cor_std")
-    scale, start = {c: 1.0 for c in header}, 1
-    if len(rows) > 1 and rows[1] and not _is_number(rows[1][0]):
-        for col, unit in zip(header, rows[1]):
-            unit = unit.strip()
-            if unit not in _UNITS[col]:
-                raise ValueError(f"{path}, line 2, column {col!r}: unknown unit {unit!r}; allowed: "
-                                 f"{sorted(u for u in _UNITS[col] if u)}")
-            scale[col] = _UNITS[col][unit]
-        start = 2
+    scale, start = units_row(path, rows, header, _UNITS, {c: 1.0 for c in header})
     cols, lines = {c: [] for c in header}, []
     for lineno, row in data_rows(path, rows, header, start):
         for col, cell in zip(header, row):
@@ -112,14 +104,6 @@ def read_cor_data(path) -> CorData:
         raise ValueError(f"{path}: no data rows")
     std = np.array(cols["cor_std"]) if "cor_std" in cols else None
     return CorData(np.array(cols["v0"]), np.array(cols["cor"]), std, str(path), tuple(lines))
-
-
-def _is_number(cell) -> bool:
-    try:
-        float(cell)
-    except ValueError:
-        return False
-    return True
 
 
 def scaled(material, modulus_scale: float = 1.0, log_aT: float = 0.0):
@@ -266,10 +250,10 @@ class _Model:
         mat = _materials.from_dict(d)
         return scaled(mat, values.get("modulus_scale", 1.0), values.get("log_aT", 0.0))
 
-    def cor(self, x, v0s):
+    def cor(self, x, v0s, mat=None):
         from .solvers.simulate import simulate
 
-        mat = self.material(x)
+        mat = self.material(x) if mat is None else mat
         out = np.empty(len(v0s))
         for i, v in enumerate(v0s):
             r = simulate(mat, float(v), options=self.options, **self.geometry)
@@ -302,10 +286,10 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
 
     def residual(x):
         try:
-            model.material(x)
+            mat = model.material(x)
         except ValueError:
             return np.full(data.cor.size, _REFUSED)
-        return (model.cor(x, data.v0) - data.cor) * w
+        return (model.cor(x, data.v0, mat) - data.cor) * w
 
     xlo, xhi = model.to_x(lo), model.to_x(hi)
     t_start = time.perf_counter()

@@ -6,7 +6,7 @@ import csv
 import math
 from pathlib import Path
 
-__all__ = ["cell_number", "data_rows", "read_rows"]
+__all__ = ["cell_number", "data_rows", "is_number", "read_rows", "units_row"]
 
 
 def read_rows(path, what: str) -> list[list[str]]:
@@ -43,3 +43,29 @@ def cell_number(path, lineno, column, cell) -> float:
     if not math.isfinite(value):
         raise ValueError(f"{where}: {cell.strip()!r} is not finite")
     return value
+
+
+def is_number(cell) -> bool:
+    try:
+        float(cell)
+    except ValueError:
+        return False
+    return True
+
+
+def units_row(path, rows, header, units: dict, defaults: dict) -> tuple[dict, int]:
+    """(the value ``units[column][unit]`` of each column's unit, index of the first data row): the second
+    row is a units row when its first cell is not a number; without one, ``defaults``. Errors name the
+    file, line 2 and the column (an unknown unit, or as many units as columns)."""
+    if not (len(rows) > 1 and rows[1] and not is_number(rows[1][0])):
+        return dict(defaults), 1
+    names = [u.strip() for u in rows[1]]
+    if len(names) != len(header):
+        raise ValueError(f"{path}, line 2: {len(names)} units for {len(header)} columns")
+    out = {}
+    for column, unit in zip(header, names):
+        if unit not in units[column]:
+            raise ValueError(f"{path}, line 2, column {column!r}: unknown unit {unit!r}; allowed: "
+                             f"{sorted(u for u in units[column] if u)}")
+        out[column] = units[column][unit]
+    return out, 2

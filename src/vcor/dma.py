@@ -32,7 +32,7 @@ import numpy as np
 
 from . import materials as _materials
 from .checks import number, positive
-from .csvfile import cell_number, data_rows, read_rows
+from .csvfile import cell_number, data_rows, read_rows, units_row
 
 __all__ = ["DMATable", "ShiftFunction", "Superposition", "arrhenius_fit", "fit_master", "read_table", "shift_from_file", "shifted", "superpose", "wlf_fit",
            "wlf_log_aT"]
@@ -76,17 +76,8 @@ def read_table(path) -> DMATable:
                          + (f"; unknown (misspelt?) columns {unknown}" if unknown else ""))
     if kind != "shift" and ("T" in header) != ("Set" in header):
         raise ValueError(f"{_where(path, 1)}: a raw multi-temperature set needs both T and Set columns")
-    scale = {h: (1.0 if h not in ("T",) else 0.0) for h in header}
-    start = 1
-    if len(rows) > 1 and rows[1] and not _is_number(rows[1][0]):
-        units = [u.strip() for u in rows[1]]
-        if len(units) != len(header):
-            raise ValueError(f"{_where(path, 2)}: {len(units)} units for {len(header)} columns")
-        for h, u in zip(header, units):
-            if u not in UNITS[h]:
-                raise ValueError(f"{_where(path, 2, h)}: unknown unit {u!r}; allowed: {sorted(UNITS[h])}")
-            scale[h] = UNITS[h][u]
-        start = 2
+    # T: the unit's value is an offset to deg C; every other column's a factor to SI
+    scale, start = units_row(path, rows, header, UNITS, {h: 0.0 if h == "T" else 1.0 for h in header})
     values = {h: [] for h in header}
     for lineno, row in data_rows(path, rows, header, start):
         for h, cell in zip(header, row):
@@ -106,14 +97,6 @@ def read_table(path) -> DMATable:
             raise ValueError(f"{_where(path, line, 'log_aT')}: shift factors must be strictly monotone in T "
                              f"(log_aT falls as T rises), and temperatures distinct")
     return DMATable(kind, cols, str(path))
-
-
-def _is_number(cell):
-    try:
-        float(cell)
-    except ValueError:
-        return False
-    return True
 
 
 def wlf_log_aT(T, T_ref, C1, C2):

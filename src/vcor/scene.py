@@ -284,11 +284,9 @@ def build_point(point, settings, material_dir):
     if "T" in point:
         material = at_temperature(point["material"], material, float(point["T"]), material_dir)
     if "bodies" in settings:
-        from .bodies import body_from_spec, impact_inputs
+        from .bodies import impact_inputs, scene_bodies
 
-        sphere = body_from_spec("sphere", settings["bodies"]["sphere"], swept=material)
-        plate = body_from_spec("plate", settings["bodies"]["plate"], swept=material)
-        material, geometry = impact_inputs(sphere, plate)
+        material, geometry = impact_inputs(*scene_bodies(settings["bodies"], material))
     return material, v0, geometry
 
 
