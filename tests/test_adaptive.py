@@ -62,27 +62,31 @@ def test_thin_plates_separate_and_match_ive(name, h):
         assert abs(res.t0 / ref.t0 - 1) <= 1e-3
         assert abs(res.cor - ref.cor) <= 1e-6
         steps = np.diff(res.history.t)
-        assert steps.max() / steps.min() >= 1e3 if h <= 2e-3 else 1e2
+        # largest / smallest step: 8192..65536 at h = 1 mm, 256..8192 for the thicker plates here
+        # (this line used to read `assert ratio >= 1e3 if ... else 1e2`, which could not fail for h > 2 mm)
+        assert steps.max() / steps.min() >= (1e3 if h <= 1e-3 else 1e2)
 
 
 def test_fractional_thin_plate_separates_after_hours():
     """The Butyl fractional plate, h = 1 mm, 10 m/s: the force decays over hours (the plate relaxes as
-    t^-1/2) and the time horizon grows until it separates. The COR (~1e-13) is converged; t0 is not:
-    the force creeps to zero so slowly that step_tol / 100 moves it from ~2600 s to ~9e4 s (README,
-    "Known limits"); sweeps store that as a large t0_err."""
+    t^-1/2) and the time horizon grows until it separates. The COR (~1e-11) is converged; t0 is not:
+    the force creeps to zero so slowly that the grid and the grid halved disagree on t0 by tens of
+    per cent, so the run is not Richardson-extrapolated and says so, and step_tol / 100 moves t0 by
+    more than 10 % (README, "Known limits"); sweeps store that as a large t0_err."""
     a = vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3)
-    b = vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3, step_tol=1e-9)
+    b = vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3, step_tol=1e-7)
     assert a.ok and b.ok, (a.message, b.message)
+    assert "not Richardson-extrapolated" in a.message and "not Richardson-extrapolated" in b.message
     assert a.t0 > 1e3 and b.t0 > 1e3
     assert abs(a.cor - b.cor) <= 1e-6 and a.cor < 1e-9
-    assert abs(a.t0 / b.t0 - 1) > 0.5  # documented: t0 is ill-conditioned here
+    assert abs(a.t0 / b.t0 - 1) > 0.1  # documented: t0 is ill-conditioned here
     assert a.steps < 50_000
 
 
 def test_error_is_about_proportional_to_step_tol():
     """What the error estimate of sweeps (a run at step_tol / 16) relies on."""
     ref = vcor.simulate("sls", 10.0, method="ive", rtol=1e-12).cor
-    errs = [abs(vcor.simulate("sls", 10.0, method="adaptive", step_tol=tol).cor - ref) for tol in (1e-6, 1e-7, 1e-8)]
+    errs = [abs(vcor.simulate("sls", 10.0, method="adaptive", step_tol=tol).cor - ref) for tol in (1e-4, 1e-5, 1e-6)]
     for coarse, fine in itertools.pairwise(errs):
         assert 3 < coarse / fine < 30, errs
 

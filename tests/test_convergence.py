@@ -29,8 +29,12 @@ def test_study_records_options_statuses_and_order_two():
     assert all("ladder" in str(m) for m in ds["message"].values[off])
     on = ~off
     assert np.all(ds["status"].values[on] == status.code("ok"))
-    for name in ("direct-a", "direct-b", "ive-numba", "soe", "adaptive"):
+    for name in ("direct-a", "direct-b", "ive-numba", "soe", "adaptive-plain"):
         order = convergence.observed_order(ds, name)
         print(f"\nsls v0 = 10, {name}: observed order {order:.3f}")
-        assert 1.9 < order < 2.2  # README table: 2.00-2.02 (adaptive, in the steps taken: 1.96)
+        assert 1.9 < order < 2.2  # README table: 2.00-2.02 (adaptive-plain, in the steps taken: 1.96)
+    # the sweep default (adaptive with Richardson extrapolation), in the steps of both grids: 2.9
+    order = convergence.observed_order(ds, "adaptive")
+    print(f"\nsls v0 = 10, adaptive (Richardson): observed order {order:.3f}")
+    assert order > 2.4
     assert convergence.observed_order(ds, "paper-explicit") < 1.0  # README: 0.89-0.93

@@ -9,7 +9,7 @@ import yaml
 
 import vcor
 from vcor import cli
-from vcor.options import SWEEP_METHOD, SolverOptions, solver_options
+from vcor.options import BOOLEAN_OPTIONS, SWEEP_METHOD, SolverOptions, solver_options
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text())
@@ -62,10 +62,10 @@ def test_cli_flags_are_the_options():
         if name == "ghost":
             continue
         flag = "--" + name.replace("_", "-")
-        extra = [flag] if name == "volterra" else [flag, CLI_VALUES[name]]
+        extra = [flag] if name in BOOLEAN_OPTIONS else [flag, CLI_VALUES[name]]
         args = parser.parse_args(["impact", "--v0", "1", *extra])
         got = getattr(args, name)
-        assert got is True if name == "volterra" else str(got) == CLI_VALUES[name] or got == float(CLI_VALUES[name])
+        assert got is True if name in BOOLEAN_OPTIONS else str(got) == CLI_VALUES[name] or got == float(CLI_VALUES[name])
         if SolverOptions.allowed_of(name) is not None:
             with pytest.raises(SystemExit):
                 parser.parse_args(["impact", "--v0", "1", flag, "no-such-value"])

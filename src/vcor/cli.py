@@ -8,7 +8,7 @@ import sys
 
 from . import materials
 from .impact import GEOMETRY_DEFAULTS
-from .options import OPTION_HELP, SolverOptions
+from .options import BOOLEAN_OPTIONS, OPTION_HELP, SolverOptions
 from .solvers import simulate
 from .solvers.common import UNITS
 
@@ -35,6 +35,8 @@ def build_parser():
         help_text = f"{OPTION_HELP[name]} (default {default})"
         if name == "volterra":
             imp.add_argument(flag, action="store_true", default=None, help=help_text)
+        elif name in BOOLEAN_OPTIONS:
+            imp.add_argument(flag, action=argparse.BooleanOptionalAction, default=None, help=help_text)
         elif SolverOptions.allowed_of(name) is not None:
             imp.add_argument(flag, dest=name, choices=SolverOptions.allowed_of(name), default=None, help=help_text)
         else:

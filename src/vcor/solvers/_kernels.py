@@ -312,7 +312,7 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 @numba.njit(**_JIT)
 def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
-                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, S, X, q, state):
+                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, S, X, q, state, plan):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
     Steps are hl[l] = h_base 2^l (levels l = 0..L-1, tables per level). Step n spans [t_{n-1}, t_n]
@@ -337,6 +337,10 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     re-stepped finer; after it the level is frozen for the n_extra steps and the ghost continuation
     to (1 + ghost) t_sep.
 
+    plan (levels, may be empty): step n <= len(plan) is taken on level plan[n - 1], with no error
+    control and no separation refinement (the replay of a grid); after the plan, the march goes on
+    with error control from the plan's last level.
+
     state = [loaded, separation index, last index, status, rejected steps, floor steps, level, frozen]
     (set level to the first step's before the first call). Resumable: when the arrays are full it
     returns STATUS_FULL with S, X, q (the pending contribution of the newest step) and state intact.
@@ -350,7 +354,11 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     frozen = state[7] == 1
     state[3] = STATUS_RUNNING
     tol_abs = step_tol * v0
+    n_plan = plan.shape[0]
     while n <= nmax:
+        planned = n - 1 < n_plan
+        if planned:
+            l = plan[n - 1]
         h = hl[l]
         tn = t[n - 1] + h
         # history of all steps before this one
@@ -387,7 +395,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
                                               0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h)
         # local error estimate and step control
         est = -1.0
-        if not frozen and ok and n >= 2 and math.isfinite(gn):
+        if not frozen and not planned and ok and n >= 2 and math.isfinite(gn):
             tol_abs = step_tol * min(v0, abs(gn) + abs(sn) * inv_tc)
             dd = ((gn - g[n - 1]) / h - (g[n - 1] - g[n - 2]) / hp) / (h + hp)
             est = h * h * abs(dd) / 6.0
@@ -402,13 +410,13 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
                 continue
             if est > tol_abs:
                 state[5] += 1
-        elif not frozen and not ok and l > lev_floor:
+        elif not frozen and not planned and not ok and l > lev_floor:
             l -= 1
             state[6] = l
             state[4] += 1
             continue
         # separation found on a coarse step: re-step finer
-        if (not frozen and state[1] < 0 and state[0] == 1 and _separated(rule, True, Fn, sn)
+        if (not frozen and not planned and state[1] < 0 and state[0] == 1 and _separated(rule, True, Fn, sn)
                 and h > sep_frac * tn and l > lev_floor):
             l -= 1
             state[6] = l

@@ -99,19 +99,15 @@ def _plate(impact):
     return 1, impact.mobility_scale, 1.0 / (1.0 - g.nu**2), 0.0
 
 
-def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10,
-                 fixed_level=None):
-    """Adaptive march (see the module docstring). ``tc``: contact-time estimate, s.
-
-    ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
-    a uniform grid on which the march is the direct scheme with an exponential-sum history."""
+def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, ghost, tol, fixed_level=None,
+           plan=None):
+    """One adaptive march (or the replay of a level ``plan``) with the horizon extension.
+    Returns (t, arrays, state, n_done, levels, horizon, factor)."""
     mat = impact.material
     eta = impact.kappa * mat.viscosity
     plate, pscale, pc, alpha_c = _plate(impact)
-    top = 2.0 ** math.floor(math.log2(tc))
-    h_base = top * 2.0**-FLOOR_BITS
-    t_start = time.perf_counter()
-    factor = HORIZON_START
+    top = h_base * 2.0**FLOOR_BITS
+    plan = _NO_PLAN if plan is None else plan
     while True:
         # horizon: a power of two >= factor t_c, so that the tables of a sweep's points are shared
         horizon = factor * 2.0 * top
@@ -122,23 +118,29 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         first = START_LEVEL if fixed_level is None else int(fixed_level)
         lo, hi = (0, n_levels - 1) if fixed_level is None else (first, first)
         state = np.array([0, -1, 0, K.STATUS_RUNNING, 0, 0, first, 0], dtype=np.int64)
-        arr = Arrays(min(INITIAL_SIZE, max_steps))
+        size = INITIAL_SIZE if plan.size == 0 else plan.size + 2 * N_EXTRA + 8
+        arr = Arrays(min(size, max_steps))
         t, lev = np.zeros(arr.n + 1), np.zeros(arr.n + 1, dtype=np.int64)
         arr.g[0] = impact.v0
         while True:
             K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
                              tab["GB"], tab["R"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"], tab["pb"],
                              alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
-                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, S, X, q, state)
+                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, S, X, q, state, plan)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
             arr.grow(2 * arr.n if state[1] >= 0 else min(2 * arr.n, max_steps))
             t, lev = _grown(t, arr.n), _grown(lev, arr.n)
         n_done = int(state[2])
         if not (state[3] == K.STATUS_END and state[1] < 0 and t[n_done] >= horizon and factor < MAX_HORIZON):
-            break
+            return t, arr, state, n_done, lev, horizon, factor
         factor *= 32.0
-    wall = time.perf_counter() - t_start
+
+
+_NO_PLAN = np.zeros(0, dtype=np.int64)
+
+
+def _result(impact, t, arr, state, n_done, horizon, factor, *, max_steps, rule, history, wall):
     note = ""
     if state[3] == K.STATUS_DIVERGED and state[1] >= 0 and n_done >= state[1] + N_EXTRA:
         note = f"ghost continuation stopped at t = {t[n_done]:.6g} s: the march diverged"
@@ -148,6 +150,59 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
                   else f"the step budget max_steps = {max_steps}")
         budget = (f"stopped by {reason} before a verdict: the contact force had not returned to zero at "
                   f"t = {t[n_done]:.6g} s ({n_done} adaptive steps); s_max and f_max are over that window")
-    res = finish(impact, float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan, arr, state, n_done,
-                 rule, history, wall, "adaptive", max_steps, note, t=t, budget=budget)
-    return res
+    return finish(impact, float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan, arr, state, n_done,
+                  rule, history, wall, "adaptive", max_steps, note, t=t, budget=budget)
+
+
+#: Richardson extrapolation only where the grid and the grid halved agree to this (t0 relative; COR to
+#: this relative plus COR_FLOOR absolute): further apart, the runs are not in the asymptotic range
+RICHARDSON_GAP = 1e-3
+COR_FLOOR = 1e-9
+#: scalars of a Result that are Richardson-extrapolated from the grid and the grid halved
+EXTRAPOLATED = ("cor", "t0", "s_residual", "w_h", "w_plate", "sphere_velocity", "energy_residual", "s_max", "f_max")
+
+
+def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10,
+                 fixed_level=None, extrapolate=False):
+    """Adaptive march (see the module docstring). ``tc``: contact-time estimate, s.
+
+    ``extrapolate``: march again on the accepted grid with every step halved (the same levels on
+    tables for h_base / 2) and Richardson-extrapolate the scalars (second order: (4 fine - coarse) / 3).
+    ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
+    a uniform grid on which the march is the direct scheme with an exponential-sum history."""
+    top = 2.0 ** math.floor(math.log2(tc))
+    h_base = top * 2.0**-FLOOR_BITS
+    t_start = time.perf_counter()
+    kw = dict(step_tol=step_tol, max_steps=max_steps, rule=rule, tol=tol)
+    t, arr, state, n_done, lev, horizon, factor = _march(impact, tc, h_base, HORIZON_START, history=history and
+                                                         not extrapolate, ghost=ghost, fixed_level=fixed_level, **kw)
+    coarse = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=max_steps, rule=rule,
+                     history=history and not extrapolate, wall=time.perf_counter() - t_start)
+    if not (extrapolate and coarse.ok):
+        return coarse
+    n_plan = min(n_done, int(state[1]) + N_EXTRA)
+    plan = np.repeat(lev[1: n_plan + 1], 2)
+    t, arr, state, n_done, lev, horizon, factor = _march(impact, tc, 0.5 * h_base, factor, history=history,
+                                                         ghost=ghost, plan=plan, **kw)
+    fine = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=2 * max_steps, rule=rule,
+                   history=history, wall=time.perf_counter() - t_start)
+    if not fine.ok:
+        fine.message = f"the replay on the halved grid of an ok adaptive run failed: {fine.message}"
+        return fine
+    gap_t0 = abs(fine.t0 - coarse.t0) / fine.t0
+    gap_cor = abs(fine.cor - coarse.cor)
+    if gap_t0 > RICHARDSON_GAP or gap_cor > RICHARDSON_GAP * fine.cor + COR_FLOOR:
+        # not in the asymptotic range (e.g. a force creeping to zero over hours: t0 ill-conditioned):
+        # an extrapolation would be a guess; keep the fine grid's values and say so
+        fine.steps = coarse.steps + fine.steps
+        fine.message = (fine.message + "; " if fine.message else "") + (
+            f"not Richardson-extrapolated: the grid and the grid halved differ by {gap_t0:.2g} (t0, relative) "
+            f"and {gap_cor:.2g} (COR); values of the halved grid")
+        return fine
+    for k in EXTRAPOLATED:
+        setattr(fine, k, (4.0 * getattr(fine, k) - getattr(coarse, k)) / 3.0)
+    fine.omega_min = 2.0 * math.pi / fine.t0
+    fine.steps = coarse.steps + fine.steps
+    fine.message = (fine.message + "; " if fine.message else "") + \
+        "Richardson-extrapolated from the adaptive grid and the grid halved"
+    return fine

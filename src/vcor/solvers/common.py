@@ -108,16 +108,28 @@ class Result:
         return out
 
 
-def _lagrange(tn, yn, t):
-    """Evaluate the Lagrange polynomial through (tn, yn) at t (scalar)."""
-    total = 0.0
-    for i in range(len(tn)):
-        li = 1.0
-        for j in range(len(tn)):
-            if j != i:
-                li *= (t - tn[j]) / (tn[i] - tn[j])
-        total += yn[i] * li
-    return total
+class _Cubic:
+    """The interpolating polynomial through (tn, yn) (any number of nodes, here four) in Newton form:
+    divided differences once, then each evaluation costs a few multiplications (the separation's
+    root search evaluates it ~10 times)."""
+
+    __slots__ = ("c", "tn")
+
+    def __init__(self, tn, yn):
+        self.tn = [float(x) for x in tn]
+        c = [float(y) for y in yn]
+        n = len(c)
+        for j in range(1, n):
+            for i in range(n - 1, j - 1, -1):
+                c[i] = (c[i] - c[i - 1]) / (self.tn[i] - self.tn[i - j])
+        self.c = c
+
+    def __call__(self, t):
+        c, tn = self.c, self.tn
+        total = c[-1]
+        for i in range(len(c) - 2, -1, -1):
+            total = total * (t - tn[i]) + c[i]
+        return total
 
 
 def peak(t, y, f=None):
@@ -146,7 +158,7 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
 
     The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
     is found as the root of the cubic
-    Lagrange interpolant through the four nodes around it (third-order interpolation, error
+    interpolant (Newton form) through the four nodes around it (third-order interpolation, error
     O(dt^4)); s, s', J are interpolated the same way. The interpolant equals the nodes, so the
     root is always bracketed in a march's separation step; anything else raises (no silent guess).
     Returns a dict of the scalars and ``message`` (empty).
@@ -160,11 +172,7 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     # earlier step, its root is not in this one: F's is used.)
     by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
     target = s if by_overlap else F
-    yn = target[idx]
-
-    def f(x):
-        return _lagrange(tn, yn, x)
-
+    f = _Cubic(tn, target[idx])
     a, b = t[n - 1], t[n]
     fa, fb = f(a), f(b)
     message = ""
@@ -175,10 +183,10 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
                            f"({fa!r} -> {fb!r})")
     # Brent's method on the cubic interpolant, bracketed by fa > 0 >= fb
     t0 = b if fb == 0.0 else brentq(f, a, b, xtol=1e-15 * max(b, 1e-300), rtol=4 * np.finfo(float).eps, maxiter=200)
-    s0 = _lagrange(tn, s[idx], t0)
-    g0 = _lagrange(tn, g[idx], t0)
-    J0 = _lagrange(tn, J[idx], t0)
-    F0 = 0.0 if rule == "force" else _lagrange(tn, F[idx], t0)
+    s0 = _Cubic(tn, s[idx])(t0)
+    g0 = _Cubic(tn, g[idx])(t0)
+    J0 = _Cubic(tn, J[idx])(t0)
+    F0 = 0.0 if rule == "force" else _Cubic(tn, F[idx])(t0)
     z0 = v0 - J0 / m
     # quadrature: trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]
     zd = v0 - J / m

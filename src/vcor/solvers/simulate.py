@@ -103,7 +103,7 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
 def _dispatch(impact, opts: SolverOptions, tc: float, history: bool):
     if opts.method == "adaptive":
         return run_adaptive(impact, tc, step_tol=opts.step_tol, max_steps=opts.max_adaptive_steps, rule=opts.rule,
-                            history=history, ghost=opts.ghost, tol=opts.soe_tol)
+                            history=history, ghost=opts.ghost, tol=opts.soe_tol, extrapolate=opts.richardson)
     if opts.method == "ive":
         return run_ive_scipy(impact, rtol=opts.rtol, method=opts.ive_method, tc=tc, t_max=T_MAX_START * tc,
                              max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=opts.ghost, rule=opts.rule,
