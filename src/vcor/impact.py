@@ -215,8 +215,9 @@ class Impact:
         t0/t_c = 0.845; thin plates make it far longer). Used to choose dt and T_max; simulate()
         refines dt when the real contact is much shorter."""
         t = 1e-3
+        kappa, material = self.kappa, self.material
         for _ in range(8):
-            k = float(self.kernel(np.array([t / 4]))[0])
+            k = kappa * material.modulus_at(t / 4)
             smax = (5.0 * self.m * self.v0**2 / (4.0 * k)) ** 0.4
             t = 2.9432 * smax / self.v0
         return t

@@ -65,6 +65,10 @@ class Material:
     def relaxation_rate(self, t):  # pragma: no cover - abstract
         raise NotImplementedError
 
+    def modulus_at(self, t: float) -> float:
+        """E(t) at one time t (s), Pa (subclasses may evaluate it without arrays)."""
+        return float(self.relaxation_modulus(np.array([t]))[0])
+
     def complex_modulus(self, omega):  # pragma: no cover - abstract
         raise NotImplementedError
 
@@ -185,6 +189,8 @@ class Prony(Material):
         object.__setattr__(self, "beta", b)
         if self.E_inf + sum(e) <= 0:
             raise ValueError("Prony: glassy modulus E_inf + sum(E) must be > 0 Pa")
+        # the terms as arrays, built once (not dataclass fields: equality and hashing use E and beta)
+        object.__setattr__(self, "_term_arrays", (np.asarray(e, float), np.asarray(b, float)))
 
     @property
     def is_prony(self) -> bool:
@@ -199,17 +205,23 @@ class Prony(Material):
         return max(self.beta, default=0.0)
 
     def _arrays(self):
-        return np.asarray(self.E, float), np.asarray(self.beta, float)
+        return self._term_arrays
 
     def relaxation_modulus(self, t):
         t = np.asarray(t, dtype=float)
         e, b = self._arrays()
         with np.errstate(invalid="ignore"):
             terms = e * np.exp(-np.multiply.outer(t, b))
-        terms = np.where(np.isnan(terms), 0.0, terms)  # 0 * exp(-inf * 0) at t = inf, b = 0
-        if b.size:
+        if b.size and np.isinf(t).any():
+            terms = np.where(np.isnan(terms), 0.0, terms)  # 0 * exp(-inf * 0) at t = inf, b = 0
             terms = np.where(np.multiply.outer(np.isinf(t), b == 0), e, terms)
         return self.E_inf + terms.sum(axis=-1)
+
+    def modulus_at(self, t: float) -> float:
+        total = self.E_inf
+        for e, b in zip(self.E, self.beta):
+            total += e * math.exp(-b * t)
+        return total
 
     def relaxation_rate(self, t):
         t = np.asarray(t, dtype=float)

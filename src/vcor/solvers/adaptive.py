@@ -45,7 +45,7 @@ SEP_STEPS = 1024
 HORIZON_START = 64.0
 MAX_HORIZON = 2.0**30
 #: initial size of the solution arrays (they double when full)
-INITIAL_SIZE = 16384
+INITIAL_SIZE = 2048
 #: the largest step is this fraction of the horizon
 MAX_STEP_FRACTION = 1.0 / 16.0
 
