@@ -457,3 +457,109 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
             return
         n += 1
     state[3] = STATUS_FULL
+
+
+@numba.njit(**_JIT)
+def _divided(tn, yn):
+    """Newton divided differences of the interpolating polynomial through (tn, yn)."""
+    c = yn.copy()
+    k = c.shape[0]
+    for j in range(1, k):
+        for i in range(k - 1, j - 1, -1):
+            c[i] = (c[i] - c[i - 1]) / (tn[i] - tn[i - j])
+    return c
+
+
+@numba.njit(**_JIT)
+def _newton_value(c, tn, x):
+    total = c[c.shape[0] - 1]
+    for i in range(c.shape[0] - 2, -1, -1):
+        total = total * (x - tn[i]) + c[i]
+    return total
+
+
+@numba.njit(**_JIT)
+def parabola_peak(t, y, n):
+    """Maximum of samples y[0..n] refined by the parabola through the largest one and its neighbours
+    (any spacing); the largest sample itself at an end or where the parabola is not concave."""
+    i = 0
+    for j in range(1, n + 1):
+        if y[j] > y[i]:
+            i = j
+    if i == 0 or i == n:
+        return y[i]
+    h1 = t[i] - t[i - 1]
+    h2 = t[i + 1] - t[i]
+    d1 = (y[i] - y[i - 1]) / h1
+    curv = ((y[i + 1] - y[i]) / h2 - d1) / (h1 + h2)
+    if curv >= 0.0:
+        return y[i]
+    x = 0.5 * (t[i - 1] + t[i]) - 0.5 * d1 / curv
+    return y[i - 1] + d1 * (x - t[i - 1]) + curv * (x - t[i - 1]) * (x - t[i])
+
+
+@numba.njit(**_JIT)
+def separation_point(t, s, g, F, J, n, lo, by_overlap, force_rule, m, v0, out):
+    """Separation inside [t_{n-1}, t_n] (see ``common.separation``): the root of the cubic through
+    nodes lo..lo+3 of the target (s when ``by_overlap``, else F) by the Illinois variant of regula
+    falsi to 1e-15 t_n, then s, s', J (and F for the overlap rule) there, the trapezoidal work
+    integrals and the parabola-refined peaks of s and F. Fills ``out`` = [t0, s0, g0, J0, F0, w_h, w_z,
+    s_max, f_max] and returns True; False (nothing filled) when the target does not change sign."""
+    tn = t[lo:lo + 4]
+    c = _divided(tn, s[lo:lo + 4] if by_overlap else F[lo:lo + 4])
+    a = t[n - 1]
+    b = t[n]
+    fa = _newton_value(c, tn, a)
+    fb = _newton_value(c, tn, b)
+    if not (fa > 0.0 >= fb):
+        return False
+    t0 = b
+    if fb != 0.0:
+        lo_t, hi_t, flo, fhi = a, b, fa, fb
+        side = 0
+        xtol = 1e-15 * b
+        for _ in range(200):
+            x = (lo_t * fhi - hi_t * flo) / (fhi - flo)
+            if not (lo_t < x < hi_t):
+                x = 0.5 * (lo_t + hi_t)
+            fx = _newton_value(c, tn, x)
+            t0 = x
+            if fx == 0.0:
+                break
+            if fx > 0.0:
+                lo_t, flo = x, fx
+                if side == 1:
+                    fhi *= 0.5
+                side = 1
+            else:
+                hi_t, fhi = x, fx
+                if side == -1:
+                    flo *= 0.5
+                side = -1
+            if hi_t - lo_t <= xtol:
+                t0 = lo_t if flo < -fhi else hi_t
+                break
+    s0 = _newton_value(_divided(tn, s[lo:lo + 4]), tn, t0)
+    g0 = _newton_value(_divided(tn, g[lo:lo + 4]), tn, t0)
+    J0 = _newton_value(_divided(tn, J[lo:lo + 4]), tn, t0)
+    F0 = 0.0 if force_rule else _newton_value(_divided(tn, F[lo:lo + 4]), tn, t0)
+    z0 = v0 - J0 / m
+    # trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]
+    w_h = 0.0
+    w_z = 0.0
+    for j in range(1, n):
+        half = 0.5 * (t[j] - t[j - 1])
+        w_h += half * (F[j] * g[j] + F[j - 1] * g[j - 1])
+        w_z += half * (F[j] * (v0 - J[j] / m) + F[j - 1] * (v0 - J[j - 1] / m))
+    w_h += 0.5 * (t0 - a) * (F[n - 1] * g[n - 1] + F0 * g0)
+    w_z += 0.5 * (t0 - a) * (F[n - 1] * (v0 - J[n - 1] / m) + F0 * z0)
+    out[0] = t0
+    out[1] = s0
+    out[2] = g0
+    out[3] = J0
+    out[4] = F0
+    out[5] = w_h
+    out[6] = w_z
+    out[7] = parabola_peak(t, s, n)
+    out[8] = parabola_peak(t, F, n)
+    return True

@@ -203,6 +203,4 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         setattr(fine, k, (4.0 * getattr(fine, k) - getattr(coarse, k)) / 3.0)
     fine.omega_min = 2.0 * math.pi / fine.t0
     fine.steps = coarse.steps + fine.steps
-    fine.message = (fine.message + "; " if fine.message else "") + \
-        "Richardson-extrapolated from the adaptive grid and the grid halved"
     return fine

@@ -6,9 +6,10 @@ import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
+from scipy.optimize import minimize_scalar
 
 from ..status import STATUS_CODES
+from . import _kernels as K
 
 __all__ = ["LONG_NAMES", "STATUS_CODES", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
 
@@ -108,30 +109,6 @@ class Result:
         return out
 
 
-class _Cubic:
-    """The interpolating polynomial through (tn, yn) (any number of nodes, here four) in Newton form:
-    divided differences once, then each evaluation costs a few multiplications (the separation's
-    root search evaluates it ~10 times)."""
-
-    __slots__ = ("c", "tn")
-
-    def __init__(self, tn, yn):
-        self.tn = [float(x) for x in tn]
-        c = [float(y) for y in yn]
-        n = len(c)
-        for j in range(1, n):
-            for i in range(n - 1, j - 1, -1):
-                c[i] = (c[i] - c[i - 1]) / (self.tn[i] - self.tn[i - j])
-        self.c = c
-
-    def __call__(self, t):
-        c, tn = self.c, self.tn
-        total = c[-1]
-        for i in range(len(c) - 2, -1, -1):
-            total = total * (t - tn[i]) + c[i]
-        return total
-
-
 def peak(t, y, f=None):
     """Maximum of sampled y(t). Refined by the parabola through the largest sample and its neighbours
     (any spacing), or, when ``f`` (a callable y(t), e.g. a dense output) is given, by a bounded
@@ -143,14 +120,7 @@ def peak(t, y, f=None):
         lo, hi = t[i - 1], t[i + 1]
         r = minimize_scalar(lambda x: -f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * hi})
         return float(max(-r.fun, y[i]))
-    # the parabola through the three samples (any spacing), Newton form around t[i - 1]
-    h1, h2 = t[i] - t[i - 1], t[i + 1] - t[i]
-    d1 = (y[i] - y[i - 1]) / h1
-    curv = ((y[i + 1] - y[i]) / h2 - d1) / (h1 + h2)
-    if curv >= 0.0:
-        return float(y[i])
-    x = 0.5 * (t[i - 1] + t[i]) - 0.5 * d1 / curv
-    return float(y[i - 1] + d1 * (x - t[i - 1]) + curv * (x - t[i - 1]) * (x - t[i]))
+    return float(K.parabola_peak(np.asarray(t, dtype=float), np.asarray(y, dtype=float), y.size - 1))
 
 
 def separation(t, s, g, F, J, n_sep, rule, m, v0):
@@ -165,50 +135,32 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     """
     n = int(n_sep)
     lo = max(0, min(n - 2, len(t) - 4))
-    idx = slice(lo, lo + 4)
-    tn = t[idx]
     # F = 0 and s = 0 in the same step (elastic-like separation): F ~ s^{3/2} is not smooth at its
     # root, s is, so the root of s locates the same instant far more accurately. (If s crossed in an
     # earlier step, its root is not in this one: F's is used.)
     by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
-    target = s if by_overlap else F
-    f = _Cubic(tn, target[idx])
-    a, b = t[n - 1], t[n]
-    fa, fb = f(a), f(b)
-    message = ""
-    if not (fa > 0 >= fb):
+    out = np.empty(9)
+    if not K.separation_point(t, s, g, F, J, n, lo, by_overlap, rule == "force", float(m), float(v0), out):
         # cannot happen for a march's separation step (the interpolant equals the nodes, and the
         # target was > 0 at step n - 1 and <= 0 at step n); loud rather than a silent guess
+        target = s if by_overlap else F
         raise RuntimeError(f"separation step {n}: {'s' if by_overlap else 'F'} does not change sign "
-                           f"({fa!r} -> {fb!r})")
-    # Brent's method on the cubic interpolant, bracketed by fa > 0 >= fb
-    t0 = b if fb == 0.0 else brentq(f, a, b, xtol=1e-15 * max(b, 1e-300), rtol=4 * np.finfo(float).eps, maxiter=200)
-    s0 = _Cubic(tn, s[idx])(t0)
-    g0 = _Cubic(tn, g[idx])(t0)
-    J0 = _Cubic(tn, J[idx])(t0)
-    F0 = 0.0 if rule == "force" else _Cubic(tn, F[idx])(t0)
-    z0 = v0 - J0 / m
-    # quadrature: trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]
-    zd = v0 - J / m
-    fg = F[:n] * g[:n]
-    fz = F[:n] * zd[:n]
-    half = 0.5 * np.diff(t[:n])  # trapezoid on any grid
-    w_h = float(half @ (fg[1:] + fg[:-1])) + 0.5 * (t0 - a) * (fg[-1] + F0 * g0)
-    w_z = float(half @ (fz[1:] + fz[:-1])) + 0.5 * (t0 - a) * (fz[-1] + F0 * z0)
+                           f"({target[n - 1]!r} -> {target[n]!r})")
+    t0, s0, g0, _, _, w_h, w_z, s_max, f_max = (float(x) for x in out)
+    z0 = float(v0 - out[3] / m)
     e_in = 0.5 * m * v0 * v0
-    energy_residual = (e_in - 0.5 * m * z0 * z0 - w_z) / e_in
     return {
-        "t0": float(t0),
-        "cor": float(abs(g0) / v0),
-        "s_residual": float(s0),
-        "w_h": float(w_h),
-        "w_plate": float(w_z - w_h),
-        "omega_min": float(2 * math.pi / t0),
-        "sphere_velocity": float(z0),
-        "energy_residual": float(energy_residual),
-        "s_max": peak(t[: n + 1], s[: n + 1]),
-        "f_max": peak(t[: n + 1], F[: n + 1]),
-        "message": message,
+        "t0": t0,
+        "cor": abs(g0) / v0,
+        "s_residual": s0,
+        "w_h": w_h,
+        "w_plate": w_z - w_h,
+        "omega_min": 2 * math.pi / t0,
+        "sphere_velocity": z0,
+        "energy_residual": (e_in - 0.5 * m * z0 * z0 - w_z) / e_in,
+        "s_max": s_max,
+        "f_max": f_max,
+        "message": "",
     }
 
 
