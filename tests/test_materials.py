@@ -126,3 +126,16 @@ def test_cerf_rate_accurate_for_large_argument():
     # and it is the fractional law's rate
     fc = M.FractionalPower(2.28e6, 6.45e16 / 7.29e10)
     assert float(c.relaxation_rate(1e-4)) == pytest.approx(float(fc.relaxation_rate(1e-4)), rel=1e-9)
+
+
+@pytest.mark.parametrize("name", sorted(MP_E))
+def test_scalar_modulus_against_mpmath(name):
+    """modulus_at (the scalar E(t) of the contact-time estimate) against the mpmath definitions."""
+    mat = M.get(name)
+    for t in (1e-9, 1e-6, 1e-4, 1e-2, 1.0):
+        assert mat.modulus_at(t) == pytest.approx(float(MP_E[name](mp.mpf(t))), rel=1e-13)
+
+
+def test_scalar_modulus_at_zero():
+    assert M.FractionalPower(E0=1e6, E1=2e5).modulus_at(0.0) == math.inf
+    assert M.FractionalPower(E0=1e6, E1=0.0).modulus_at(0.0) == 1e6

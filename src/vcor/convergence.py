@@ -27,7 +27,7 @@ LADDER = (250, 500, 1000, 2000, 4000, 8000)
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
 #: step_tol ladders of the adaptive method: without Richardson extrapolation, and with it (the default)
 STEP_TOLS = (1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
-RICHARDSON_STEP_TOLS = (1e-3, 1e-4, 1e-5, 1e-6)
+RICHARDSON_STEP_TOLS = (1e-3, 3e-4, 1e-4, 3e-5)
 REF_STEPS = (8000, 16000)
 
 

@@ -381,6 +381,11 @@ class FractionalPower(Material):
         with np.errstate(divide="ignore"):
             return self.E0 + self.E1 / np.sqrt(math.pi * t)
 
+    def modulus_at(self, t: float) -> float:
+        if t <= 0:
+            return math.inf if self.E1 > 0 else self.E0
+        return self.E0 + self.E1 / math.sqrt(math.pi * t)
+
     def relaxation_rate(self, t):
         t = np.asarray(t, dtype=float)
         with np.errstate(divide="ignore"):
@@ -485,6 +490,9 @@ class Cerf(Material):
     def relaxation_modulus(self, t):
         t = np.asarray(t, dtype=float)
         return self.E0 + self.E1 * erfcx(self.b1 * np.sqrt(t))
+
+    def modulus_at(self, t: float) -> float:
+        return self.E0 + self.E1 * float(erfcx(self.b1 * math.sqrt(t)))
 
     def relaxation_rate(self, t):
         """dE/dt = E1 (b1 / sqrt t) (x erfcx(x) - 1/sqrt(pi)), x = b1 sqrt t.

@@ -312,7 +312,7 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 @numba.njit(**_JIT)
 def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
-                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, S, X, q, state, plan):
+                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state, plan):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
     Steps are hl[l] = h_base 2^l (levels l = 0..L-1, tables per level). Step n spans [t_{n-1}, t_n]
@@ -320,8 +320,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     c_n = 2 (d_n - d_{n-1})/(h_n + h_{n-1}) (the parabola through three nodes; c_1 = 0): the direct
     scheme's quadratic product integration on an arbitrary grid. The newest step uses the exact
     kernel (I0[l] = int_0^h k, M[l] = int_0^h k(x) (h/2 - x) dx); older steps live in one variable
-    per exponential mode, S_k(t_n) = sum_{j<n} e^{-beta_k (t_n - t_j)} (d_j GA[l_j,k] + c_j GB[l_j,k]),
-    updated by R[l,k] = exp(-beta_k h_l). A trial step changes nothing until it is accepted, so a
+    per exponential mode, P_k(t_{n-1}) = sum_{j<n} e^{-beta_k (t_{n-1} - t_j)} (d_j GA[l_j,k] + c_j GB[l_j,k]),
+    decayed by R[l,k] = exp(-beta_k h_l) to the new node. A trial step changes nothing until it is accepted, so a
     rejection needs no roll-back.
 
     Plate mobility (plate = 1): alpha = pscale / sqrt(E_b), E_b(t) = pc (pe_inf + sum pe_k X_k),
@@ -343,12 +343,13 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
 
     state = [loaded, separation index, last index, status, rejected steps, floor steps, level, frozen]
     (set level to the first step's before the first call). Resumable: when the arrays are full it
-    returns STATUS_FULL with S, X, q (the pending contribution of the newest step) and state intact.
+    returns STATUS_FULL with P, X and state intact.
     """
     nk = R.shape[1]
     nmax = t.shape[0] - 1
     St = np.empty(nk)
     Xt = np.empty(nk)
+    pbe = pb * pe
     l = state[6]
     n = state[2] + 1
     frozen = state[7] == 1
@@ -362,9 +363,10 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         h = hl[l]
         tn = t[n - 1] + h
         # history of all steps before this one
+        Rl = R[l]
         Hh = 0.0
         for k in range(nk):
-            v = R[l, k] * (S[k] + q[k])
+            v = Rl[k] * P[k]
             St[k] = v
             Hh += v
         hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
@@ -380,10 +382,10 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
             eb = pe_inf
             ebd = 0.0
             for k in range(nk):
-                x = R[l, k] * X[k]
+                x = Rl[k] * X[k]
                 Xt[k] = x
                 eb += pe[k] * x
-                ebd -= pb[k] * pe[k] * x
+                ebd -= pbe[k] * x
             eb *= pc
             ebd *= pc
             a_n = pscale / math.sqrt(eb)
@@ -432,9 +434,10 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         lev[n] = l
         d = (un - u[n - 1]) / h
         c = 2.0 * (d - (u[n - 1] - u[n - 2]) / hp) / (h + hp) if n >= 2 else 0.0
+        GAl = GA[l]
+        GBl = GB[l]
         for k in range(nk):
-            S[k] = St[k]
-            q[k] = d * GA[l, k] + c * GB[l, k]
+            P[k] = St[k] + d * GAl[k] + c * GBl[k]
         if plate == 1:
             for k in range(nk):
                 X[k] = Xt[k]
