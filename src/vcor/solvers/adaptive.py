@@ -19,6 +19,11 @@ the test is waived: near t = 0 the exact solution's u = s^3/2 makes g'' ~ t^-1/2
 there are O(h^2.5), far below the global error. A separation is located on a step <= t / SEP_STEPS;
 the time horizon starts at HORIZON_START t_c and grows by 32 up to MAX_HORIZON t_c (the march is
 restarted with an exponential sum for the longer horizon) before the run ends as ``step-budget``.
+
+By default (``extrapolate``, option ``richardson``) the accepted grid is replayed with every step
+halved and quartered and the results are Richardson-extrapolated (errors h^2 and h^2.5 eliminated,
+see ``RICHARDSON_EXPONENTS``); the three marches share one set of level tables (exponential sum on
+[h_base / 4, 2 horizon]).
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ import time
 
 import numpy as np
 
+from ..materials import Prony
 from ..soe import soe
 from . import _kernels as K
 from .march import N_EXTRA, Arrays, finish
@@ -63,16 +69,21 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     e_inf, e, b = pr.prony_terms()
     hl = h_base * 2.0 ** np.arange(n_levels)
     nk = e.size + 1
-    I0, M = np.empty(n_levels), np.empty(n_levels)
+    # per mode, all levels at once (the closed forms broadcast over a column of step sizes)
+    ti = pr.term_step_integrals(hl[:, None], 1)[0]
+    tm = pr.term_step_moments(hl[:, None], 1)[0]
     GA, GB, R = np.zeros((n_levels, nk)), np.zeros((n_levels, nk)), np.ones((n_levels, nk))
-    for i, h in enumerate(hl):
-        I0[i] = kappa * mat.step_integrals(h, 1)[0]
-        M[i] = -kappa * mat.step_moments(h, 1)[0]
-        GA[i, 0] = kappa * e_inf * h
-        if e.size:
-            GA[i, 1:] = kappa * pr.term_step_integrals(h, 1)[0]
-            GB[i, 1:] = -kappa * pr.term_step_moments(h, 1)[0]
-            R[i, 1:] = np.exp(-b * h)
+    GA[:, 0] = kappa * e_inf * hl
+    GA[:, 1:] = kappa * ti
+    GB[:, 1:] = -kappa * tm
+    R[:, 1:] = np.exp(-np.multiply.outer(hl, b))
+    if isinstance(mat, Prony):
+        # the sum is the material: its step integrals are those of the modes (Prony.step_integrals)
+        I0 = kappa * (mat.E_inf * hl + ti.sum(axis=-1))
+        M = -kappa * tm.sum(axis=-1)
+    else:
+        I0 = np.array([kappa * mat.step_integrals(h, 1)[0] for h in hl])
+        M = np.array([-kappa * mat.step_moments(h, 1)[0] for h in hl])
     pe = np.concatenate(([0.0], e))
     pb = np.concatenate(([0.0], b))
     return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "pe_inf": float(e_inf), "pe": pe, "pb": pb,
@@ -99,20 +110,30 @@ def _plate(impact):
     return 1, impact.mobility_scale, 1.0 / (1.0 - g.nu**2), 0.0
 
 
+#: the grid halved and quartered of the Richardson extrapolation: their tables are the coarse grid's
+#: levels shifted by one and two, so one table with SPLIT_LEVELS extra levels (and its exponential
+#: sum from h_base / 4) serves the three marches
+SPLIT_LEVELS = 2
+
+
 def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, ghost, tol, fixed_level=None,
-           plan=None):
-    """One adaptive march (or the replay of a level ``plan``) with the horizon extension.
+           plan=None, split=0):
+    """One adaptive march on steps h_base 2^(level - split) (split 0, 1, 2: the grid, halved,
+    quartered), or the replay of a level ``plan``, with the horizon extension.
     Returns (t, arrays, state, n_done, levels, horizon, factor)."""
     mat = impact.material
     eta = impact.kappa * mat.viscosity
     plate, pscale, pc, alpha_c = _plate(impact)
     top = h_base * 2.0**FLOOR_BITS
     plan = _NO_PLAN if plan is None else plan
+    off = SPLIT_LEVELS - split
     while True:
         # horizon: a power of two >= factor t_c, so that the tables of a sweep's points are shared
         horizon = factor * 2.0 * top
         n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
-        tab = level_tables(mat, float(impact.kappa), h_base, n_levels, 2.0 * horizon, tol)
+        full = level_tables(mat, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
+                            2.0 * horizon, tol)
+        tab = {k: v[off: off + n_levels] if k in _PER_LEVEL else v for k, v in full.items()}
         nk = tab["GA"].shape[1]
         P, X = np.zeros(nk), np.ones(nk)
         first = START_LEVEL if fixed_level is None else int(fixed_level)
@@ -138,6 +159,7 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
 
 
 _NO_PLAN = np.zeros(0, dtype=np.int64)
+_PER_LEVEL = ("hl", "I0", "M", "GA", "GB", "R")
 
 
 def _result(impact, t, arr, state, n_done, horizon, factor, *, max_steps, rule, history, wall):
@@ -200,15 +222,16 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         return coarse
     n_plan = min(n_done, int(state[1]) + N_EXTRA)
     runs = [coarse]
-    for split in (2, 4):
-        last = split == 4
+    for shift in (1, 2):
+        last = shift == SPLIT_LEVELS
         t, arr, state, n_done, _, horizon, factor = _march(
-            impact, tc, h_base / split, factor, history=history and last, ghost=ghost,
-            plan=np.repeat(lev[1: n_plan + 1], split), **kw)
-        run = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=split * max_steps, rule=rule,
+            impact, tc, h_base, factor, history=history and last, ghost=ghost,
+            plan=np.repeat(lev[1: n_plan + 1], 2**shift), split=shift, **kw)
+        run = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=2**shift * max_steps, rule=rule,
                       history=history and last, wall=time.perf_counter() - t_start)
         if not run.ok:
-            run.message = f"the replay on the grid divided by {split} of an ok adaptive run failed: {run.message}"
+            run.message = (f"the replay on the grid divided by {2**shift} of an ok adaptive run failed: "
+                           f"{run.message}")
             return run
         runs.append(run)
     fine = runs[-1]
