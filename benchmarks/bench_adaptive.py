@@ -13,6 +13,10 @@ from timing import median_time
 
 import vcor
 from vcor import runner, scene
+from vcor.options import solver_options
+from vcor.soe import soe
+from vcor.solvers.adaptive import run_adaptive
+from vcor.solvers.simulate import make_impact
 
 
 def per_impact():
@@ -24,6 +28,30 @@ def per_impact():
         ta = median_time(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), 15)
         sd, sa = vcor.simulate(name, 10.0).steps, vcor.simulate(name, 10.0, method="adaptive").steps
         print(f"{name:14s} {td * 1e3:12.3f} {ta * 1e3:14.3f} {ta / td:16.2f} {sd:>6d}/{sa:<6d}")
+    print()
+
+
+def breakdown():
+    print("where the time of one adaptive impact goes (v0 = 10 m/s, warm, medians of 200 calls): set-up = options,")
+    print("impact and contact-time estimate; one march = run_adaptive without extrapolation (the accepted grid and")
+    print("its result); three marches = run_adaptive as simulate calls it (grid, halved, quartered, extrapolation)")
+    print(f"{'material':14s} {'simulate [us]':>14s} {'set-up [us]':>12s} {'three marches [us]':>19s} "
+          f"{'one march [us]':>15s} {'steps (grid/all)':>17s} {'modes':>6s}")
+    print("(modes: terms of the exponential sum on [t_c / 2^18, 256 t_c], about the range the march uses)")
+    opts = vcor.SolverOptions(method="adaptive")
+    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
+        imp = make_impact(name, 10.0, {})
+        tc = imp.contact_time_estimate()
+        kw = {"step_tol": opts.step_tol, "max_steps": opts.max_adaptive_steps, "tol": opts.soe_tol}
+        whole = median_time(lambda n=name: vcor.simulate(n, 10.0, options=opts), 200)
+        setup = median_time(lambda n=name: (solver_options(method="adaptive"),
+                                            make_impact(n, 10.0, {}).contact_time_estimate()), 200)
+        three = median_time(lambda i=imp, t=tc, k=kw: run_adaptive(i, t, extrapolate=True, **k), 200)
+        one = median_time(lambda i=imp, t=tc, k=kw: run_adaptive(i, t, **k), 200)
+        steps = (run_adaptive(imp, tc, **kw).steps, run_adaptive(imp, tc, extrapolate=True, **kw).steps)
+        modes = soe(imp.material, tc * 2.0**-18, 256.0 * tc, opts.soe_tol).n_terms
+        print(f"{name:14s} {whole * 1e6:14.0f} {setup * 1e6:12.0f} {three * 1e6:19.0f} {one * 1e6:15.0f} "
+              f"{steps[0]:>8d}/{steps[1]:<8d} {modes:6d}")
     print()
 
 
@@ -71,5 +99,6 @@ def throughput():
 
 if __name__ == "__main__":
     per_impact()
+    breakdown()
     thickness()
     throughput()
