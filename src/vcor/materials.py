@@ -18,6 +18,7 @@ Materials written by the fit rule are loaded with :func:`from_file`.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import numbers
@@ -710,13 +711,18 @@ def get(name: str) -> Material:
     """Preset material by name (see ``PRESETS``)."""
     if isinstance(name, Material):
         return name
-    try:
-        return PRESETS[name]()
-    except KeyError:
+    if not isinstance(name, str) or name not in PRESETS:
         raise ValueError(
             f"unknown material {name!r}; allowed presets: {sorted(PRESETS)} "
             "(fitted materials: vcor.materials.from_file)"
-        ) from None
+        )
+    return _preset(name)
+
+
+@functools.lru_cache(maxsize=None)
+def _preset(name: str) -> Material:
+    # materials are frozen: one object per preset serves every call (and keys the solvers' caches)
+    return PRESETS[name]()
 
 
 def from_dict(d: dict) -> Material:

@@ -566,3 +566,91 @@ def separation_point(t, s, g, F, J, n, lo, by_overlap, force_rule, m, v0, out):
     out[7] = parabola_peak(t, s, n)
     out[8] = parabola_peak(t, F, n)
     return True
+
+
+@numba.njit(**_JIT)
+def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
+    """``separation_point`` for the separation step n of a march whose first ``size`` nodes are
+    valid: the four interpolation nodes end at n + 1 when it exists, and s is the target for the
+    overlap rule, or when s also crossed zero in step n (F ~ s^{3/2} is not smooth at its root, s is)."""
+    lo = max(0, min(n - 2, size - 4))
+    by_overlap = overlap_rule or (s[n] <= 0.0 < s[n - 1])
+    return separation_point(t, s, g, F, J, n, lo, by_overlap, not overlap_rule, m, v0, out)
+
+
+@numba.njit(**_JIT)
+def _grown_float(a, n):
+    out = np.zeros(n + 1)
+    out[: a.shape[0]] = a
+    return out
+
+
+@numba.njit(**_JIT)
+def _grown_int(a, n):
+    out = np.zeros(n + 1, dtype=np.int64)
+    out[: a.shape[0]] = a
+    return out
+
+
+@numba.njit(**_JIT)
+def adaptive_three_grids(hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
+                         step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
+    """The adaptive march (``march_adaptive``), then its replays with every step halved and quartered,
+    and the separation of each, in one call (no histories). The tables have n_levels + 2 levels from
+    h_base / 4: grid k (0, 1, 2) uses levels 2 - k ... Fills out[k] = [the 9 values of
+    ``separation_point``, separation index, largest step] and returns True when all three grids
+    separated; False (out undefined) for anything else (divergence, time horizon, step budget), which
+    the caller then runs through the general path."""
+    nk = R.shape[1]
+    base = np.zeros(0, dtype=np.int64)
+    for k in range(3):
+        off = 2 - k
+        hl_k = np.ascontiguousarray(hl[off:off + n_levels])
+        I0_k = np.ascontiguousarray(I0[off:off + n_levels])
+        M_k = np.ascontiguousarray(M[off:off + n_levels])
+        GA_k = np.ascontiguousarray(GA[off:off + n_levels])
+        GB_k = np.ascontiguousarray(GB[off:off + n_levels])
+        R_k = np.ascontiguousarray(R[off:off + n_levels])
+        plan = np.repeat(base, 2**k) if k > 0 else base
+        size = min(size0 if k == 0 else plan.shape[0] + 2 * n_extra + 8, max_steps)
+        t = np.zeros(size + 1)
+        s = np.zeros(size + 1)
+        g = np.zeros(size + 1)
+        F = np.zeros(size + 1)
+        J = np.zeros(size + 1)
+        u = np.zeros(size + 1)
+        lev = np.zeros(size + 1, dtype=np.int64)
+        g[0] = v0
+        P = np.zeros(nk)
+        X = np.ones(nk)
+        state = np.zeros(8, dtype=np.int64)
+        state[1] = -1
+        state[6] = start_level
+        while True:
+            march_adaptive(t, s, g, F, J, u, lev, hl_k, I0_k, M_k, GA_k, GB_k, R_k, eta, plate, pscale, pc, pe_inf,
+                           pe, pb, alpha_c, m, v0, step_tol, inv_tc, 0, n_levels - 1, t_horizon, sep_frac, rule,
+                           n_extra, 0.0, P, X, state, plan)
+            if state[3] != STATUS_FULL or (state[1] < 0 and size >= max_steps):
+                break
+            size = 2 * size if state[1] >= 0 else min(2 * size, max_steps)
+            t = _grown_float(t, size)
+            s = _grown_float(s, size)
+            g = _grown_float(g, size)
+            F = _grown_float(F, size)
+            J = _grown_float(J, size)
+            u = _grown_float(u, size)
+            lev = _grown_int(lev, size)
+        if state[3] != STATUS_SEPARATED:
+            return False
+        n_sep = state[1]
+        n_done = state[2]
+        if k == 0:
+            base = lev[1:min(n_done, n_sep + n_extra) + 1].copy()
+        if not locate_separation(t, s, g, F, J, n_sep, n_done + 1, rule == 1, m, v0, out[k]):
+            return False
+        out[k, 9] = n_sep
+        big = 0.0
+        for j in range(1, n_done + 1):
+            big = max(big, t[j] - t[j - 1])
+        out[k, 10] = big
+    return True

@@ -37,6 +37,7 @@ import numpy as np
 from ..materials import Prony
 from ..soe import soe
 from . import _kernels as K
+from .common import Result, separation_scalars
 from .march import N_EXTRA, Arrays, finish
 
 __all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "SEP_STEPS", "level_tables", "run_adaptive"]
@@ -213,7 +214,12 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     top = 2.0 ** math.floor(math.log2(tc))
     h_base = top * 2.0**-FLOOR_BITS
     t_start = time.perf_counter()
-    kw = dict(step_tol=step_tol, max_steps=max_steps, rule=rule, tol=tol)
+    if extrapolate and not history and fixed_level is None:
+        fine = _three_grids(impact, tc, h_base, step_tol=step_tol, max_steps=max_steps, rule=rule, tol=tol,
+                            t_start=t_start)
+        if fine is not None:
+            return fine
+    kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol}
     t, arr, state, n_done, lev, horizon, factor = _march(impact, tc, h_base, HORIZON_START, history=history and
                                                          not extrapolate, ghost=ghost, fixed_level=fixed_level, **kw)
     coarse = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=max_steps, rule=rule,
@@ -236,8 +242,42 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         runs.append(run)
     fine = runs[-1]
     fine.steps = sum(r.steps for r in runs)
-    ratios = {k: _difference_ratio([getattr(r, k) for r in runs]) for k in ("t0", "cor")}
-    gaps = {"t0": abs(fine.t0 - coarse.t0) / fine.t0, "cor": abs(fine.cor - coarse.cor)}
+    return _extrapolated(fine, [{k: getattr(r, k) for k in EXTRAPOLATED} for r in runs])
+
+
+def _three_grids(impact, tc, h_base, *, step_tol, max_steps, rule, tol, t_start):
+    """The usual case of ``run_adaptive`` with ``extrapolate`` (no histories) in one numba call
+    (``_kernels.adaptive_three_grids``): the same marches and separations as the general path, without
+    its Python between them. None when a grid did not simply separate within the first time horizon
+    (the general path then runs and reports it)."""
+    plate, pscale, pc, alpha_c = _plate(impact)
+    horizon = HORIZON_START * 2.0 * h_base * 2.0**FLOOR_BITS
+    n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
+    tab = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
+                       2.0 * horizon, tol)
+    out = np.empty((3, 11))
+    m, v0 = impact.m, impact.v0
+    if not K.adaptive_three_grids(tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], n_levels,
+                                  impact.kappa * impact.material.viscosity, plate, pscale, pc, tab["pe_inf"],
+                                  tab["pe"], tab["pb"], alpha_c, m, v0, step_tol, 1.0 / tc, horizon,
+                                  1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL,
+                                  INITIAL_SIZE, out):
+        return None
+    runs = [separation_scalars(row, m, v0) for row in out]
+    fine = Result(steps=int(out[:, 9].sum()), wall_time=0.0, dt=float(out[2, 10]), method="adaptive")
+    fine.__dict__.update(runs[2])
+    fine = _extrapolated(fine, runs)
+    fine.wall_time = time.perf_counter() - t_start
+    return fine
+
+
+def _extrapolated(fine, runs):
+    """``fine`` (the quartered grid's Result) with the scalars Richardson-extrapolated from ``runs``
+    (the grids' EXTRAPOLATED values, coarse to fine), or kept with a message where the grids are not
+    in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO)."""
+    coarse = runs[0]
+    ratios = {k: _difference_ratio([r[k] for r in runs]) for k in ("t0", "cor")}
+    gaps = {"t0": abs(fine.t0 - coarse["t0"]) / fine.t0, "cor": abs(fine.cor - coarse["cor"])}
     close = {"t0": gaps["t0"] <= RICHARDSON_GAP, "cor": gaps["cor"] <= RICHARDSON_GAP * fine.cor + COR_FLOOR}
     if not all(close[k] or RICHARDSON_RATIO[0] <= ratios[k] <= RICHARDSON_RATIO[1] for k in ratios):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
@@ -248,7 +288,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
             f"{ratios['cor']:.3g} for the COR; asymptotically 4..5.7); values of the quartered grid")
         return fine
     for k in EXTRAPOLATED:
-        setattr(fine, k, sum(w * getattr(r, k) for w, r in zip(RICHARDSON_WEIGHTS, runs)))
+        setattr(fine, k, sum(w * r[k] for w, r in zip(RICHARDSON_WEIGHTS, runs)))
     fine.omega_min = 2.0 * math.pi / fine.t0
     return fine
 

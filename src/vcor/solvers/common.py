@@ -134,19 +134,21 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     Returns a dict of the scalars and ``message`` (empty).
     """
     n = int(n_sep)
-    lo = max(0, min(n - 2, len(t) - 4))
-    # F = 0 and s = 0 in the same step (elastic-like separation): F ~ s^{3/2} is not smooth at its
-    # root, s is, so the root of s locates the same instant far more accurately. (If s crossed in an
-    # earlier step, its root is not in this one: F's is used.)
-    by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
     out = np.empty(9)
-    if not K.separation_point(t, s, g, F, J, n, lo, by_overlap, rule == "force", float(m), float(v0), out):
+    if not K.locate_separation(t, s, g, F, J, n, len(t), rule == "overlap", float(m), float(v0), out):
         # cannot happen for a march's separation step (the interpolant equals the nodes, and the
         # target was > 0 at step n - 1 and <= 0 at step n); loud rather than a silent guess
+        by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
         target = s if by_overlap else F
         raise RuntimeError(f"separation step {n}: {'s' if by_overlap else 'F'} does not change sign "
                            f"({target[n - 1]!r} -> {target[n]!r})")
-    t0, s0, g0, _, _, w_h, w_z, s_max, f_max = (float(x) for x in out)
+    return separation_scalars(out, m, v0)
+
+
+def separation_scalars(out, m, v0) -> dict:
+    """The outcome from ``_kernels.separation_point``'s values [t0, s0, s'0, J0, F0, W_h, W_z, s_max,
+    f_max]: the Result fields and ``message`` (empty)."""
+    t0, s0, g0, _, _, w_h, w_z, s_max, f_max = (float(x) for x in out[:9])
     z0 = float(v0 - out[3] / m)
     e_in = 0.5 * m * v0 * v0
     return {
