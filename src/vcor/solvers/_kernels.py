@@ -312,7 +312,7 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 @numba.njit(**_JIT)
 def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
-                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state, plan):
+                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state, plan, off):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
     Steps are hl[l] = h_base 2^l (levels l = 0..L-1, tables per level). Step n spans [t_{n-1}, t_n]
@@ -337,6 +337,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     re-stepped finer; after it the level is frozen for the n_extra steps and the ghost continuation
     to (1 + ghost) t_sep.
 
+    Level l uses table row l + off (the tables of the Richardson grids are shifted copies of one).
+
     plan (levels, may be empty): step n <= len(plan) is taken on level plan[n - 1], with no error
     control and no separation refinement (the replay of a grid); after the plan, the march goes on
     with error control from the plan's last level.
@@ -360,10 +362,11 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         planned = n - 1 < n_plan
         if planned:
             l = plan[n - 1]
-        h = hl[l]
+        lt = l + off
+        h = hl[lt]
         tn = t[n - 1] + h
         # history of all steps before this one
-        Rl = R[l]
+        Rl = R[lt]
         Hh = 0.0
         for k in range(nk):
             v = Rl[k] * P[k]
@@ -372,11 +375,11 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
         if n >= 2:
             cfac = 2.0 / (h * (h + hp))
-            w0 = I0[l] / h + cfac * M[l]
+            w0 = I0[lt] / h + cfac * M[lt]
             dprev = (u[n - 1] - u[n - 2]) / hp
-            H = Hh - w0 * u[n - 1] - 2.0 * M[l] * dprev / (h + hp)
+            H = Hh - w0 * u[n - 1] - 2.0 * M[lt] * dprev / (h + hp)
         else:
-            w0 = I0[l] / h
+            w0 = I0[lt] / h
             H = Hh - w0 * u[n - 1]
         if plate == 1:
             eb = pe_inf
@@ -434,8 +437,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         lev[n] = l
         d = (un - u[n - 1]) / h
         c = 2.0 * (d - (u[n - 1] - u[n - 2]) / hp) / (h + hp) if n >= 2 else 0.0
-        GAl = GA[l]
-        GBl = GB[l]
+        GAl = GA[lt]
+        GBl = GB[lt]
         for k in range(nk):
             P[k] = St[k] + d * GAl[k] + c * GBl[k]
         if plate == 1:
@@ -579,39 +582,22 @@ def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
 
 
 @numba.njit(**_JIT)
-def _grown_float(a, n):
-    out = np.zeros(n + 1)
-    out[: a.shape[0]] = a
-    return out
-
-
-@numba.njit(**_JIT)
-def _grown_int(a, n):
-    out = np.zeros(n + 1, dtype=np.int64)
-    out[: a.shape[0]] = a
-    return out
-
-
-@numba.njit(**_JIT)
 def adaptive_three_grids(hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
                          step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
     """The adaptive march (``march_adaptive``), then its replays with every step halved and quartered,
     and the separation of each, in one call (no histories). The tables have n_levels + 2 levels from
-    h_base / 4: grid k (0, 1, 2) uses levels 2 - k ... Fills out[k] = [the 9 values of
+    h_base / 4: grid k (0, 1, 2) uses rows from 2 - k. Fills out[k] = [the 9 values of
     ``separation_point``, separation index, largest step] and returns True when all three grids
-    separated; False (out undefined) for anything else (divergence, time horizon, step budget), which
-    the caller then runs through the general path."""
+    separated within size0 (k = 0) steps; False (out undefined) for anything else (more steps,
+    divergence, time horizon, step budget), which the caller then runs through the general path."""
     nk = R.shape[1]
-    base = np.zeros(0, dtype=np.int64)
+    n_plan = 0
+    base = np.zeros(size0 + 1, dtype=np.int64)
     for k in range(3):
-        off = 2 - k
-        hl_k = np.ascontiguousarray(hl[off:off + n_levels])
-        I0_k = np.ascontiguousarray(I0[off:off + n_levels])
-        M_k = np.ascontiguousarray(M[off:off + n_levels])
-        GA_k = np.ascontiguousarray(GA[off:off + n_levels])
-        GB_k = np.ascontiguousarray(GB[off:off + n_levels])
-        R_k = np.ascontiguousarray(R[off:off + n_levels])
-        plan = np.repeat(base, 2**k) if k > 0 else base
+        rep = 2**k
+        plan = np.empty(n_plan * rep, dtype=np.int64)
+        for j in range(n_plan * rep):
+            plan[j] = base[1 + j // rep]
         size = min(size0 if k == 0 else plan.shape[0] + 2 * n_extra + 8, max_steps)
         t = np.zeros(size + 1)
         s = np.zeros(size + 1)
@@ -619,33 +605,22 @@ def adaptive_three_grids(hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, pc,
         F = np.zeros(size + 1)
         J = np.zeros(size + 1)
         u = np.zeros(size + 1)
-        lev = np.zeros(size + 1, dtype=np.int64)
+        lev = base if k == 0 else np.zeros(size + 1, dtype=np.int64)
         g[0] = v0
         P = np.zeros(nk)
         X = np.ones(nk)
         state = np.zeros(8, dtype=np.int64)
         state[1] = -1
         state[6] = start_level
-        while True:
-            march_adaptive(t, s, g, F, J, u, lev, hl_k, I0_k, M_k, GA_k, GB_k, R_k, eta, plate, pscale, pc, pe_inf,
-                           pe, pb, alpha_c, m, v0, step_tol, inv_tc, 0, n_levels - 1, t_horizon, sep_frac, rule,
-                           n_extra, 0.0, P, X, state, plan)
-            if state[3] != STATUS_FULL or (state[1] < 0 and size >= max_steps):
-                break
-            size = 2 * size if state[1] >= 0 else min(2 * size, max_steps)
-            t = _grown_float(t, size)
-            s = _grown_float(s, size)
-            g = _grown_float(g, size)
-            F = _grown_float(F, size)
-            J = _grown_float(J, size)
-            u = _grown_float(u, size)
-            lev = _grown_int(lev, size)
+        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
+                       m, v0, step_tol, inv_tc, 0, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0, P, X,
+                       state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:
             return False
         n_sep = state[1]
         n_done = state[2]
         if k == 0:
-            base = lev[1:min(n_done, n_sep + n_extra) + 1].copy()
+            n_plan = min(n_done, n_sep + n_extra)
         if not locate_separation(t, s, g, F, J, n_sep, n_done + 1, rule == 1, m, v0, out[k]):
             return False
         out[k, 9] = n_sep

@@ -132,9 +132,8 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         # horizon: a power of two >= factor t_c, so that the tables of a sweep's points are shared
         horizon = factor * 2.0 * top
         n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
-        full = level_tables(mat, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
-                            2.0 * horizon, tol)
-        tab = {k: v[off: off + n_levels] if k in _PER_LEVEL else v for k, v in full.items()}
+        tab = level_tables(mat, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
+                           2.0 * horizon, tol)
         nk = tab["GA"].shape[1]
         P, X = np.zeros(nk), np.ones(nk)
         first = START_LEVEL if fixed_level is None else int(fixed_level)
@@ -148,7 +147,7 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
             K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
                              tab["GB"], tab["R"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"], tab["pb"],
                              alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
-                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan)
+                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
             arr.grow(2 * arr.n if state[1] >= 0 else min(2 * arr.n, max_steps))
@@ -160,7 +159,6 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
 
 
 _NO_PLAN = np.zeros(0, dtype=np.int64)
-_PER_LEVEL = ("hl", "I0", "M", "GA", "GB", "R")
 
 
 def _result(impact, t, arr, state, n_done, horizon, factor, *, max_steps, rule, history, wall):
