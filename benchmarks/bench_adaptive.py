@@ -6,10 +6,11 @@ Prints tables of medians (this machine is shared: read ratios). Run: python benc
 
 from __future__ import annotations
 
+import tempfile
 import time
 
 import numpy as np
-from timing import median_time
+from timing import cold_process, median_time
 
 import vcor
 from vcor import runner, scene
@@ -52,6 +53,16 @@ def breakdown():
         modes = soe(imp.material, tc * 2.0**-18, 256.0 * tc, opts.soe_tol).n_terms
         print(f"{name:14s} {whole * 1e6:14.0f} {setup * 1e6:12.0f} {three * 1e6:19.0f} {one * 1e6:15.0f} "
               f"{steps[0]:>8d}/{steps[1]:<8d} {modes:6d}")
+    print()
+
+
+def cold():
+    print("fresh process (import vcor, one simulate('sls', 10.0)), numba cache empty (compiles) / filled:")
+    for label, options in (("direct", "dt=1e-6"), ("adaptive", "method='adaptive'")):
+        with tempfile.TemporaryDirectory() as d:
+            empty = cold_process({"NUMBA_CACHE_DIR": d}, options)[0]
+            filled = cold_process({"NUMBA_CACHE_DIR": d}, options)[0]
+        print(f"{label:10s} {empty:6.2f} s / {filled:5.2f} s")
     print()
 
 
@@ -100,5 +111,6 @@ def throughput():
 if __name__ == "__main__":
     per_impact()
     breakdown()
+    cold()
     thickness()
     throughput()

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import os
 import statistics
+import subprocess
+import sys
 import time
 
 
@@ -26,3 +29,14 @@ def timed(fn, repeat=5, warmup=False):
         out = fn()
         ts.append(time.perf_counter() - t)
     return statistics.median(ts), out
+
+
+def cold_process(env_extra, options):
+    """(wall time of a fresh Python process that imports vcor and runs ``vcor.simulate('sls', 10.0,
+    <options>)``, the import + run time measured inside it), with ``env_extra`` in its environment."""
+    code = ("import time; t=time.perf_counter(); import vcor; "
+            f"vcor.simulate('sls', 10.0, {options}); print(time.perf_counter()-t)")
+    env = dict(os.environ, **env_extra)
+    t = time.perf_counter()
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return time.perf_counter() - t, float(out.stdout.strip())

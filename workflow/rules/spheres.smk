@@ -2,6 +2,8 @@
 
 
 rule spheres:
+    input:
+        numba=NUMBA_FLAG,
     output:
         "results/{scene}/spheres.nc",
     log:
