@@ -12,7 +12,6 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/cache.smk"
 include: "workflow/rules/fit.smk"
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/spheres.smk"

@@ -5,7 +5,6 @@ import os
 rule calibrate:
     input:
         get_calibration_inputs,
-        numba=NUMBA_FLAG,
     output:
         record="results/calibrations/{cal}.nc",
         material=f"{MATERIAL_DIR}/{{cal}}.nc",

@@ -24,9 +24,6 @@ PLOTS_CODE = vprovenance.plots_fingerprint()
 
 SCENES = config["scenes"]
 MATERIAL_DIR = config["material_dir"]
-# flag of the job that compiles the numba kernels once (rule numba_cache); the solving rules take it
-# as an input that never makes them re-run (ancient) and is deleted when they are done (temp)
-NUMBA_FLAG = ancient("results/.numba-cache")
 try:
     FITS = vfit.expand_fits(config.get("fits", {}))
 except ValueError as exc:

@@ -4,7 +4,6 @@
 rule convergence_case:
     input:
         materials=get_fitted_inputs,
-        numba=NUMBA_FLAG,
     output:
         "results/{scene}/convergence/{material_case}.nc",
     log:

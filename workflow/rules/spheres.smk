@@ -2,8 +2,6 @@
 
 
 rule spheres:
-    input:
-        numba=NUMBA_FLAG,
     output:
         "results/{scene}/spheres.nc",
     log:

@@ -4,7 +4,6 @@
 rule sweep_shard:
     input:
         materials=get_fitted_inputs,
-        numba=NUMBA_FLAG,
     output:
         nc="results/{scene}/shards/{shard}.nc",
         index="results/{scene}/shards/{shard}.json",
@@ -59,7 +58,6 @@ rule moduli:
 rule histories:
     input:
         materials=get_fitted_inputs,
-        numba=NUMBA_FLAG,
     output:
         "results/{scene}/histories.nc",
     log:

@@ -12,7 +12,7 @@ from .direct import MAX_T_FACTOR, run_direct, run_paper
 from .ive import run_ive_fixed, run_ive_scipy
 from .modes import run_soe
 
-__all__ = ["METHODS", "compile_kernels", "default_dt", "make_impact", "simulate", "split_keywords"]
+__all__ = ["METHODS", "default_dt", "make_impact", "simulate", "split_keywords"]
 
 #: T_max starts at this many contact-time estimates and doubles while the impact has not separated
 T_MAX_START = 1.5
@@ -125,12 +125,3 @@ def _dispatch(impact, opts: SolverOptions, tc: float, history: bool):
                        tol=opts.soe_tol)
     return run_ive_fixed(impact, dt, n_steps, max_steps=max_n, rule=opts.rule, history=history, ghost=opts.ghost)
 
-
-
-def compile_kernels() -> None:
-    """Run one small impact through every numba path (direct, paper, soe, ive-numba, adaptive in one
-    call and with histories) so that numba compiles them and fills its cache (or loads it). The
-    workflow runs it once before the solving jobs (rule ``numba_cache``)."""
-    for method in ("direct", "paper", "soe", "ive-numba", "adaptive"):
-        simulate("butyl-prony3", 10.0, method=method)
-    simulate("butyl-prony3", 10.0, method="adaptive", history=True)
