@@ -46,21 +46,23 @@ def test_two_grid_extrapolation_leaves_order_two_and_a_half(name):
 
 @pytest.mark.parametrize("name", PRESETS)
 def test_one_call_path_equals_the_general_path(name, monkeypatch):
-    """run_adaptive's one-numba-call path (_three_grids) gives exactly the numbers of the general
-    path (three Python-driven marches), on standard and thin plates and a rigid target."""
-    cases = [(v0, geo) for v0 in (0.001, 10.0, 300.0) for geo in ({}, {"h": 3.16e-3}, {"rigid": True})]
+    """run_adaptive's one-numba-call path (_one_call) gives exactly the numbers of the general path
+    (Python-driven marches), with and without extrapolation, on standard and thin plates and a rigid
+    target."""
+    cases = [(v0, geo, ex) for v0 in (0.001, 10.0, 300.0) for geo in ({}, {"h": 3.16e-3}, {"rigid": True})
+             for ex in (True, False)]
     fast = []
-    for v0, geo in cases:
+    for v0, geo, ex in cases:
         imp = make_impact(name, v0, geo)
         fast.append(adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6,
-                                          extrapolate=True))
-    monkeypatch.setattr(adaptive, "_three_grids", lambda *a, **k: None)
-    for (v0, geo), a in zip(cases, fast):
+                                          extrapolate=ex))
+    monkeypatch.setattr(adaptive, "_one_call", lambda *a, **k: None)
+    for (v0, geo, ex), a in zip(cases, fast):
         imp = make_impact(name, v0, geo)
-        b = adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6, extrapolate=True)
-        assert (a.status, a.message, a.steps, a.dt) == (b.status, b.message, b.steps, b.dt), (v0, geo)
+        b = adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6, extrapolate=ex)
+        assert (a.status, a.message, a.steps, a.dt) == (b.status, b.message, b.steps, b.dt), (v0, geo, ex)
         for k in adaptive.EXTRAPOLATED + ("omega_min",):
-            assert getattr(a, k) == getattr(b, k), (v0, geo, k)
+            assert getattr(a, k) == getattr(b, k), (v0, geo, ex, k)
 
 
 def test_one_call_path_falls_back_beyond_the_first_horizon():
@@ -69,8 +71,10 @@ def test_one_call_path_falls_back_beyond_the_first_horizon():
     imp = make_impact("butyl-fc", 10.0, {"h": 1e-3})
     top = 2.0 ** math.floor(math.log2(imp.contact_time_estimate()))
     h_base = top * 2.0**-adaptive.FLOOR_BITS
-    assert adaptive._three_grids(imp, imp.contact_time_estimate(), h_base, step_tol=3e-4, max_steps=10**6,
-                                 rule="force", tol=1e-10, t_start=0.0) is None
+    for n_grids in (1, 3):
+        assert adaptive._one_call(imp, imp.contact_time_estimate(), h_base, n_grids, step_tol=3e-4, max_steps=10**6,
+                                  rule="force", tol=1e-10, t_start=0.0) is None
+    assert vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3).ok
 
 
 def _richardson_reference(name, v0):

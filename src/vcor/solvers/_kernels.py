@@ -582,18 +582,18 @@ def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
 
 
 @numba.njit(**_JIT)
-def adaptive_three_grids(hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
-                         step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
-    """The adaptive march (``march_adaptive``), then its replays with every step halved and quartered,
-    and the separation of each, in one call (no histories). The tables have n_levels + 2 levels from
-    h_base / 4: grid k (0, 1, 2) uses rows from 2 - k. Fills out[k] = [the 9 values of
-    ``separation_point``, separation index, largest step] and returns True when all three grids
-    separated within size0 (k = 0) steps; False (out undefined) for anything else (more steps,
+def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
+                   step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
+    """The adaptive march (``march_adaptive``), then (n_grids = 3) its replays with every step halved
+    and quartered, and the separation of each, in one call (no histories). The tables have
+    n_levels + 2 levels from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k. Fills out[k] = [the 9
+    values of ``separation_point``, separation index, largest step] and returns True when every grid
+    separated, the first within size0 steps; False (out undefined) for anything else (more steps,
     divergence, time horizon, step budget), which the caller then runs through the general path."""
     nk = R.shape[1]
     n_plan = 0
     base = np.zeros(size0 + 1, dtype=np.int64)
-    for k in range(3):
+    for k in range(n_grids):
         rep = 2**k
         plan = np.empty(n_plan * rep, dtype=np.int64)
         for j in range(n_plan * rep):

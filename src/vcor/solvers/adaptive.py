@@ -212,11 +212,11 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     top = 2.0 ** math.floor(math.log2(tc))
     h_base = top * 2.0**-FLOOR_BITS
     t_start = time.perf_counter()
-    if extrapolate and not history and fixed_level is None:
-        fine = _three_grids(impact, tc, h_base, step_tol=step_tol, max_steps=max_steps, rule=rule, tol=tol,
-                            t_start=t_start)
-        if fine is not None:
-            return fine
+    if not history and fixed_level is None:
+        res = _one_call(impact, tc, h_base, 3 if extrapolate else 1, step_tol=step_tol, max_steps=max_steps,
+                        rule=rule, tol=tol, t_start=t_start)
+        if res is not None:
+            return res
     kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol}
     t, arr, state, n_done, lev, horizon, factor = _march(impact, tc, h_base, HORIZON_START, history=history and
                                                          not extrapolate, ghost=ghost, fixed_level=fixed_level, **kw)
@@ -243,11 +243,11 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     return _extrapolated(fine, [{k: getattr(r, k) for k in EXTRAPOLATED} for r in runs])
 
 
-def _three_grids(impact, tc, h_base, *, step_tol, max_steps, rule, tol, t_start):
-    """The usual case of ``run_adaptive`` with ``extrapolate`` (no histories) in one numba call
-    (``_kernels.adaptive_three_grids``): the same marches and separations as the general path, without
-    its Python between them. None when a grid did not simply separate within the first time horizon
-    (the general path then runs and reports it)."""
+def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_start):
+    """The usual case of ``run_adaptive`` (no histories; n_grids 3 with ``extrapolate``, else 1) in one
+    numba call (``_kernels.adaptive_grids``): the same marches and separations as the general path,
+    without its Python between them. None when a grid did not simply separate within the first time
+    horizon and 2048 steps (the general path then runs and reports it)."""
     plate, pscale, pc, alpha_c = _plate(impact)
     horizon = HORIZON_START * 2.0 * h_base * 2.0**FLOOR_BITS
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
@@ -255,18 +255,18 @@ def _three_grids(impact, tc, h_base, *, step_tol, max_steps, rule, tol, t_start)
                        2.0 * horizon, tol)
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
-    if not K.adaptive_three_grids(tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], n_levels,
-                                  impact.kappa * impact.material.viscosity, plate, pscale, pc, tab["pe_inf"],
-                                  tab["pe"], tab["pb"], alpha_c, m, v0, step_tol, 1.0 / tc, horizon,
-                                  1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL,
-                                  INITIAL_SIZE, out):
+    if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], n_levels,
+                            impact.kappa * impact.material.viscosity, plate, pscale, pc, tab["pe_inf"], tab["pe"],
+                            tab["pb"], alpha_c, m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
+                            0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
-    runs = [separation_scalars(row, m, v0) for row in out]
-    fine = Result(steps=int(out[:, 9].sum()), wall_time=0.0, dt=float(out[2, 10]), method="adaptive")
-    fine.__dict__.update(runs[2])
-    fine = _extrapolated(fine, runs)
-    fine.wall_time = time.perf_counter() - t_start
-    return fine
+    runs = [separation_scalars(row, m, v0) for row in out[:n_grids]]
+    res = Result(steps=int(out[:n_grids, 9].sum()), wall_time=0.0, dt=float(out[n_grids - 1, 10]), method="adaptive")
+    res.__dict__.update(runs[-1])
+    if n_grids == 3:
+        res = _extrapolated(res, runs)
+    res.wall_time = time.perf_counter() - t_start
+    return res
 
 
 def _extrapolated(fine, runs):
