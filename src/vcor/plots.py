@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-__all__ = ["FIGURES", "needs"]
+__all__ = ["FIGURES", "draw", "needs", "save"]
 
 
 def _mark_failed(ax, x, ok, label="not ok"):
@@ -586,6 +586,23 @@ def calibration(cal):
     ax1.set_title("\n".join(parts) + f"\nchi2 = {cal.attrs.get('chi2', float('nan')):.3g}, dof = {cal.attrs.get('dof', '?')}",
                   fontsize=8)
     return fig
+
+
+def save(fig, png, pdf) -> None:
+    """Write ``fig`` as PNG (130 dpi, for the report) and PDF (for print), then close it. The PDF
+    reuses the layout computed for the PNG (the layout engine is switched off after the first save):
+    constrained layout costs up to a second per save on the many log axes of work_precision."""
+    fig.savefig(png, dpi=130)
+    fig.set_layout_engine("none")
+    fig.savefig(pdf, metadata={"CreationDate": None})
+    plt.close(fig)
+
+
+def draw(name, data, opts):
+    """Figure ``name`` from its datasets ``data`` (a dict: need -> Dataset, or list of Datasets for
+    ``material_fit``) and the scene's options for it."""
+    fn, need = FIGURES[name]
+    return fn(*(data[n] for n in need), dict(opts or {}))
 
 
 #: figures that need a grid axis besides v0

@@ -18,7 +18,7 @@ from vcor.options import METHODS
 validate(config, schema="../schemas/config.schema.yaml")
 
 # fingerprints of the code that computes (every computing rule takes it as a param, so changed code
-# re-runs those jobs; shard names contain it) and of the figure code (figure rule)
+# re-runs those jobs; shard names contain it) and of the figure code (the figures_<scene> rules)
 CODE = vprovenance.code_fingerprint()
 PLOTS_CODE = vprovenance.plots_fingerprint()
 
@@ -284,21 +284,23 @@ def get_moduli_materials(wildcards):
     return scene.get("moduli", scene["materials"])
 
 
-def get_figure_inputs(wildcards):
-    need = vplots.FIGURES[wildcards.fig][1]
-    fits = get_figure_options(wildcards).get("materials", [])
-    return {
-        n: (
-            [f"{MATERIAL_DIR}/{m}.nc" for m in fits]
-            if n == "material_fit"
-            else f"results/{wildcards.scene}/{n}.nc"
-        )
-        for n in need
-    }
+def figure_inputs(scene):
+    """Every dataset the scene's figures need (the union over its figures; fits: one file each)."""
+    out = {}
+    for fig, opts in SCENES[scene].get("figures", {}).items():
+        for n in vplots.FIGURES[fig][1]:
+            if n == "material_fit":
+                out[f"{fig}_fits"] = [
+                    f"{MATERIAL_DIR}/{m}.nc" for m in opts.get("materials", [])
+                ]
+            else:
+                out[n] = f"results/{scene}/{n}.nc"
+    return out
 
 
-def get_figure_options(wildcards):
-    return SCENES[wildcards.scene]["figures"][wildcards.fig]
+def figure_rule_name(scene):
+    name = re.sub(r"\W", "_", scene)
+    return f"figures_{name}"
 
 
 def get_scene_targets(wildcards):

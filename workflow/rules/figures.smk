@@ -1,23 +1,40 @@
 # Figures (PNG for the report, PDF for print) and the per-scene manifest.
+#
+# One job per scene draws all of that scene's figures: each figure job used to be its own process,
+# and importing xarray and matplotlib (~1 s) cost more than drawing most figures. A rule per scene
+# (named figures_<scene>) lists the scene's figures as outputs, so `snakemake
+# results/<scene>/figures/fig1.png` still works (it draws the scene's figures), each PNG has its own
+# caption in the report, and a change to one figure's options re-draws the scene's figures (seconds).
 
+for _scene, _cfg in SCENES.items():
+    _figs = list(_cfg.get("figures", {}))
+    if not _figs:
+        continue
 
-rule figure:
-    input:
-        unpack(get_figure_inputs),
-    output:
-        png=report(
-            "results/{scene}/figures/{fig}.png",
-            caption="../report/figure.rst",
-            category="{scene}",
-        ),
-        pdf="results/{scene}/figures/{fig}.pdf",
-    log:
-        "results/{scene}/logs/figures/{fig}.log",
-    params:
-        plots_code=PLOTS_CODE,
-        options=get_figure_options,
-    script:
-        "../scripts/figure.py"
+    rule:
+        name:
+            figure_rule_name(_scene)
+        input:
+            **figure_inputs(_scene),
+        output:
+            png=[
+                report(
+                    f"results/{_scene}/figures/{f}.png",
+                    caption=f"../report/figures/{f}.rst",
+                    category=_scene,
+                )
+                for f in _figs
+            ],
+            pdf=[f"results/{_scene}/figures/{f}.pdf" for f in _figs],
+        log:
+            f"results/{_scene}/logs/figures.log",
+        params:
+            scene=_scene,
+            figures=_figs,
+            plots_code=PLOTS_CODE,
+            options={f: dict(o or {}) for f, o in _cfg["figures"].items()},
+        script:
+            "../scripts/figure.py"
 
 
 rule manifest:

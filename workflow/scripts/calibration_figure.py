@@ -8,6 +8,4 @@ import xarray as xr
 
 from vcor import plots
 
-fig = plots.calibration(xr.load_dataset(snakemake.input[0]))  # noqa: F821
-fig.savefig(snakemake.output.png, dpi=130)  # noqa: F821
-fig.savefig(snakemake.output.pdf, metadata={"CreationDate": None})  # noqa: F821
+plots.save(plots.calibration(xr.load_dataset(snakemake.input[0])), snakemake.output.png, snakemake.output.pdf)  # noqa: F821

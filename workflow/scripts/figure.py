@@ -1,4 +1,4 @@
-"""Draw one figure from datasets only (thin: vcor.plots does the drawing)."""
+"""Draw all figures of a scene from its datasets (thin: vcor.plots does the drawing)."""
 
 import sys
 
@@ -8,10 +8,18 @@ import xarray as xr
 
 from vcor import plots
 
-fn, needs = plots.FIGURES[snakemake.wildcards.fig]  # noqa: F821
-# a need is one file, or a list of files (master_curve: one fit per column)
-files = [snakemake.input[n] for n in needs]  # noqa: F821
-data = [xr.load_dataset(f) if isinstance(f, str) else [xr.load_dataset(x) for x in f] for f in files]
-fig = fn(*data, dict(snakemake.params.options))  # noqa: F821
-fig.savefig(snakemake.output.png, dpi=130)  # noqa: F821
-fig.savefig(snakemake.output.pdf, metadata={"CreationDate": None})  # noqa: F821
+inp, params = snakemake.input, snakemake.params  # noqa: F821
+loaded = {}  # one load per file: several figures of a scene read the same dataset
+
+
+def load(path):
+    if path not in loaded:
+        loaded[path] = xr.load_dataset(path)
+    return loaded[path]
+
+
+for fig, png, pdf in zip(params.figures, snakemake.output.png, snakemake.output.pdf):  # noqa: F821
+    files = {n: inp[f"{fig}_fits"] if n == "material_fit" else inp[n] for n in plots.FIGURES[fig][1]}
+    data = {n: [load(p) for p in f] if isinstance(f, list)
+            else load(f) for n, f in files.items()}
+    plots.save(plots.draw(fig, data, params.options[fig]), png, pdf)
