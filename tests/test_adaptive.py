@@ -168,3 +168,32 @@ def test_options_are_checked():
         vcor.simulate("sls", 1.0, method="adaptive", step_tol=0.5)
     with pytest.raises(ValueError, match="dt is not used by method 'adaptive'"):
         vcor.simulate("sls", 1.0, method="adaptive", dt=1e-7)
+
+
+def test_each_kernel_is_compiled_once():
+    """Every numba kernel gets one type signature over all methods and paths (one-call and general
+    adaptive, histories, thin plate, every preset kind): a literal argument in a call from another
+    kernel (e.g. a constant 0 or True) would make numba compile a second copy (march_adaptive: ~1 s
+    of compile per process). A fresh process, so that only these calls count."""
+    import subprocess
+    import sys
+
+    code = """
+import numba
+from vcor.solvers import simulate, _kernels as K
+for m in ("butyl-prony3", "butyl-fc", "butyl-cerf", "kelvin-voigt", "sls", "elastic"):
+    for kw in ({}, {"method": "adaptive"}, {"method": "adaptive", "richardson": False}, {"method": "soe"},
+               {"method": "ive-numba"}, {"method": "adaptive", "history": True}, {"history": True},
+               {"form": "b"}, {"method": "paper"}, {"volterra": True}):
+        try:
+            simulate(m, 10.0, **kw)
+        except ValueError:
+            pass  # a method that does not apply to this material
+simulate("sls", 10.0, h=0.001, method="adaptive")
+for name in dir(K):
+    d = getattr(K, name)
+    if isinstance(d, numba.core.registry.CPUDispatcher) and len(d.signatures) > 1:
+        print(name, d.signatures)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout == "", out.stdout

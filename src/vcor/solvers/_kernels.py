@@ -305,7 +305,8 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
         g[n] = v0 - J[n] / m - alphad[n] * J[n] - alpha[n] * Fn
         fs[n, 0] = g[n]
         fs[n, 1] = Fn
-        if n > 0 and _advance(state, n, True, s[n], g[n], Fn, rule, n_extra):
+        # (n > 0 rather than a literal True: a literal argument would compile a second _advance)
+        if n > 0 and _advance(state, n, n > 0, s[n], g[n], Fn, rule, n_extra):
             return
     state[3] = STATUS_END
 
@@ -421,7 +422,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
             state[4] += 1
             continue
         # separation found on a coarse step: re-step finer
-        if (not frozen and not planned and state[1] < 0 and state[0] == 1 and _separated(rule, True, Fn, sn)
+        if (not frozen and not planned and state[1] < 0 and state[0] == 1 and _separated(rule, state[0] == 1, Fn, sn)
                 and h > sep_frac * tn and l > lev_floor):
             l -= 1
             state[6] = l
@@ -592,6 +593,9 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, 
     divergence, time horizon, step budget), which the caller then runs through the general path."""
     nk = R.shape[1]
     n_plan = 0
+    # the lowest level as a variable: a literal 0 in the call would make numba compile a second
+    # march_adaptive (a Literal[int] argument) besides the one the general path calls from Python
+    lowest = np.int64(0)
     base = np.zeros(size0 + 1, dtype=np.int64)
     for k in range(n_grids):
         rep = 2**k
@@ -613,7 +617,7 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, 
         state[1] = -1
         state[6] = start_level
         march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
-                       m, v0, step_tol, inv_tc, 0, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0, P, X,
+                       m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0, P, X,
                        state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:
             return False
