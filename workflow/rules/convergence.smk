@@ -29,6 +29,8 @@ rule convergence:
         orders="results/{scene}/orders.txt",
     log:
         "results/{scene}/logs/convergence.log",
+    # the work-precision figure (~4 s) follows: not the last job of a -j2 run
+    priority: 10
     params:
         code=CODE,
         spec=get_convergence_spec,

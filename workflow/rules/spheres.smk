@@ -8,6 +8,8 @@ rule spheres:
         "results/{scene}/logs/spheres.log",
     benchmark:
         "results/{scene}/benchmarks/spheres.tsv"
+    # heads a chain (figures, manifest), like the shards
+    priority: 5
     params:
         code=CODE,
         spec=get_spheres_spec,

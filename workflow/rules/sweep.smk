@@ -11,6 +11,9 @@ rule sweep_shard:
         "results/{scene}/logs/shards/{shard}.log",
     benchmark:
         "results/{scene}/benchmarks/shards/{shard}.tsv"
+    # a shard heads a chain (aggregate, figures, manifest): before the figures of other scenes, so
+    # that the last minute of -j2 is not one scene's chain on one core
+    priority: 5
     params:
         points=get_shard_points,
         settings=get_settings,
@@ -29,6 +32,7 @@ rule aggregate:
         "results/{scene}/logs/aggregate.log",
     benchmark:
         "results/{scene}/benchmarks/aggregate.tsv"
+    priority: 5
     params:
         identities=get_identities,
         code=CODE,
