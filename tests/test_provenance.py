@@ -16,7 +16,7 @@ import xarray as xr
 import yaml
 
 import vcor
-from vcor import provenance, runner, scene, shards
+from vcor import aggregation, provenance, runner, scene, shards
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = {"materials": ["sls"], "grid": {"v0": [2.0, 10.0]}, "shard_size": 1}
@@ -99,9 +99,9 @@ def _shard(code):
 def test_aggregate_refuses_shards_of_different_code():
     current = provenance.code_fingerprint()
     with pytest.raises(ValueError, match="different code"):
-        runner.aggregate([_shard(current), _shard("0123456789abcdef")], SCENE, {"sls": "x"})
+        aggregation.aggregate([_shard(current), _shard("0123456789abcdef")], SCENE, {"sls": "x"})
     with pytest.raises(ValueError, match="different code"):
-        runner.aggregate([_shard("0123456789abcdef")], SCENE, {"sls": "x"})
+        aggregation.aggregate([_shard("0123456789abcdef")], SCENE, {"sls": "x"})
 
 
 def test_aggregate_refuses_changed_material_parameters():
@@ -110,7 +110,7 @@ def test_aggregate_refuses_changed_material_parameters():
     p["E0"] = p.get("E0", 1.0) * 1.01
     ds.attrs["materials"] = json.dumps({"sls": p})
     with pytest.raises(ValueError, match="material 'sls'"):
-        runner.aggregate([ds], SCENE, {"sls": "x"})
+        aggregation.aggregate([ds], SCENE, {"sls": "x"})
 
 
 def test_shard_identity_covers_code_material_content_and_options():

@@ -110,6 +110,13 @@ def test_sweep_dataset_layout_and_values(tiny_run):
     for a in ["Conventions", "title", "history", "source", "references", "scene_config", "solver_settings",
               "materials"]:
         assert a in ds.attrs, a
+    # the shards (archived too) carry the same units and long names: the aggregate takes them from there
+    shard = xr.open_dataset(sorted((tiny_run / "results/tiny/shards").glob("*.nc"))[0])
+    for v in shard.data_vars:
+        assert "units" in shard[v].attrs or v.endswith("message"), v
+        assert shard[v].attrs.get("long_name"), v
+        assert {k: np.asarray(x).tolist() for k, x in shard[v].attrs.items()} == \
+            {k: np.asarray(x).tolist() for k, x in ds[v].attrs.items()}, v
     stored = json.loads(ds.attrs["scene_config"])  # the effective scene: config + schema defaults
     for key in ("materials", "grid", "tie", "figures"):
         assert stored[key] == TINY["scenes"]["tiny"][key]

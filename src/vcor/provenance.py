@@ -33,17 +33,17 @@ def _hash_files(paths) -> hashlib._Hash:
 
 @functools.lru_cache(maxsize=1)
 def code_fingerprint() -> str:
-    """16 hex digits identifying the computing code (see the module docstring)."""
-    import numba
-    import numpy
-    import scipy
+    """16 hex digits identifying the computing code (see the module docstring). The dependency
+    versions are read from their installed metadata (importing numba to ask would cost the
+    workflow's aggregate jobs, which do not solve, ~0.3 s each)."""
+    from importlib.metadata import version
 
     from . import __version__
 
     files = [p for p in _PACKAGE.rglob("*.py") if p.name not in _NOT_COMPUTING]
     h = _hash_files(files)
-    h.update(f"vcor {__version__}; numpy {numpy.__version__}; scipy {scipy.__version__}; "
-             f"numba {numba.__version__}".encode())
+    h.update(f"vcor {__version__}; numpy {version('numpy')}; scipy {version('scipy')}; "
+             f"numba {version('numba')}".encode())
     return h.hexdigest()[:16]
 
 

@@ -1,39 +1,25 @@
-"""Running points: solve grid points into an ``xarray.Dataset`` (one shard), and aggregate shards
-into a scene's dataset with dims (material, *grid axes).
+"""Running points: solve grid points into an ``xarray.Dataset`` (one shard; :mod:`vcor.aggregation`
+combines a scene's shards), every variable with its units and long name.
 
 A failed point never sinks its shard: it is stored with its status and message
 (:mod:`vcor.status`). With ``error_estimate`` every ok point is solved again (dt/2 for fixed-step
 methods: Richardson; rtol/100 for ``ive``; step_tol/16 for ``adaptive``) and the estimates ``cor_err``, ``t0_err`` get their own
 ``error_status`` / ``error_message``: a failing estimate run never overwrites the point's status.
-
-The aggregate refuses to combine shards computed by different code (their ``code_fingerprint``
-attributes differ from each other or from the running code) or with different material
-parameters than the current ones: an archive never mixes old and new results.
 """
 
 from __future__ import annotations
 
-import json
 import math
 import time
 
 import numpy as np
 
 from . import status as _status
-from .provenance import code_fingerprint
-from .scene import (
-    AXIS_UNITS,
-    build_point,
-    canon,
-    material_params,
-    scene_axes,
-    settings_of,
-)
-from .shards import identified_points, point_key
+from .scene import build_point
 from .solvers import simulate
 from .solvers.common import LONG_NAMES, UNITS, richardson
 
-__all__ = ["SCALARS", "aggregate", "dataset_attrs", "run_points", "solve_point"]
+__all__ = ["ERRORS", "SCALARS", "run_points", "solve_point"]
 
 #: scalar outputs stored per point
 SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",
@@ -107,91 +93,15 @@ def _rows_to_dataset(points, rows, settings):
     coords["material_id"] = ("point", np.array([p.get("material_id", "") for p in points], dtype=object))
     for a in axes:
         coords[a] = ("point", np.array([float(p[a]) for p in points]))
-    return xr.Dataset(data, coords=coords)
-
-
-def dataset_attrs(scene_name, scene, material_dir="results/materials") -> dict:
-    """Global attributes that make a dataset enough to re-run its scene."""
-    from .impact import GEOMETRY_DEFAULTS
-
-    return {
-        "scene": scene_name,
-        "scene_config": scene,
-        "solver_settings": settings_of(scene),
-        "materials": material_params(scene["materials"], material_dir),
-        "geometry_defaults": dict(GEOMETRY_DEFAULTS),
-    }
-
-
-def _check_provenance(shards, scene, material_dir):
-    """Refuse shards of other code or other material parameters (see the module docstring)."""
-    current = code_fingerprint()
-    prints = {ds.attrs.get("code_fingerprint", "missing") for ds in shards}
-    if prints != {current}:
-        raise ValueError(f"shards were computed by different code (fingerprints {sorted(prints)}, running "
-                         f"code {current}): refusing to combine them; recompute the stale shards")
-    params = material_params(scene["materials"], material_dir)
-    for ds in shards:
-        used = json.loads(ds.attrs.get("materials", "{}"))
-        for name, p in used.items():
-            if name in params and p != params[name]:
-                raise ValueError(f"a shard used material {name!r} with parameters {p}, the current ones are "
-                                 f"{params[name]}: refusing to combine them; recompute the stale shards")
-
-
-def aggregate(shards, scene, identities: dict, material_dir="results/materials"):
-    """Combine shard datasets into one Dataset with dims (material, *grid axes)."""
-    import xarray as xr
-
-    _check_provenance(shards, scene, material_dir)
-    axes = scene_axes(scene)
-    mats = list(scene["materials"])
-    names = list(axes)
-    shape = (len(mats),) + tuple(len(axes[a]) for a in names)
-    # position of every requested point in the output arrays
-    pos_of = {}
-    for p in identified_points(scene, identities):
-        pos_of[point_key(p)] = (mats.index(p["material"]),) + tuple(axes[a].index(p[a]) for a in names)
-    first = shards[0]
-    text_vars = ("message", "error_message")
-    int_vars = ("status", "error_status")
-    var_names = [v for v in first.data_vars if v not in text_vars + int_vars]
-    out = {v: np.full(shape, np.nan) for v in var_names}
-    ints = {v: np.zeros(shape, dtype=np.int8) for v in int_vars if v in first}
-    texts = {v: np.empty(shape, dtype=object) for v in text_vars if v in first}
-    filled = np.zeros(shape, dtype=bool)
-    for ds in shards:
-        cols = {v: ds[v].values for v in list(var_names) + list(ints) + list(texts)}
-        mat_col, id_col = ds["material"].values, ds["material_id"].values
-        ax_cols = {a: ds[a].values for a in names}
-        for i in range(ds.sizes["point"]):
-            p = {"material": str(mat_col[i]), "material_id": str(id_col[i])}
-            for a in names:
-                p[a] = canon(ax_cols[a][i])
-            pos = pos_of.get(point_key(p))
-            if pos is None:
-                continue  # a reused shard may hold points no longer in the grid
-            for v, col in cols.items():
-                (out.get(v) if v in out else ints.get(v) if v in ints else texts[v])[pos] = col[i]
-            filled[pos] = True
-    if not filled.all():
-        raise ValueError(f"{int((~filled).sum())} grid points missing from the shards")
-    dims = ("material",) + tuple(names)
-    data = {v: (dims, arr) for v, arr in {**out, **ints}.items()}
-    data.update({v: (dims, arr.astype(str)) for v, arr in texts.items()})
-    coords = {"material": np.array(mats, dtype=str), **{a: np.array(axes[a]) for a in names}}
     ds = xr.Dataset(data, coords=coords)
-    for v in var_names:
+    for v in SCALARS + (ERRORS if estimate else ()):
         base = v.replace("_err", "")
         ds[v].attrs["units"] = UNITS.get(base, "1")
-        ds[v].attrs["long_name"] = LONG_NAMES.get(v, "") or (f"Richardson error estimate of {base}" if v.endswith("_err") else v)
-    for a in names:
-        u, ln = AXIS_UNITS.get(a, ("1", a))
-        ds[a].attrs.update(units=u, long_name=ln)
-    ds["material"].attrs["long_name"] = "material (preset or fitted name)"
+        ds[v].attrs["long_name"] = LONG_NAMES.get(v, "") or (f"error estimate of {base}" if v.endswith("_err") else v)
     ds["status"].attrs.update(_status.cf_attrs("solver status"))
     ds["message"].attrs["long_name"] = "solver message (failure reason, or a note such as a refined dt)"
-    if "error_status" in ds:
-        ds["error_status"].attrs.update(_status.cf_attrs("status of the error-estimate run (dt/2 or rtol/100)"))
+    if estimate:
+        ds["error_status"].attrs.update(_status.cf_attrs("status of the error-estimate run (dt/2, rtol/100 or "
+                                                         "step_tol/16)"))
         ds["error_message"].attrs["long_name"] = "message of the error-estimate run"
     return ds
