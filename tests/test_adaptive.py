@@ -174,26 +174,14 @@ def test_each_kernel_is_compiled_once():
     """Every numba kernel gets one type signature over all methods and paths (one-call and general
     adaptive, histories, thin plate, every preset kind): a literal argument in a call from another
     kernel (e.g. a constant 0 or True) would make numba compile a second copy (march_adaptive: ~1 s
-    of compile per process). A fresh process, so that only these calls count."""
+    of compile per process). A fresh process, so that only these calls count; the workload is the
+    compile benchmark's (benchmarks/bench_compile.py), which prints every kernel with more than one
+    signature."""
     import subprocess
     import sys
+    from pathlib import Path
 
-    code = """
-import numba
-from vcor.solvers import simulate, _kernels as K
-for m in ("butyl-prony3", "butyl-fc", "butyl-cerf", "kelvin-voigt", "sls", "elastic"):
-    for kw in ({}, {"method": "adaptive"}, {"method": "adaptive", "richardson": False}, {"method": "soe"},
-               {"method": "ive-numba"}, {"method": "adaptive", "history": True}, {"history": True},
-               {"form": "b"}, {"method": "paper"}, {"volterra": True}):
-        try:
-            simulate(m, 10.0, **kw)
-        except ValueError:
-            pass  # a method that does not apply to this material
-simulate("sls", 10.0, h=0.001, method="adaptive")
-for name in dir(K):
-    d = getattr(K, name)
-    if isinstance(d, numba.core.registry.CPUDispatcher) and len(d.signatures) > 1:
-        print(name, d.signatures)
-"""
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    bench = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_compile.py"
+    out = subprocess.run([sys.executable, str(bench), "--workload"], capture_output=True, text=True,
+                         check=True)
     assert out.stdout == "", out.stdout
