@@ -21,14 +21,18 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
            hi_open: bool = True, unit: str = "") -> float:
     """``value`` as a float if it is a real number (not a bool) in the interval, else ValueError
     naming ``name`` and the interval (with ``unit``)."""
-    where = _interval(lo, hi, lo_open, hi_open) + (f" {unit}" if unit else "")
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"{name} must be in {where} (a number), got {value!r}")
+        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {value!r}")
     v = float(value)
     inside = (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi)
     if not (math.isfinite(v) and inside):
-        raise ValueError(f"{name} must be in {where}, got {value!r}")
+        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)}, got {value!r}")
     return v
+
+
+def _where(lo, hi, lo_open, hi_open, unit) -> str:
+    # formatted only for an error message (validation runs per Prony term, per sweep point)
+    return _interval(lo, hi, lo_open, hi_open) + (f" {unit}" if unit else "")
 
 
 def positive(name: str, value, *, allow_zero: bool = False, unit: str = "") -> float:

@@ -51,6 +51,9 @@ _SQRT_PI = math.sqrt(math.pi)
 #: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
 #: the only singularity, t = 0, is at least one step away, so 12 nodes are exact to rounding)
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(12)
+#: int_0^dt e^{-b x} (x - dt/2) dx / dt^2 = sum_{k >= 1} c_k (-b dt)^k, c_k = k / (2 k! (k + 1)(k + 2)),
+#: k = 1..15 (used for b dt <= 0.05: the truncation is below 1e-30 relative)
+_MOMENT_SERIES = np.array([k / (2.0 * math.factorial(k) * (k + 1) * (k + 2)) for k in range(1, 16)])
 
 
 class Material:
@@ -118,10 +121,18 @@ class Material:
         Gauss-Legendre on the positive integrand E (no differences of growing antiderivatives,
         so no cancellation however many steps)."""
         out = np.empty(n)
-        out[0] = float(self.antiderivative(dt, 1))
+        out[0] = float(self.first_step(dt)[0])
         if n > 1:
             out[1:] = self._gauss_steps(dt, n, lambda t, x: self.relaxation_modulus(t))
         return out
+
+    def first_step(self, dt):
+        """(int_0^dt E_reg(t) dt in Pa s, int_0^dt E_reg(t) (t - dt/2) dt in Pa s^2) for a step size or
+        an array of them at once: the first entries of ``step_integrals`` and ``step_moments``.
+        From the antiderivatives K1, K2: (K1(dt), dt/2 K1(dt) - K2(dt))."""
+        dt = np.asarray(dt, dtype=float)
+        k1 = self.antiderivative(dt, 1)
+        return k1, 0.5 * dt * k1 - self.antiderivative(dt, 2)
 
     def step_moments(self, dt: float, n: int) -> np.ndarray:
         """V_i = int_{i dt}^{(i+1) dt} E_reg(t) (t - (i + 1/2) dt) dt for i = 0..n-1, in Pa s^2.
@@ -132,7 +143,7 @@ class Material:
         loses no digits (the difference form dt/2 (K1(b) + K1(a)) - (K2(b) - K2(a)) loses them all by
         step ~1e5)."""
         out = np.empty(n)
-        out[0] = 0.5 * dt * float(self.antiderivative(dt, 1)) - float(self.antiderivative(dt, 2))
+        out[0] = float(self.first_step(dt)[1])
         if n > 1:
             h2 = 0.25 * dt * dt
             out[1:] = 0.5 * self._gauss_steps(dt, n, lambda t, x: self.relaxation_rate(t) * (h2 - x * x))
@@ -274,12 +285,10 @@ class Prony(Material):
         x = b * dt
         safe = np.where(x > 0.05, x, 1.0)
         closed = dt**2 * ((-np.expm1(-safe)) / safe**2 - np.exp(-safe) / safe - 0.5 * (-np.expm1(-safe)) / safe)
-        series = np.zeros_like(x)
         small = np.where(x > 0.05, 0.0, x)  # the series is used (and evaluated) only where x <= 0.05
-        fact = 1.0
-        for k in range(1, 16):
-            fact *= k
-            series = series + (-small) ** k / fact * k / (2.0 * (k + 1) * (k + 2))
+        series = np.zeros_like(x)
+        for coef in _MOMENT_SERIES[::-1]:  # Horner in -x
+            series = (series + coef) * -small
         phi = np.where(x > 0.05, closed, dt**2 * series)
         return e * phi * np.exp(-np.multiply.outer(i, x))
 
@@ -422,6 +431,12 @@ class FractionalPower(Material):
         #   = (sqrt b - sqrt a) (2/3) (sqrt(a) sqrt(b) - (a + b)/2) = -(sqrt b - sqrt a)^3 / 3;
         # the E0 part integrates to zero
         return -self.E1 / (3.0 * _SQRT_PI) * self._sqrt_steps(dt, n) ** 3
+
+    def first_step(self, dt):
+        # the closed forms of step_integrals and step_moments for one step of each size
+        dt = np.asarray(dt, dtype=float)
+        sq = dt / np.sqrt(dt)
+        return self.E0 * dt + 2.0 * self.E1 / _SQRT_PI * sq, -self.E1 / (3.0 * _SQRT_PI) * sq**3
 
     def params(self) -> dict:
         return {"E0": self.E0, "E1": self.E1}

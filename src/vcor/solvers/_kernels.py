@@ -38,6 +38,9 @@ STATUS_SEPARATED = 1
 STATUS_DIVERGED = 2
 STATUS_END = 3  # reached the end of the arrays without separating
 STATUS_FULL = 4  # adaptive march: arrays full, grow them and call again (resumable)
+#: adaptive march: a mode whose decay factor over one step (or whose plate factor exp(-beta t)) is
+#: below this has decayed (e^-41.4; far below rounding of the history it would add to)
+DECAYED = 1e-18
 
 
 @numba.njit(**_JIT)
@@ -312,7 +315,7 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 
 @numba.njit(**_JIT)
-def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
+def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
                    step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state, plan, off):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
@@ -324,6 +327,14 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     per exponential mode, P_k(t_{n-1}) = sum_{j<n} e^{-beta_k (t_{n-1} - t_j)} (d_j GA[l_j,k] + c_j GB[l_j,k]),
     decayed by R[l,k] = exp(-beta_k h_l) to the new node. A trial step changes nothing until it is accepted, so a
     rejection needs no roll-back.
+
+    Decayed modes: on level l only the first live[l] modes have R[l,k] >= DECAYED (every later one has
+    decayed below it within one step), so a step touches only those. A mode k >= live[l] after an
+    accepted step on level l holds that step's contribution alone (its older history is multiplied
+    by R < DECAYED): P_k = d GA[l,k] + c GB[l,k], kept implicit (the last step's d, c and level) and
+    written into P when a finer step needs the mode again, and for every mode before returning (so
+    that P is whole when the march resumes). Modes of the plate's X_k = exp(-beta_k t) below
+    DECAYED are zero from then on (t only grows).
 
     Plate mobility (plate = 1): alpha = pscale / sqrt(E_b), E_b(t) = pc (pe_inf + sum pe_k X_k),
     X_k = exp(-pb_k t) carried with the same factors (pb = the modes' rates); plate = 0: alpha_c.
@@ -353,6 +364,14 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
     St = np.empty(nk)
     Xt = np.empty(nk)
     pbe = pb * pe
+    # P is whole on entry; modes kv.. are implicit after the first accepted step (see above)
+    kv = nk
+    last_d = 0.0
+    last_c = 0.0
+    last_lt = 0
+    kx = nk
+    while kx > 1 and X[kx - 1] == 0.0:
+        kx -= 1
     l = state[6]
     n = state[2] + 1
     frozen = state[7] == 1
@@ -368,8 +387,12 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         tn = t[n - 1] + h
         # history of all steps before this one
         Rl = R[lt]
+        kl = live[lt]
+        if kl > kv:
+            _fill(P, kv, kl, last_d, last_c, GA[last_lt], GB[last_lt])
+            kv = kl
         Hh = 0.0
-        for k in range(nk):
+        for k in range(kl):
             v = Rl[k] * P[k]
             St[k] = v
             Hh += v
@@ -385,7 +408,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         if plate == 1:
             eb = pe_inf
             ebd = 0.0
-            for k in range(nk):
+            for k in range(kx):
                 x = Rl[k] * X[k]
                 Xt[k] = x
                 eb += pe[k] * x
@@ -440,13 +463,21 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
         c = 2.0 * (d - (u[n - 1] - u[n - 2]) / hp) / (h + hp) if n >= 2 else 0.0
         GAl = GA[lt]
         GBl = GB[lt]
-        for k in range(nk):
+        for k in range(kl):
             P[k] = St[k] + d * GAl[k] + c * GBl[k]
+        kv = kl
+        last_d = d
+        last_c = c
+        last_lt = lt
         if plate == 1:
-            for k in range(nk):
+            for k in range(kx):
                 X[k] = Xt[k]
+            while kx > 1 and X[kx - 1] < DECAYED:
+                X[kx - 1] = 0.0
+                kx -= 1
         if _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
             if state[3] != STATUS_SEPARATED or tn >= t[state[1]] * (1.0 + ghost):
+                _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
                 return
             state[3] = STATUS_RUNNING
         if state[1] >= 0:
@@ -461,9 +492,18 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, psca
             state[6] = l
         if tn >= t_horizon:
             state[3] = STATUS_END
+            _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
             return
         n += 1
     state[3] = STATUS_FULL
+    _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
+
+
+@numba.njit(**_JIT)
+def _fill(P, k0, k1, d, c, GAl, GBl):
+    """P[k0:k1] = the last accepted step's own contribution (modes that had decayed on its level)."""
+    for k in range(k0, k1):
+        P[k] = d * GAl[k] + c * GBl[k]
 
 
 @numba.njit(**_JIT)
@@ -583,7 +623,7 @@ def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
 
 
 @numba.njit(**_JIT)
-def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
+def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
                    step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
     """The adaptive march (``march_adaptive``), then (n_grids = 3) its replays with every step halved
     and quartered, and the separation of each, in one call (no histories). The tables have
@@ -616,7 +656,7 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, n_levels, eta, plate, pscale, 
         state = np.zeros(8, dtype=np.int64)
         state[1] = -1
         state[6] = start_level
-        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
+        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
                        m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0, P, X,
                        state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:

@@ -5,7 +5,10 @@ singularity of the fractional law) and older history carried by the exponential 
 :func:`vcor.soe.soe` (exact for Prony, SLS, elastic and Kelvin-Voigt; relative error <= ``soe_tol``
 for the fractional and CERF laws on [smallest step, horizon]). One variable per exponential is
 updated in O(1) per step for any step size, so the cost is O(N K) and steps can grow by orders of
-magnitude in long, slow contacts (thin plates) and shrink near t = 0 and at separation.
+magnitude in long, slow contacts (thin plates) and shrink near t = 0 and at separation. A mode
+that decays below 1e-18 over one step (``_kernels.DECAYED``) is not touched on that step's level
+(its value is the last step's contribution, kept implicitly), so the fast modes of the fractional
+and CERF sums cost nothing on coarse steps.
 
 Step sizes are powers of two times h_base = 2^(floor(log2 t_c) - FLOOR_BITS) (t_c the contact-time
 estimate), so every table (local weights, mode factors) is computed once per level and shared by the
@@ -63,7 +66,9 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per exponential mode k of the kernel's sum on
     [h_base, t_max] (column 0: the constant E(inf) + slow modes, rate 0) the step weights
     GA = kappa E_k int_0^h e^{-b x} dx, GB = kappa E_k int_0^h e^{-b x} (h/2 - x) dx and the decay
-    R = e^{-b h}. Returns a dict of arrays, plus the modes' moduli (Pa) and rates (1/s) for the plate."""
+    R = e^{-b h}, and live[l]: the march touches modes 0..live[l]-1 on level l (every later mode has
+    R < ``_kernels.DECAYED``). Returns a dict of arrays, plus the modes' moduli (Pa) and rates (1/s)
+    for the plate."""
     mat = material
     rep = soe(mat, h_base, t_max, tol)
     pr = rep.material
@@ -78,16 +83,19 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     GA[:, 1:] = kappa * ti
     GB[:, 1:] = -kappa * tm
     R[:, 1:] = np.exp(-np.multiply.outer(hl, b))
+    # per level: modes from the last one with R >= DECAYED on are skipped by the march (K.march_adaptive)
+    alive = R >= K.DECAYED
+    live = nk - np.argmax(alive[:, ::-1], axis=1)
     if isinstance(mat, Prony):
         # the sum is the material: its step integrals are those of the modes (Prony.step_integrals)
         I0 = kappa * (mat.E_inf * hl + ti.sum(axis=-1))
         M = -kappa * tm.sum(axis=-1)
     else:
-        I0 = np.array([kappa * mat.step_integrals(h, 1)[0] for h in hl])
-        M = np.array([-kappa * mat.step_moments(h, 1)[0] for h in hl])
+        i0, m0 = mat.first_step(hl)
+        I0, M = kappa * i0, -kappa * m0
     pe = np.concatenate(([0.0], e))
     pb = np.concatenate(([0.0], b))
-    return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "pe_inf": float(e_inf), "pe": pe, "pb": pb,
+    return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "live": live, "pe_inf": float(e_inf), "pe": pe, "pb": pb,
             "n_terms": rep.n_terms, "soe_error": rep.checked_error}
 
 
@@ -145,7 +153,7 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         arr.g[0] = impact.v0
         while True:
             K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
-                             tab["GB"], tab["R"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"], tab["pb"],
+                             tab["GB"], tab["R"], tab["live"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"], tab["pb"],
                              alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
                              0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
@@ -255,7 +263,7 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
                        2.0 * horizon, tol)
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
-    if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], n_levels,
+    if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"], n_levels,
                             impact.kappa * impact.material.viscosity, plate, pscale, pc, tab["pe_inf"], tab["pe"],
                             tab["pb"], alpha_c, m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
                             0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
