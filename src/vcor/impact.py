@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -109,9 +110,9 @@ class Geometry:
             return float(self.rho_b)
         return DENSITIES["polymer" if _PLATE_IS_POLYMER[self.case] else "steel"]
 
-    @property
+    @cached_property
     def mass(self) -> float:
-        """Sphere mass, kg."""
+        """Sphere mass, kg (computed once: the geometry is immutable)."""
         return 4.0 / 3.0 * math.pi * self.r**3 * self.sphere_density
 
 
@@ -138,8 +139,9 @@ class Impact:
     def m(self) -> float:
         return self.geometry.mass
 
-    @property
+    @cached_property
     def kappa(self) -> float:
+        """k(t) = kappa E(t), m^0.5 (computed once: the impact is immutable)."""
         g = self.geometry
         c = 0.5 if g.case == 2 else 1.0
         return 4.0 / 3.0 * math.sqrt(g.r) * c / (1.0 - g.nu**2)
@@ -215,9 +217,9 @@ class Impact:
         t0/t_c = 0.845; thin plates make it far longer). Used to choose dt and T_max; simulate()
         refines dt when the real contact is much shorter."""
         t = 1e-3
-        kappa, material = self.kappa, self.material
+        kappa, material, m, v0 = self.kappa, self.material, self.m, self.v0
         for _ in range(8):
             k = kappa * material.modulus_at(t / 4)
-            smax = (5.0 * self.m * self.v0**2 / (4.0 * k)) ** 0.4
-            t = 2.9432 * smax / self.v0
+            smax = (5.0 * m * v0**2 / (4.0 * k)) ** 0.4
+            t = 2.9432 * smax / v0
         return t
