@@ -18,7 +18,7 @@ import vcor
 from vcor import runner, scene
 from vcor.options import solver_options
 from vcor.soe import soe
-from vcor.solvers.adaptive import run_adaptive
+from vcor.solvers.adaptive import level_tables, run_adaptive
 from vcor.solvers.simulate import make_impact
 
 
@@ -99,28 +99,47 @@ def _throughput_scenes():
 
 
 def shard_wall(label, method):
-    """(points, wall time [s]) of run_points over the scene ``label`` in this process, after a
-    3-point warm-up (compiles; the other materials' and step ranges' tables are built in the run)."""
+    """(points, wall time [s], level tables built) of run_points over the scene ``label`` in this
+    process, after a 3-point warm-up (compiles; the other materials' and step ranges' tables are
+    built in the run)."""
     s2 = {**_throughput_scenes()[label], "solver": {"method": method}}
     pts = scene.scene_points(s2)
     settings = scene.settings_of(s2)
     runner.run_points(pts[:3], settings)  # JIT
+    built = level_tables.cache_info().misses
     t = time.perf_counter()
     runner.run_points(pts, settings)
-    return len(pts), time.perf_counter() - t
+    return len(pts), time.perf_counter() - t, level_tables.cache_info().misses - built
+
+
+def table_builds():
+    print("level tables of one (material, step range) pair, as a sweep point on a new power of two of t_c")
+    print("builds them (exponential sum with its check, per-level weights): medians over 20 ranges")
+    print(f"{'material':14s} {'build [ms]':>11s}")
+    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
+        imp = make_impact(name, 10.0, {})
+        ts = []
+        for k in range(8, 28):  # a different range each time: nothing cached
+            top = 2.0**-k
+            t = time.perf_counter()
+            level_tables(imp.material, float(imp.kappa), top * 2.0**-18, 22, 256.0 * top, 1e-10)
+            ts.append(time.perf_counter() - t)
+        print(f"{name:14s} {np.median(ts) * 1e3:11.2f}")
+    print()
 
 
 def throughput():
     print("sweep throughput inside one shard (runner.run_points: validation, solve, dataset; each in a fresh")
     print("process after a 3-point warm-up that compiles: the tables of the other materials and step ranges")
     print("are built inside the timed run, as in a shard); 1000 points is config.yaml's shard_size")
-    print(f"{'scene':36s} {'points':>7s} {'method':>9s} {'wall [s]':>9s} {'points/s':>9s}")
+    print(f"{'scene':36s} {'points':>7s} {'method':>9s} {'wall [s]':>9s} {'points/s':>9s} {'tables built':>13s}")
     for label in _throughput_scenes():
         for method in ("adaptive", "direct"):
             out = subprocess.run([sys.executable, __file__, "--shard", label, method], capture_output=True,
                                  text=True, check=True)
-            n, wall = out.stdout.split()
-            print(f"{label:36s} {int(n):7d} {method:>9s} {float(wall):9.3f} {int(n) / float(wall):9.0f}")
+            n, wall, built = out.stdout.split()
+            print(f"{label:36s} {int(n):7d} {method:>9s} {float(wall):9.3f} {int(n) / float(wall):9.0f} "
+                  f"{int(built):13d}")
     print()
 
 
@@ -132,4 +151,5 @@ if __name__ == "__main__":
     breakdown()
     cold()
     thickness()
+    table_builds()
     throughput()
