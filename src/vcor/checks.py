@@ -21,7 +21,7 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
            hi_open: bool = True, unit: str = "") -> float:
     """``value`` as a float if it is a real number (not a bool) in the interval, else ValueError
     naming ``name`` and the interval (with ``unit``)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    if type(value) is not float and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
         raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {value!r}")
     v = float(value)
     inside = (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi)
