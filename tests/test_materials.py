@@ -60,6 +60,19 @@ def test_step_integrals_and_moments_against_mpmath(name):
     assert worst_w < 1e-12 and worst_v < 1e-11
 
 
+@pytest.mark.parametrize("name", sorted(M.PRESETS))
+def test_first_step_is_the_first_step_integral_and_moment(name):
+    """``first_step`` over an array of step sizes (the adaptive method's level tables) gives, per
+    size, the first entries of ``step_integrals`` and ``step_moments`` (the fixed-step methods')."""
+    mat = M.get(name)
+    dts = 1e-9 * 2.0 ** np.arange(24)
+    w, v = mat.first_step(dts)
+    w1 = np.array([mat.step_integrals(h, 1)[0] for h in dts])
+    v1 = np.array([mat.step_moments(h, 1)[0] for h in dts])
+    np.testing.assert_allclose(w, w1, rtol=1e-14, atol=0)
+    np.testing.assert_allclose(v, v1, rtol=1e-12, atol=1e-300)
+
+
 @pytest.mark.parametrize("name", sorted(MP_E))
 def test_second_antiderivative_against_mpmath(name):
     mat, E = M.get(name), MP_E[name]

@@ -269,6 +269,13 @@ class Prony(Material):
         # E_inf gives 0.
         return self.term_step_moments(dt, n).sum(axis=-1)
 
+    def first_step(self, dt):
+        # per term, closed forms (the antiderivative difference of the base class cancels for small steps)
+        dt = np.asarray(dt, dtype=float)
+        col = dt[..., None]
+        return (self.E_inf * dt + self.term_step_integrals(col, 1)[0].sum(axis=-1),
+                self.term_step_moments(col, 1)[0].sum(axis=-1))
+
     def term_step_integrals(self, dt: float, n: int) -> np.ndarray:
         """Per term k (last axis): int_{i dt}^{(i+1) dt} E_k e^{-beta_k t} dt, i = 0..n-1, Pa s."""
         i = np.arange(n, dtype=float)

@@ -37,7 +37,6 @@ import time
 
 import numpy as np
 
-from ..materials import Prony
 from ..soe import soe
 from . import _kernels as K
 from .common import Result, separation_scalars
@@ -86,13 +85,9 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     # per level: modes from the last one with R >= DECAYED on are skipped by the march (K.march_adaptive)
     alive = R >= K.DECAYED
     live = nk - np.argmax(alive[:, ::-1], axis=1)
-    if isinstance(mat, Prony):
-        # the sum is the material: its step integrals are those of the modes (Prony.step_integrals)
-        I0 = kappa * (mat.E_inf * hl + ti.sum(axis=-1))
-        M = -kappa * tm.sum(axis=-1)
-    else:
-        i0, m0 = mat.first_step(hl)
-        I0, M = kappa * i0, -kappa * m0
+    # the newest step: the material's own kernel (for Prony kinds the same terms as the sum)
+    i0, m0 = mat.first_step(hl)
+    I0, M = kappa * i0, -kappa * m0
     pe = np.concatenate(([0.0], e))
     pb = np.concatenate(([0.0], b))
     return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "live": live, "pe_inf": float(e_inf), "pe": pe, "pb": pb,
