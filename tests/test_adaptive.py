@@ -69,16 +69,21 @@ def test_one_call_path_equals_the_general_path(name, monkeypatch):
 def test_skipping_decayed_modes_changes_nothing_but_rounding(name, monkeypatch):
     """The march skips, per level, the modes that decay below _kernels.DECAYED over one step (their
     value kept implicitly, written back before a march returns). Against the same runs touching
-    every mode (live = all): equal to 1e-12 relative, on standard plates at 10 and 0.001 m/s, a thin
-    plate (horizon extensions) and a rigid target; once with the usual arrays (one-call path) and
-    once with arrays of 16 steps (the one-call path declines; the general path's marches return
-    full and resume many times). And the skipping is real (coarse levels skip modes)."""
+    every mode (live = all): equal to 1e-12 relative (the COR also to 1e-15 absolute, the rounding
+    floor of a velocity ratio), on standard plates at 10 and 0.001 m/s, a thin plate (horizon
+    extensions) and a rigid target; once with the usual arrays (one-call path) and once with arrays
+    of 16 steps (the one-call path declines; the general path's marches return full and resume
+    many times). And the skipping is real (coarse levels skip modes). The thin plate is 1 mm for
+    SLS, 3.16 mm for the Butyl laws: their 1 mm contacts creep for hours, and rounding alone (sums in
+    another order) moves t0 by 6e-9 and the COR (3.8e-13) by 1.4e-16 there
+    (``test_fractional_thin_plate_separates_after_hours``: ill-conditioned)."""
     imp = make_impact(name, 10.0, {})
     tab = adaptive.level_tables(imp.material, float(imp.kappa), 1e-9, 30, 1.0, 1e-10)
     if name != "sls":  # levels 2^29 apart: the coarsest skips 40 % of the ~100 modes, the finest a few
         assert tab["live"][-1] <= 0.6 * tab["GA"].shape[1] and tab["live"][0] > tab["live"][-1], tab["live"]
     cases = [(size, geo, v0) for size in (adaptive.INITIAL_SIZE, 16)
-             for geo, v0 in (({}, 10.0), ({}, 0.001), ({"h": 1e-3}, 10.0), ({"rigid": True}, 1.0))]
+             for geo, v0 in (({}, 10.0), ({}, 0.001), ({"h": 1e-3 if name == "sls" else 3.16e-3}, 10.0),
+                             ({"rigid": True}, 1.0))]
 
     def run():
         out = []
@@ -100,7 +105,8 @@ def test_skipping_decayed_modes_changes_nothing_but_rounding(name, monkeypatch):
     monkeypatch.setattr(adaptive, "level_tables", every_mode)
     for case, a, b in zip(cases, skipping, run()):
         assert a.ok and b.ok and a.steps == b.steps, (case, a.message, b.message)
-        for k in ("cor", "t0", "w_h", "s_max"):
+        assert a.cor == pytest.approx(b.cor, rel=1e-12, abs=1e-15), case
+        for k in ("t0", "w_h", "s_max"):
             assert getattr(a, k) == pytest.approx(getattr(b, k), rel=1e-12, abs=1e-300), (case, k)
 
 

@@ -1,6 +1,7 @@
 """Private numba kernels. Arrays and scalars in, arrays and integer codes out.
 
-All compile flags live here (``cache=True``, ``error_model="numpy"``, no fastmath).
+All compile flags live here (``cache=True``, ``error_model="numpy"``, no fastmath, except
+reassociation in two sums of the adaptive march over many exponential modes: ``_JIT_SUM``).
 
 Discretisation (shared by the direct and the fixed-step internal-variable kernels)
 -------------------------------------------------------------------------------
@@ -391,11 +392,14 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         if kl > kv:
             _fill(P, kv, kl, last_d, last_c, GA[last_lt], GB[last_lt])
             kv = kl
-        Hh = 0.0
-        for k in range(kl):
-            v = Rl[k] * P[k]
-            St[k] = v
-            Hh += v
+        if kl > FEW_MODES:
+            Hh = _decay_sum(Rl, P, St, kl)
+        else:
+            Hh = 0.0
+            for k in range(kl):
+                v = Rl[k] * P[k]
+                St[k] = v
+                Hh += v
         hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
         if n >= 2:
             cfac = 2.0 / (h * (h + hp))
@@ -406,15 +410,20 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
             w0 = I0[lt] / h
             H = Hh - w0 * u[n - 1]
         if plate == 1:
-            eb = pe_inf
-            ebd = 0.0
-            for k in range(kx):
-                x = Rl[k] * X[k]
-                Xt[k] = x
-                eb += pe[k] * x
-                ebd -= pbe[k] * x
-            eb *= pc
-            ebd *= pc
+            if kx > FEW_MODES:
+                eb, ebd = _plate_sums(Rl, X, Xt, pe, pbe, kx)
+                eb = pc * (pe_inf + eb)
+                ebd = -pc * ebd
+            else:
+                eb = pe_inf
+                ebd = 0.0
+                for k in range(kx):
+                    x = Rl[k] * X[k]
+                    Xt[k] = x
+                    eb += pe[k] * x
+                    ebd -= pbe[k] * x
+                eb *= pc
+                ebd *= pc
             a_n = pscale / math.sqrt(eb)
             ad_n = -0.5 * a_n * ebd / eb
         else:
@@ -497,6 +506,38 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         n += 1
     state[3] = STATUS_FULL
     _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
+
+
+#: adaptive march: sums over more modes than this go through the helpers below, whose additions may be
+#: reassociated (fastmath "reassoc" only: numba then vectorises the sum; 0.17 -> 0.14 ms per butyl-fc
+#: impact with ~80 live modes); shorter sums stay in the march (a call costs more than it saves)
+FEW_MODES = 8
+_JIT_SUM = dict(_JIT, fastmath={"reassoc"})
+
+
+@numba.njit(**_JIT_SUM)
+def _decay_sum(Rl, P, St, kl):
+    """St[:kl] = Rl P (the modes decayed over a trial step) and their sum, in any order."""
+    acc = 0.0
+    for k in range(kl):
+        v = Rl[k] * P[k]
+        St[k] = v
+        acc += v
+    return acc
+
+
+@numba.njit(**_JIT_SUM)
+def _plate_sums(Rl, X, Xt, pe, pbe, kx):
+    """Xt[:kx] = Rl X (the plate's exp(-beta t) at the trial node) and the sums of pe Xt and
+    pbe Xt (transient of E_b and minus its rate, before the factor pc), in any order."""
+    eb = 0.0
+    ebd = 0.0
+    for k in range(kx):
+        x = Rl[k] * X[k]
+        Xt[k] = x
+        eb += pe[k] * x
+        ebd += pbe[k] * x
+    return eb, ebd
 
 
 @numba.njit(**_JIT)
