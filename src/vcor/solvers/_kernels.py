@@ -510,7 +510,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
 
 #: adaptive march: sums over more modes than this go through the helpers below, whose additions may be
 #: reassociated (fastmath "reassoc" only: numba then vectorises the sum; 0.17 -> 0.14 ms per butyl-fc
-#: impact with ~80 live modes); shorter sums stay in the march (a call costs more than it saves)
+#: impact with ~80 live modes; tests/test_adaptive.py::test_reassociated_sums_are_safe); shorter sums
+#: stay in the march (a call costs more than it saves)
 FEW_MODES = 8
 _JIT_SUM = dict(_JIT, fastmath={"reassoc"})
 
