@@ -58,6 +58,25 @@ def breakdown():
     print()
 
 
+def mode_counts():
+    print("modes of the exponential sums (v0 = 10 m/s): all = on the range of the one-call path's tables,")
+    print("[h_base / 4, 2 x horizon] = [t_c 2^-18, 256 t_c] in powers of two; slow = of those, beta t_max < 1e-3")
+    print("(nearly constant over the whole horizon); a sum ending at 8 t_c instead; live = modes a step")
+    print("touches on the coarsest / finest level (rows 0 and last of the tables)")
+    print(f"{'material':14s} {'all':>5s} {'slow':>5s} {'to 8 t_c':>9s} {'live finest/coarsest':>21s}")
+    opts = vcor.SolverOptions(method="adaptive")
+    for name in ("butyl-fc", "butyl-cerf"):
+        imp = make_impact(name, 10.0, {})
+        top = 2.0 ** np.floor(np.log2(imp.contact_time_estimate()))
+        t_max = 256.0 * top
+        rep = soe(imp.material, top * 2.0**-18, t_max, opts.soe_tol)
+        slow = int(np.sum(np.asarray(rep.material.beta) * t_max < 1e-3))
+        short = soe(imp.material, top * 2.0**-18, 8.0 * top, opts.soe_tol).n_terms
+        tab = level_tables(imp.material, float(imp.kappa), top * 2.0**-18, 22, t_max, opts.soe_tol)
+        print(f"{name:14s} {rep.n_terms:5d} {slow:5d} {short:9d} {tab['live'][0]:>10d}/{tab['live'][-1]:<10d}")
+    print()
+
+
 def cold():
     print("fresh process (import vcor, one simulate('sls', 10.0)), numba cache empty (compiles) / filled:")
     for label, options in (("direct", "dt=1e-6"), ("adaptive", "method='adaptive'")):
@@ -149,6 +168,7 @@ if __name__ == "__main__":
         sys.exit(0)
     per_impact()
     breakdown()
+    mode_counts()
     cold()
     thickness()
     table_builds()
