@@ -40,7 +40,8 @@ def test_two_grid_extrapolation_leaves_order_two_and_a_half(name):
         r = {lev: (4.0 * getattr(x[lev - 1], key) - getattr(x[lev], key)) / 3.0 for lev in range(4, 9)}
         d = [r[lev] - r[lev - 1] for lev in range(8, 4, -1)]  # coarse to fine
         orders = [math.log2(abs(d[i] / d[i + 1])) for i in range(len(d) - 1)]
-        print(f"\n{name} {key}: orders of the two-grid extrapolation's residual " + " ".join(f"{o:.2f}" for o in orders))
+        print(f"\n{name} {key}: orders of the two-grid extrapolation's residual "
+              + " ".join(f"{o:.2f}" for o in orders))
         assert all(2.3 < o < 2.7 for o in orders), orders
 
 
@@ -57,11 +58,11 @@ def test_one_call_path_equals_the_general_path(name, monkeypatch):
         fast.append(adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6,
                                           extrapolate=ex))
     monkeypatch.setattr(adaptive, "_one_call", lambda *a, **k: None)
-    for (v0, geo, ex), a in zip(cases, fast):
+    for (v0, geo, ex), a in zip(cases, fast, strict=True):
         imp = make_impact(name, v0, geo)
         b = adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6, extrapolate=ex)
         assert (a.status, a.message, a.steps, a.dt) == (b.status, b.message, b.steps, b.dt), (v0, geo, ex)
-        for k in adaptive.EXTRAPOLATED + ("omega_min",):
+        for k in (*adaptive.EXTRAPOLATED, "omega_min"):
             assert getattr(a, k) == getattr(b, k), (v0, geo, ex, k)
 
 
@@ -103,7 +104,7 @@ def test_skipping_decayed_modes_changes_nothing_but_rounding(name, monkeypatch):
         return t
 
     monkeypatch.setattr(adaptive, "level_tables", every_mode)
-    for case, a, b in zip(cases, skipping, run()):
+    for case, a, b in zip(cases, skipping, run(), strict=True):
         assert a.ok and b.ok and a.steps == b.steps, (case, a.message, b.message)
         assert a.cor == pytest.approx(b.cor, rel=1e-12, abs=1e-15), case
         for k in ("t0", "w_h", "s_max"):
@@ -248,6 +249,6 @@ def test_reassociated_sums_are_safe():
             "print(json.dumps([[r.cor, r.t0, r.w_h, r.s_max] for r in out]))\n")
     plain = subprocess.run([sys.executable, "-c", code, json.dumps(cases)], capture_output=True, text=True,
                            check=True, env=dict(os.environ, NUMBA_DISABLE_JIT="1"))
-    for (m, v), ref in zip(cases, json.loads(plain.stdout)):
+    for (m, v), ref in zip(cases, json.loads(plain.stdout), strict=True):
         r = vcor.simulate(m, v, method="adaptive")
         assert [r.cor, r.t0, r.w_h, r.s_max] == pytest.approx(ref, rel=1e-12), (m, v)

@@ -45,7 +45,8 @@ DECAYED = 1e-18
 
 
 @numba.njit(**_JIT)
-def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, m, v0, dt, s_scale):
+def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, m, v0, dt,
+                 s_scale):
     """Solve the implicit trapezoidal step for s_n.
 
     F(s) = w0 u(s) + H + V(u(s) - u_prev) + eta p(s) g, V(d) = a2 + b2 d + c2q d^2,
@@ -316,8 +317,9 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 
 @numba.njit(**_JIT)
-def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
-                   step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state, plan, off):
+def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
+                   m, v0, step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state,
+                   plan, off):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
     Steps are hl[l] = h_base 2^l (levels l = 0..L-1, tables per level). Step n spans [t_{n-1}, t_n]
@@ -665,8 +667,8 @@ def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
 
 
 @numba.njit(**_JIT)
-def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c, m, v0,
-                   step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
+def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
+                   m, v0, step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
     """The adaptive march (``march_adaptive``), then (n_grids = 3) its replays with every step halved
     and quartered, and the separation of each, in one call (no histories). The tables have
     n_levels + 2 levels from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k. Fills out[k] = [the 9
@@ -698,9 +700,9 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
         state = np.zeros(8, dtype=np.int64)
         state[1] = -1
         state[6] = start_level
-        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
-                       m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0, P, X,
-                       state, plan, 2 - k)
+        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb,
+                       alpha_c, m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0,
+                       P, X, state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:
             return False
         n_sep = state[1]

@@ -17,9 +17,10 @@ points of a sweep (cached); t_n are sums of powers of two and exact in floating 
 Error control (``_kernels.march_adaptive``): the trapezoidal rule's local error h^3 g''/12, with
 g'' from the last three nodes, per unit step against ``step_tol`` * min(v0, |s'| + s / t_c): relative
 to the motion's own scale, so that long contacts whose motion has slowed by orders of magnitude keep
-their separation time (with v0 as the scale, t0 of the 1 mm SLS plate was 6-12 % off). Steps are not refined below h_base (t_c / 65536 .. t_c / 131072), where
-the test is waived: near t = 0 the exact solution's u = s^3/2 makes g'' ~ t^-1/2 and the local errors
-there are O(h^2.5), far below the global error. A separation is located on a step <= t / SEP_STEPS;
+their separation time (with v0 as the scale, t0 of the 1 mm SLS plate was 6-12 % off). Steps are not
+refined below h_base (t_c / 65536 .. t_c / 131072), where the test is waived: near t = 0 the exact
+solution's u = s^3/2 makes g'' ~ t^-1/2 and the local errors there are O(h^2.5), far below the
+global error. A separation is located on a step <= t / SEP_STEPS;
 the time horizon starts at HORIZON_START t_c and grows by 32 up to MAX_HORIZON t_c (the march is
 restarted with an exponential sum for the longer horizon) before the run ends as ``step-budget``.
 
@@ -61,9 +62,9 @@ MAX_STEP_FRACTION = 1.0 / 16.0
 
 @functools.lru_cache(maxsize=64)
 def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: float, tol: float):
-    """(Cached: a sweep's points share them.) Per level l (step h_l = h_base 2^l): exact local weights I0 = int_0^h k, M = int_0^h k(x)
-    (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per exponential mode k of the kernel's sum on
-    [h_base, t_max] (column 0: the constant E(inf) + slow modes, rate 0) the step weights
+    """(Cached: a sweep's points share them.) Per level l (step h_l = h_base 2^l): exact local weights
+    I0 = int_0^h k, M = int_0^h k(x) (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per exponential mode
+    k of the kernel's sum on [h_base, t_max] (column 0: the constant E(inf) + slow modes, rate 0) the step weights
     GA = kappa E_k int_0^h e^{-b x} dx, GB = kappa E_k int_0^h e^{-b x} (h/2 - x) dx and the decay
     R = e^{-b h}, and live[l]: the march touches modes 0..live[l]-1 on level l (every later mode has
     R < ``_kernels.DECAYED``). Returns a dict of arrays, plus the modes' moduli (Pa) and rates (1/s)
@@ -90,8 +91,8 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     I0, M = kappa * i0, -kappa * m0
     pe = np.concatenate(([0.0], e))
     pb = np.concatenate(([0.0], b))
-    return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "live": live, "pe_inf": float(e_inf), "pe": pe, "pb": pb,
-            "n_terms": rep.n_terms, "soe_error": rep.checked_error}
+    return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "live": live, "pe_inf": float(e_inf), "pe": pe,
+            "pb": pb, "n_terms": rep.n_terms, "soe_error": rep.checked_error}
 
 
 def _grown(a, n):
@@ -148,9 +149,10 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         arr.g[0] = impact.v0
         while True:
             K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
-                             tab["GB"], tab["R"], tab["live"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"], tab["pb"],
-                             alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
-                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
+                             tab["GB"], tab["R"], tab["live"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"],
+                             tab["pb"], alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon,
+                             1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X,
+                             state, plan, off)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
             arr.grow(2 * arr.n if state[1] >= 0 else min(2 * arr.n, max_steps))
@@ -258,7 +260,8 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
                        2.0 * horizon, tol)
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
-    if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"], n_levels,
+    if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"],
+                            n_levels,
                             impact.kappa * impact.material.viscosity, plate, pscale, pc, tab["pe_inf"], tab["pe"],
                             tab["pb"], alpha_c, m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
                             0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
@@ -289,7 +292,7 @@ def _extrapolated(fine, runs):
             f"{ratios['cor']:.3g} for the COR; asymptotically 4..5.7); values of the quartered grid")
         return fine
     for k in EXTRAPOLATED:
-        setattr(fine, k, sum(w * r[k] for w, r in zip(RICHARDSON_WEIGHTS, runs)))
+        setattr(fine, k, sum(w * r[k] for w, r in zip(RICHARDSON_WEIGHTS, runs, strict=True)))
     fine.omega_min = 2.0 * math.pi / fine.t0
     return fine
 
