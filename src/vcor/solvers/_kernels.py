@@ -46,7 +46,7 @@ DECAYED = 1e-18
 
 @numba.njit(**_JIT)
 def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, m, v0, dt,
-                 s_scale):
+                 s_scale, g_guess):
     """Solve the implicit trapezoidal step for s_n.
 
     F(s) = w0 u(s) + H + V(u(s) - u_prev) + eta p(s) g, V(d) = a2 + b2 d + c2q d^2,
@@ -58,11 +58,12 @@ def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q
     Jb = J_prev + half * F_prev
     B = v0 - Jb * kin
     c = alpha_n + half * kin
-    s = s_prev + dt * g_prev  # explicit Euler predictor
+    s = s_prev + half * (g_prev + g_guess)  # predictor: the trapezoidal rule with a guess of g (g_prev: Euler)
     ok = False
     F = 0.0
     g = 0.0
     u = 0.0
+    ds_prev = math.inf
     for _ in range(50):
         a = abs(s)
         sq = math.sqrt(a)
@@ -72,12 +73,16 @@ def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q
         d = u - u_prev
         A = w0 * u + H + a2 + (b2 + c2q * d) * d
         dA = (w0 + b2 + 2.0 * c2q * d) * up
-        p = 1.5 * sq
-        pp = 0.75 / max(sq, 1e-300) * sgn if eta > 0.0 else 0.0
-        den = 1.0 + eta * p * c
-        num = A + eta * p * B
-        F = num / den
-        dF = (dA + eta * pp * B) / den - num * eta * pp * c / (den * den)
+        if eta > 0.0:
+            p = 1.5 * sq
+            pp = 0.75 / max(sq, 1e-300) * sgn
+            den = 1.0 + eta * p * c
+            num = A + eta * p * B
+            F = num / den
+            dF = (dA + eta * pp * B) / den - num * eta * pp * c / (den * den)
+        else:  # no Dirac term: the same numbers without the divisions
+            F = A
+            dF = dA
         g = B - c * F
         R = s - s_prev - half * (g_prev + g)
         dR = 1.0 + half * c * dF
@@ -85,9 +90,21 @@ def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q
             break
         ds = R / dR
         s -= ds
-        if abs(ds) <= 1e-15 * (abs(s) + s_scale):
+        ads = abs(ds)
+        # converged: the correction is below 1e-15 (relative to |s| + v0 dt); or, relative to |s| alone
+        # (in a slow creep v0 dt is far larger than s and its changes): below 1e-12 while contracting by
+        # 1e-3 or more, so that the error left, ds^3/ds_prev^2 (quadratic) or ds theta/(1 - theta)
+        # (linear), is below 1e-15 |s|; or (no Dirac term) Newton's error estimate |R''/(2 R')| ds^2 is
+        # below 1e-16 |s| (R'' = dt/2 c F'', F'' = (dF/du) u'' + 2 c2q u'^2, u'' = 3/4 |s|^-1/2 sgn s)
+        if ads <= 1e-15 * (abs(s) + s_scale) or (ads <= 1e-12 * a and ads <= 1e-3 * ds_prev):
             ok = True
             break
+        if eta == 0.0 and ads <= 1e-6 * a and sq > 0.0:
+            d2F = (w0 + b2 + 2.0 * c2q * d) * 0.75 / sq + 2.0 * c2q * up * up
+            if abs(half * c * d2F) * ads * ads <= 2e-16 * a * abs(dR):
+                ok = True
+                break
+        ds_prev = ads
     # final consistent evaluation at the converged s
     a = abs(s)
     sq = math.sqrt(a)
@@ -164,7 +181,7 @@ def march_direct(n_start, n_end, s, g, F, J, u, du, w, v, eta, alpha, alphad, m,
             b2 = c2 * inv_dt2 * 2.0 * bacc
             c2q = c2 * inv_dt2 * Q2[1]
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              a2, b2, c2q, alpha[n], alphad[n], m, v0, dt, s_scale)
+                                              a2, b2, c2q, alpha[n], alphad[n], m, v0, dt, s_scale, g[n - 1])
         s[n] = sn
         g[n] = gn
         F[n] = Fn
@@ -202,7 +219,7 @@ def march_prony(n_start, n_end, s, g, F, J, u, Q, G_inf, G, decay, weight, eta, 
         for k in range(nq):
             H += decay[k] * Q[k] - weight[k] * u[n - 1]
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale)
+                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale, g[n - 1])
         d = un - u[n - 1]
         for k in range(nq):
             Q[k] = decay[k] * Q[k] + weight[k] * d
@@ -246,7 +263,7 @@ def march_soe(n_start, n_end, s, g, F, J, u, du, wt, v, n_local, c, vc, r, S, P,
                     vv += vc[k] * P[k]
                 H -= du[0] * vv
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale)
+                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale, g[n - 1])
         s[n] = sn
         g[n] = gn
         F[n] = Fn
@@ -431,8 +448,17 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         else:
             a_n = alpha_c
             ad_n = 0.0
+        # predictor: g extrapolated by the parabola through the last three nodes (a line through two)
+        g_guess = g[n - 1]
+        if n >= 2:
+            d1 = (g[n - 1] - g[n - 2]) / hp
+            g_guess += h * d1
+            if n >= 3:
+                hpp = t[n - 2] - t[n - 3]
+                g_guess += h * (h + hp) * (d1 - (g[n - 2] - g[n - 3]) / hpp) / (hp + hpp)
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h)
+                                              0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h,
+                                              g_guess)
         # local error estimate and step control
         est = -1.0
         if not frozen and not planned and ok and n >= 2 and math.isfinite(gn):
