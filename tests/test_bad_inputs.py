@@ -49,6 +49,8 @@ ROWS = [
     ("nu = 0.7", lambda: vcor.simulate("sls", 10.0, nu=0.7), ["nu", "(-1, 0.5]"]),
     ("nu = -1", lambda: vcor.simulate("sls", 10.0, nu=-1.0), ["nu", "(-1, 0.5]"]),
     ("h = False", lambda: vcor.simulate("sls", 10.0, h=False), ["h must be in (0, inf) m"]),
+    ("h = [1e-3] (unhashable: past the geometry cache)", lambda: vcor.simulate("sls", 10.0, h=[1e-3]),
+     ["h must be in (0, inf) m", "[0.001]"]),
     ("v0 = 0", lambda: vcor.simulate("sls", 0.0), ["v0", "(0, inf) m/s"]),
     ("v0 negative", lambda: vcor.simulate("sls", -3.0), ["v0", "(0, inf)"]),
     ("v0 = NaN", lambda: vcor.simulate("sls", math.nan), ["v0"]),

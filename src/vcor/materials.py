@@ -107,6 +107,11 @@ class Material:
         """True when E(t) is constant (no relaxation, no viscosity)."""
         return False
 
+    def sqrt_law(self) -> tuple[float, float] | None:
+        """(E0 in Pa, c in Pa s^0.5) when E(t) = E0 + c t^-1/2 exactly, else None (the adaptive march
+        then evaluates a plate's modulus in closed form instead of through the exponential sum)."""
+        return None
+
     def _gauss_steps(self, dt: float, n: int, fn):
         """int over steps i = 1..n-1 of fn(t, x) dt, x = t - t_mid (12-point Gauss-Legendre)."""
         h = 0.5 * dt
@@ -397,6 +402,9 @@ class FractionalPower(Material):
         t = np.asarray(t, dtype=float)
         with np.errstate(divide="ignore"):
             return self.E0 + self.E1 / np.sqrt(math.pi * t)
+
+    def sqrt_law(self) -> tuple[float, float]:
+        return self.E0, self.E1 / _SQRT_PI
 
     def modulus_at(self, t: float) -> float:
         if t <= 0:

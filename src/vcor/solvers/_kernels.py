@@ -334,9 +334,9 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 
 @numba.njit(**_JIT)
-def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
-                   m, v0, step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X, state,
-                   plan, off):
+def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
+                   pe, pb, m, v0, step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X,
+                   state, plan, off):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
     Steps are hl[l] = h_base 2^l (levels l = 0..L-1, tables per level). Step n spans [t_{n-1}, t_n]
@@ -357,7 +357,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     DECAYED are zero from then on (t only grows).
 
     Plate mobility (plate = 1): alpha = pscale / sqrt(E_b), E_b(t) = pc (pe_inf + sum pe_k X_k),
-    X_k = exp(-pb_k t) carried with the same factors (pb = the modes' rates); plate = 0: alpha_c.
+    X_k = exp(-pb_k t) carried with the same factors (pb = the modes' rates); plate = 2: in closed
+    form, E_b(t) = pc (pe_inf + p_half t^-1/2) (the fractional law); plate = 0: alpha_c.
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
     the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against
@@ -445,6 +446,11 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
                 ebd *= pc
             a_n = pscale / math.sqrt(eb)
             ad_n = -0.5 * a_n * ebd / eb
+        elif plate == 2:
+            rt = math.sqrt(tn)
+            eb = pc * (pe_inf + p_half / rt)
+            a_n = pscale / math.sqrt(eb)
+            ad_n = 0.25 * a_n * pc * p_half / (tn * rt * eb)
         else:
             a_n = alpha_c
             ad_n = 0.0
@@ -693,8 +699,8 @@ def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
 
 
 @numba.njit(**_JIT)
-def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, pe, pb, alpha_c,
-                   m, v0, step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
+def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
+                   pe, pb, m, v0, step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0, out):
     """The adaptive march (``march_adaptive``), then (n_grids = 3) its replays with every step halved
     and quartered, and the separation of each, in one call (no histories). The tables have
     n_levels + 2 levels from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k. Fills out[k] = [the 9
@@ -706,29 +712,34 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
     # the lowest level as a variable: a literal 0 in the call would make numba compile a second
     # march_adaptive (a Literal[int] argument) besides the one the general path calls from Python
     lowest = np.int64(0)
-    base = np.zeros(size0 + 1, dtype=np.int64)
+    # the march writes node n before anything reads it, and reads nothing beyond the last node: the
+    # arrays need only their first node set (np.empty: zeroing the 2049-node arrays cost ~5 us a call)
+    base = np.empty(size0 + 1, dtype=np.int64)
+    base[0] = start_level
     for k in range(n_grids):
         rep = 2**k
         plan = np.empty(n_plan * rep, dtype=np.int64)
         for j in range(n_plan * rep):
             plan[j] = base[1 + j // rep]
         size = min(size0 if k == 0 else plan.shape[0] + 2 * n_extra + 8, max_steps)
-        t = np.zeros(size + 1)
-        s = np.zeros(size + 1)
-        g = np.zeros(size + 1)
-        F = np.zeros(size + 1)
-        J = np.zeros(size + 1)
-        u = np.zeros(size + 1)
-        lev = base if k == 0 else np.zeros(size + 1, dtype=np.int64)
+        t = np.empty(size + 1)
+        s = np.empty(size + 1)
+        g = np.empty(size + 1)
+        F = np.empty(size + 1)
+        J = np.empty(size + 1)
+        u = np.empty(size + 1)
+        lev = base if k == 0 else np.empty(size + 1, dtype=np.int64)
+        t[0] = s[0] = F[0] = J[0] = u[0] = 0.0
+        lev[0] = start_level
         g[0] = v0
         P = np.zeros(nk)
         X = np.ones(nk)
         state = np.zeros(8, dtype=np.int64)
         state[1] = -1
         state[6] = start_level
-        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, pe, pb,
-                       alpha_c, m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule, n_extra, 0.0,
-                       P, X, state, plan, 2 - k)
+        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, p_half,
+                       alpha_c, pe, pb, m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule,
+                       n_extra, 0.0, P, X, state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:
             return False
         n_sep = state[1]

@@ -101,18 +101,25 @@ def _grown(a, n):
     return out
 
 
-def _plate(impact):
-    """(plate flag, mobility scale, modulus factor, constant alpha) for the march."""
+def _plate(impact, tab):
+    """The march's plate arguments (``_kernels.march_adaptive``): (flag, mobility scale, modulus factor,
+    constant of E_b in Pa, coefficient of t^-1/2 in Pa s^0.5, constant alpha) for the level tables
+    ``tab``. A plate of the fractional law (``Material.sqrt_law``) has its modulus in closed form (flag
+    2), any other relaxing plate its exponential sum (flag 1)."""
     g = impact.geometry
     if g.rigid:
-        return 0, 0.0, 0.0, 0.0
+        return 0, 0.0, 0.0, 0.0, 0.0, 0.0
     if g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
-        return 0, 0.0, 0.0, float(impact.alpha(0.0))
+        return 0, 0.0, 0.0, 0.0, 0.0, float(impact.alpha(0.0))
     if g.plate_material is not None:
         raise ValueError("method 'adaptive' carries the plate modulus on the contact kernel's exponentials; "
                          "with a deformable sphere on a viscoelastic plate (vcor.bodies, Eq. 1) the plate's "
                          "modulus differs from the contact modulus: use method 'direct'")
-    return 1, impact.mobility_scale, 1.0 / (1.0 - g.nu**2), 0.0
+    pc = 1.0 / (1.0 - g.nu**2)
+    law = impact.material.sqrt_law()
+    if law is not None:
+        return 2, impact.mobility_scale, pc, float(law[0]), float(law[1]), 0.0
+    return 1, impact.mobility_scale, pc, tab["pe_inf"], 0.0, 0.0
 
 
 #: the grid halved and quartered of the Richardson extrapolation: their tables are the coarse grid's
@@ -128,7 +135,6 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
     Returns (t, arrays, state, n_done, levels, horizon, factor)."""
     mat = impact.material
     eta = impact.kappa * mat.viscosity
-    plate, pscale, pc, alpha_c = _plate(impact)
     top = h_base * 2.0**FLOOR_BITS
     plan = _NO_PLAN if plan is None else plan
     off = SPLIT_LEVELS - split
@@ -139,6 +145,7 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         tab = level_tables(mat, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                            2.0 * horizon, tol)
         nk = tab["GA"].shape[1]
+        plate = _plate(impact, tab)
         P, X = np.zeros(nk), np.ones(nk)
         first = START_LEVEL if fixed_level is None else int(fixed_level)
         lo, hi = (0, n_levels - 1) if fixed_level is None else (first, first)
@@ -149,10 +156,9 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         arr.g[0] = impact.v0
         while True:
             K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
-                             tab["GB"], tab["R"], tab["live"], eta, plate, pscale, pc, tab["pe_inf"], tab["pe"],
-                             tab["pb"], alpha_c, impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon,
-                             1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X,
-                             state, plan, off)
+                             tab["GB"], tab["R"], tab["live"], eta, *plate, tab["pe"], tab["pb"], impact.m,
+                             impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
+                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
             arr.grow(2 * arr.n if state[1] >= 0 else min(2 * arr.n, max_steps))
@@ -253,21 +259,21 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
     numba call (``_kernels.adaptive_grids``): the same marches and separations as the general path,
     without its Python between them. None when a grid did not simply separate within the first time
     horizon and 2048 steps (the general path then runs and reports it)."""
-    plate, pscale, pc, alpha_c = _plate(impact)
     horizon = HORIZON_START * 2.0 * h_base * 2.0**FLOOR_BITS
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
     tab = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                        2.0 * horizon, tol)
+    plate = _plate(impact, tab)
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
     if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"],
-                            n_levels,
-                            impact.kappa * impact.material.viscosity, plate, pscale, pc, tab["pe_inf"], tab["pe"],
-                            tab["pb"], alpha_c, m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
-                            0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
+                            n_levels, impact.kappa * impact.material.viscosity, *plate, tab["pe"], tab["pb"], m, v0,
+                            step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA,
+                            max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
-    runs = [separation_scalars(row, m, v0) for row in out[:n_grids]]
-    res = Result(steps=int(out[:n_grids, 9].sum()), wall_time=0.0, dt=float(out[n_grids - 1, 10]), method="adaptive")
+    rows = out[:n_grids].tolist()
+    runs = [separation_scalars(row, m, v0) for row in rows]
+    res = Result(steps=int(sum(row[9] for row in rows)), wall_time=0.0, dt=rows[-1][10], method="adaptive")
     res.__dict__.update(runs[-1])
     if n_grids == 3:
         res = _extrapolated(res, runs)
@@ -291,8 +297,9 @@ def _extrapolated(fine, runs):
             f"and the grid quartered do not shrink as h^2..h^2.5 (ratios {ratios['t0']:.3g} for t0, "
             f"{ratios['cor']:.3g} for the COR; asymptotically 4..5.7); values of the quartered grid")
         return fine
+    (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
     for k in EXTRAPOLATED:
-        setattr(fine, k, sum(w * r[k] for w, r in zip(RICHARDSON_WEIGHTS, runs, strict=True)))
+        setattr(fine, k, w0 * r0[k] + w1 * r1[k] + w2 * r2[k])
     fine.omega_min = 2.0 * math.pi / fine.t0
     return fine
 

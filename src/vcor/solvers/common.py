@@ -147,8 +147,8 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
 
 def separation_scalars(out, m, v0) -> dict:
     """The outcome from ``_kernels.separation_point``'s values [t0, s0, s'0, J0, F0, W_h, W_z, s_max,
-    f_max]: the Result fields and ``message`` (empty)."""
-    t0, s0, g0, j0, _, w_h, w_z, s_max, f_max = out[:9].tolist()
+    f_max] (an array or a list, any further values ignored): the Result fields and ``message`` (empty)."""
+    t0, s0, g0, j0, _, w_h, w_z, s_max, f_max = out[:9].tolist() if isinstance(out, np.ndarray) else out[:9]
     z0 = v0 - j0 / m
     e_in = 0.5 * m * v0 * v0
     return {

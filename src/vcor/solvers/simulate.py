@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 
 from .. import materials as _materials
@@ -41,7 +42,17 @@ def make_impact(material, v0, geometry: dict) -> Impact:
     mat = _materials.get(material) if isinstance(material, str) else material
     if not isinstance(mat, _materials.Material):
         raise ValueError(f"material must be a preset name or a vcor.materials.Material, got {material!r}")
-    return Impact(mat, v0, Geometry(**geometry))
+    try:
+        geo = _geometry(**geometry)
+    except TypeError:  # an unhashable value: Geometry itself names the parameter
+        geo = Geometry(**geometry)
+    return Impact(mat, v0, geo)
+
+
+@functools.lru_cache(maxsize=256)
+def _geometry(**geometry) -> Geometry:
+    """Geometry(**geometry), validated once per keyword set (immutable, so the points of a sweep share it)."""
+    return Geometry(**geometry)
 
 
 def default_dt(impact: Impact, steps_per_contact: int, tc: float | None = None) -> float:
