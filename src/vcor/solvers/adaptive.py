@@ -101,24 +101,31 @@ def _grown(a, n):
     return out
 
 
-def _plate(impact, tab):
-    """The march's plate arguments (``_kernels.march_adaptive``): (flag, mobility scale, modulus factor,
-    constant of E_b in Pa, coefficient of t^-1/2 in Pa s^0.5, constant alpha) for the level tables
-    ``tab``. A plate of the fractional law (``Material.sqrt_law``) has its modulus in closed form (flag
-    2), any other relaxing plate its exponential sum (flag 1)."""
+def _plate_kind(impact) -> int:
+    """0: rigid target or constant mobility; 1: the plate's modulus on the kernel's exponential sum;
+    2: in closed form (the fractional law, ``Material.sqrt_law``). Raises for a plate whose modulus
+    is not the contact kernel's (checked before any table is built)."""
     g = impact.geometry
-    if g.rigid:
-        return 0, 0.0, 0.0, 0.0, 0.0, 0.0
-    if g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
-        return 0, 0.0, 0.0, 0.0, 0.0, float(impact.alpha(0.0))
+    if g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
+        return 0
     if g.plate_material is not None:
         raise ValueError("method 'adaptive' carries the plate modulus on the contact kernel's exponentials; "
                          "with a deformable sphere on a viscoelastic plate (vcor.bodies, Eq. 1) the plate's "
                          "modulus differs from the contact modulus: use method 'direct'")
-    pc = 1.0 / (1.0 - g.nu**2)
-    law = impact.material.sqrt_law()
-    if law is not None:
-        return 2, impact.mobility_scale, pc, float(law[0]), float(law[1]), 0.0
+    return 2 if impact.material.sqrt_law() is not None else 1
+
+
+def _plate(impact, tab):
+    """The march's plate arguments (``_kernels.march_adaptive``): (``_plate_kind``, mobility scale,
+    modulus factor, constant of E_b in Pa, coefficient of t^-1/2 in Pa s^0.5, constant alpha) for the
+    level tables ``tab``."""
+    kind = _plate_kind(impact)
+    if kind == 0:
+        return 0, 0.0, 0.0, 0.0, 0.0, (0.0 if impact.geometry.rigid else float(impact.alpha(0.0)))
+    pc = 1.0 / (1.0 - impact.geometry.nu**2)
+    if kind == 2:
+        e0, c = impact.material.sqrt_law()
+        return 2, impact.mobility_scale, pc, float(e0), float(c), 0.0
     return 1, impact.mobility_scale, pc, tab["pe_inf"], 0.0, 0.0
 
 
@@ -220,6 +227,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     error terms); histories are those of the quartered grid.
     ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
     a uniform grid on which the march is the direct scheme with an exponential-sum history."""
+    _plate_kind(impact)  # a plate the method cannot carry: the error before any work
     top = 2.0 ** math.floor(math.log2(tc))
     h_base = top * 2.0**-FLOOR_BITS
     t_start = time.perf_counter()
