@@ -2,6 +2,7 @@
 against plate thickness, sweep throughput inside one shard.
 
 Prints tables of medians (this machine is shared: read ratios). Run: python benchmarks/bench_adaptive.py
+[section ...] (default: all; sections per_impact breakdown mode_counts cold thickness table_builds throughput)
 """
 
 from __future__ import annotations
@@ -22,13 +23,17 @@ from vcor.solvers.adaptive import level_tables, run_adaptive
 from vcor.solvers.simulate import make_impact
 
 
+#: calls per median in the per-impact table (15 before 2026-11-23: too few on a shared machine)
+PER_IMPACT_CALLS = 101
+
+
 def per_impact():
     print("per impact at default settings, v0 = 10 m/s, whole simulate call (direct: 2000 steps per contact-time "
           "estimate; adaptive: its defaults, step_tol 3e-4 with Richardson extrapolation from three grids)")
     print(f"{'material':14s} {'direct [ms]':>12s} {'adaptive [ms]':>14s} {'adaptive/direct':>16s} {'steps d/a':>12s}")
     for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
-        td = median_time(lambda n=name: vcor.simulate(n, 10.0), 15)
-        ta = median_time(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), 15)
+        td = median_time(lambda n=name: vcor.simulate(n, 10.0), PER_IMPACT_CALLS)
+        ta = median_time(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), PER_IMPACT_CALLS)
         sd, sa = vcor.simulate(name, 10.0).steps, vcor.simulate(name, 10.0, method="adaptive").steps
         print(f"{name:14s} {td * 1e3:12.3f} {ta * 1e3:14.3f} {ta / td:16.2f} {sd:>6d}/{sa:<6d}")
     print()
@@ -166,10 +171,11 @@ if __name__ == "__main__":
     if sys.argv[1:2] == ["--shard"]:
         print(*shard_wall(sys.argv[2], sys.argv[3]))
         sys.exit(0)
-    per_impact()
-    breakdown()
-    mode_counts()
-    cold()
-    thickness()
-    table_builds()
-    throughput()
+    sections = (per_impact, breakdown, mode_counts, cold, thickness, table_builds, throughput)
+    chosen = sys.argv[1:] or [f.__name__ for f in sections]  # e.g. bench_adaptive.py per_impact breakdown
+    unknown = set(chosen) - {f.__name__ for f in sections}
+    if unknown:
+        sys.exit(f"unknown section(s) {sorted(unknown)}; choose from {[f.__name__ for f in sections]}")
+    for f in sections:
+        if f.__name__ in chosen:
+            f()
