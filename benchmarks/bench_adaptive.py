@@ -35,7 +35,7 @@ def per_impact():
         td = median_time(lambda n=name: vcor.simulate(n, 10.0), PER_IMPACT_CALLS)
         ta = median_time(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), PER_IMPACT_CALLS)
         sd, sa = vcor.simulate(name, 10.0).steps, vcor.simulate(name, 10.0, method="adaptive").steps
-        print(f"{name:14s} {td * 1e3:12.3f} {ta * 1e3:14.3f} {ta / td:16.2f} {sd:>6d}/{sa:<6d}")
+        print(f"{name:14s} {td * 1e3:12.3f} {ta * 1e3:14.3f} {ta / td:16.3f} {sd:>6d}/{sa:<6d}")
     print()
 
 
