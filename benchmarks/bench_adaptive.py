@@ -22,7 +22,6 @@ from vcor.soe import soe
 from vcor.solvers.adaptive import level_tables, run_adaptive
 from vcor.solvers.simulate import make_impact
 
-
 #: calls per median in the per-impact table (15 before 2026-11-23: too few on a shared machine)
 PER_IMPACT_CALLS = 101
 
