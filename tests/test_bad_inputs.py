@@ -152,3 +152,15 @@ def test_valid_inputs_that_were_refused_or_crashed():
     ds = fit.result_dataset(res, _FREQ_ONLY, {})
     assert "t" not in ds.coords and np.all(np.isfinite(ds["tan_delta_rel_err"]))
     assert all(np.isfinite(v) for v in res.metrics.values())
+
+
+def test_cached_geometries_and_options_keep_the_type_of_a_value():
+    """Geometries and option sets are validated once per distinct value (``checks.interned``); True
+    equals 1 in Python, so a cache keyed by value alone would hand h = True the geometry of h = 1 and
+    skip its error. The key holds the type."""
+    assert vcor.simulate("sls", 10.0, h=1, rigid=False).ok
+    with pytest.raises(ValueError, match="h must be in"):
+        vcor.simulate("sls", 10.0, h=True, rigid=False)
+    assert vcor.simulate("sls", 10.0, volterra=True).ok
+    with pytest.raises(ValueError, match="volterra must be true or false"):
+        vcor.simulate("sls", 10.0, volterra=1)

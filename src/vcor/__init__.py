@@ -16,7 +16,9 @@ _MODULES = ("checks", "cli", "convergence", "datasets", "fit", "impact", "io", "
 
 def __getattr__(name):
     if name in _NAMES:
-        return getattr(import_module(_NAMES[name]), name)
+        value = getattr(import_module(_NAMES[name]), name)
+        globals()[name] = value  # loaded once: later look-ups do not come here (~1 us per vcor.simulate call)
+        return value
     if name in _MODULES:
         return import_module(f"vcor.{name}")
     raise AttributeError(f"module 'vcor' has no attribute {name!r}")

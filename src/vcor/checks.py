@@ -7,10 +7,11 @@ here, so a boolean, a string or a NaN where a number is expected gets the same c
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 
-__all__ = ["number", "positive"]
+__all__ = ["interned", "number", "positive"]
 
 
 def _interval(lo, hi, lo_open, hi_open) -> str:
@@ -38,3 +39,25 @@ def _where(lo, hi, lo_open, hi_open, unit) -> str:
 def positive(name: str, value, *, allow_zero: bool = False, unit: str = "") -> float:
     """A finite number > 0 (or >= 0 with ``allow_zero``)."""
     return number(name, value, 0.0, math.inf, lo_open=not allow_zero, unit=unit)
+
+
+def interned(factory, maxsize: int = 256):
+    """``factory(**kw)`` (a validating constructor of an immutable object), cached by value: sweeps and
+    simulate calls build the same few option sets and geometries again and again. The key holds each
+    value's type, so that True and 1 (equal in Python) stay different inputs and a bool still gets
+    its error; unhashable values are passed to ``factory`` uncached (which names the bad parameter)."""
+
+    @functools.lru_cache(maxsize=maxsize)
+    def cached(key):
+        return factory(**{k: v for k, _, v in key})
+
+    @functools.wraps(factory)
+    def build(**kw):
+        key = tuple((k, type(v), v) for k, v in sorted(kw.items()))
+        try:
+            hash(key)
+        except TypeError:
+            return factory(**kw)
+        return cached(key)
+
+    return build

@@ -217,9 +217,9 @@ class Impact:
         t0/t_c = 0.845; thin plates make it far longer). Used to choose dt and T_max; simulate()
         refines dt when the real contact is much shorter."""
         t = 1e-3
-        kappa, material, m, v0 = self.kappa, self.material, self.m, self.v0
+        kappa, modulus_at, v0 = self.kappa, self.material.modulus_at, self.v0
+        energy = 5.0 * self.m * v0**2  # (the same operations as inside the loop before: the same t)
         for _ in range(8):
-            k = kappa * material.modulus_at(t / 4)
-            smax = (5.0 * m * v0**2 / (4.0 * k)) ** 0.4
+            smax = (energy / (4.0 * (kappa * modulus_at(t / 4)))) ** 0.4
             t = 2.9432 * smax / v0
         return t

@@ -15,9 +15,10 @@ identity).
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 from dataclasses import dataclass
+
+from .checks import interned
 
 __all__ = ["BOOLEAN_OPTIONS", "FIXED_STEP_METHODS", "METHODS", "OPTION_HELP", "SWEEP_METHOD", "SolverOptions", "solver_options"]
 
@@ -196,7 +197,7 @@ class SolverOptions:
 def solver_options(options=None, **kwargs) -> SolverOptions:
     """``options`` (a SolverOptions or a dict) or keyword arguments -> SolverOptions; not both."""
     if options is None:
-        return _validated(kwargs)
+        return _validated(**kwargs)
     if kwargs:
         raise ValueError(f"give solver options either as options= or as keywords, not both ({sorted(kwargs)})")
     if isinstance(options, SolverOptions):
@@ -205,22 +206,9 @@ def solver_options(options=None, **kwargs) -> SolverOptions:
         unknown = set(options) - set(_SPEC)
         if unknown:
             raise ValueError(f"unknown solver option(s) {sorted(unknown)}; allowed: {sorted(_SPEC)}")
-        return _validated(options)
+        return _validated(**options)
     raise ValueError(f"options must be a SolverOptions or a dict, got {type(options).__name__}")
 
 
-def _validated(kw: dict) -> SolverOptions:
-    """SolverOptions(**kw), cached by value: the dataclass is frozen, and sweeps and simulate calls
-    validate the same few option sets again and again. The key holds each value's type, so that
-    True and 1 (equal in Python) stay different options; unhashable values are validated uncached."""
-    key = tuple((k, type(v), v) for k, v in sorted(kw.items()))
-    try:
-        hash(key)
-    except TypeError:
-        return SolverOptions(**kw)
-    return _cached_options(key)
-
-
-@functools.lru_cache(maxsize=256)
-def _cached_options(key) -> SolverOptions:
-    return SolverOptions(**{k: v for k, _, v in key})
+#: SolverOptions(**kw), validated once per distinct option set (the dataclass is frozen)
+_validated = interned(SolverOptions)

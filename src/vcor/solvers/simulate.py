@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-import functools
 import math
 
 from .. import materials as _materials
+from ..checks import interned
 from ..impact import GEOMETRY_DEFAULTS, Geometry, Impact
 from ..options import FIXED_STEP_METHODS, METHODS, SolverOptions, solver_options
 from .adaptive import run_adaptive
@@ -42,17 +42,11 @@ def make_impact(material, v0, geometry: dict) -> Impact:
     mat = _materials.get(material) if isinstance(material, str) else material
     if not isinstance(mat, _materials.Material):
         raise ValueError(f"material must be a preset name or a vcor.materials.Material, got {material!r}")
-    try:
-        geo = _geometry(**geometry)
-    except TypeError:  # an unhashable value: Geometry itself names the parameter
-        geo = Geometry(**geometry)
-    return Impact(mat, v0, geo)
+    return Impact(mat, v0, _geometry(**geometry))
 
 
-@functools.lru_cache(maxsize=256)
-def _geometry(**geometry) -> Geometry:
-    """Geometry(**geometry), validated once per keyword set (immutable, so the points of a sweep share it)."""
-    return Geometry(**geometry)
+#: Geometry(**keywords), validated once per distinct keyword set (immutable: a sweep's points share it)
+_geometry = interned(Geometry)
 
 
 def default_dt(impact: Impact, steps_per_contact: int, tc: float | None = None) -> float:
