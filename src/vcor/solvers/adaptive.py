@@ -95,6 +95,11 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
             "pb": pb, "n_terms": rep.n_terms, "soe_error": rep.checked_error}
 
 
+def _march_tables(tab):
+    """The level tables' arrays in the order of the march's arguments (hl, I0, M, GA, GB, R, live)."""
+    return tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"]
+
+
 def _grown(a, n):
     out = np.zeros(n + 1, dtype=a.dtype)
     out[: a.size] = a
@@ -162,9 +167,8 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         t, lev = np.zeros(arr.n + 1), np.zeros(arr.n + 1, dtype=np.int64)
         arr.g[0] = impact.v0
         while True:
-            K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, tab["hl"], tab["I0"], tab["M"], tab["GA"],
-                             tab["GB"], tab["R"], tab["live"], eta, *plate, tab["pe"], tab["pb"], impact.m,
-                             impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
+            K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, *_march_tables(tab), eta, *plate, tab["pe"],
+                             tab["pb"], impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
                              0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
@@ -274,9 +278,8 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
     plate = _plate(impact, tab)
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
-    if not K.adaptive_grids(n_grids, tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"],
-                            n_levels, impact.kappa * impact.material.viscosity, *plate, tab["pe"], tab["pb"], m, v0,
-                            step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA,
+    if not K.adaptive_grids(n_grids, *_march_tables(tab), n_levels, impact.kappa * impact.material.viscosity, *plate,
+                            tab["pe"], tab["pb"], m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA,
                             max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
     rows = out[:n_grids].tolist()
@@ -293,26 +296,27 @@ def _extrapolated(fine, runs):
     """``fine`` (the quartered grid's Result) with the scalars Richardson-extrapolated from ``runs``
     (the grids' EXTRAPOLATED values, coarse to fine), or kept with a message where the grids are not
     in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO)."""
-    coarse = runs[0]
-    ratios = {k: _difference_ratio([r[k] for r in runs]) for k in ("t0", "cor")}
-    gaps = {"t0": abs(fine.t0 - coarse["t0"]) / fine.t0, "cor": abs(fine.cor - coarse["cor"])}
-    close = {"t0": gaps["t0"] <= RICHARDSON_GAP, "cor": gaps["cor"] <= RICHARDSON_GAP * fine.cor + COR_FLOOR}
-    if not all(close[k] or RICHARDSON_RATIO[0] <= ratios[k] <= RICHARDSON_RATIO[1] for k in ratios):
+    (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
+    gap_t0, gap_cor = abs(fine.t0 - r0["t0"]) / fine.t0, abs(fine.cor - r0["cor"])
+    lo, hi = RICHARDSON_RATIO
+    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, "t0") <= hi)
+            and (gap_cor <= RICHARDSON_GAP * fine.cor + COR_FLOOR or lo <= _difference_ratio(runs, "cor") <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
         fine.message = (fine.message + "; " if fine.message else "") + (
-            f"not Richardson-extrapolated: the grid and the grid quartered differ by {gaps['t0']:.2g} (t0, "
-            f"relative) and {gaps['cor']:.2g} (COR), and the differences between the grid, the grid halved "
-            f"and the grid quartered do not shrink as h^2..h^2.5 (ratios {ratios['t0']:.3g} for t0, "
-            f"{ratios['cor']:.3g} for the COR; asymptotically 4..5.7); values of the quartered grid")
+            f"not Richardson-extrapolated: the grid and the grid quartered differ by {gap_t0:.2g} (t0, "
+            f"relative) and {gap_cor:.2g} (COR), and the differences between the grid, the grid halved "
+            f"and the grid quartered do not shrink as h^2..h^2.5 (ratios {_difference_ratio(runs, 't0'):.3g} "
+            f"for t0, {_difference_ratio(runs, 'cor'):.3g} for the COR; asymptotically 4..5.7); values of "
+            f"the quartered grid")
         return fine
-    (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
     for k in EXTRAPOLATED:
         setattr(fine, k, w0 * r0[k] + w1 * r1[k] + w2 * r2[k])
     fine.omega_min = 2.0 * math.pi / fine.t0
     return fine
 
 
-def _difference_ratio(x):
-    """(x0 - x1) / (x1 - x2) of values on the grids h, h/2, h/4 (4 for h^2 errors, 5.7 for h^2.5)."""
-    d1, d2 = x[0] - x[1], x[1] - x[2]
+def _difference_ratio(runs, key):
+    """(x0 - x1) / (x1 - x2) of the values ``runs[j][key]`` on the grids h, h/2, h/4 (4 for h^2 errors,
+    5.7 for h^2.5)."""
+    d1, d2 = runs[0][key] - runs[1][key], runs[1][key] - runs[2][key]
     return d1 / d2 if d2 != 0.0 else math.inf
