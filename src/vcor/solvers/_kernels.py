@@ -103,6 +103,14 @@ def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q
             d2F = (w0 + b2 + 2.0 * c2q * d) * 0.75 / sq + 2.0 * c2q * up * up
             if abs(half * c * d2F) * ads * ads <= 2e-16 * a * abs(dR):
                 ok = True
+                e2 = 0.5 * ads * ads
+                if e2 * abs(d2F) <= 1e-16 * abs(F) and e2 * 0.75 / sq <= 1e-16 * abs(u):
+                    # u and F at the new s to first order in ds: their second-order terms are below
+                    # 1e-16 of their values, so a final evaluation would change them by rounding only
+                    u -= up * ds
+                    F -= dF * ds
+                    g = B - c * F
+                    return s, g, F, u, Jb + half * F, True
                 break
         ds_prev = ads
     # final consistent evaluation at the converged s
