@@ -216,6 +216,25 @@ def test_a_run_at_step_tol_over_16_is_much_more_accurate():
             assert fine < err / 4, (richardson, tol, err, fine)
 
 
+def test_extrapolation_never_stores_a_negative_cor():
+    """A creeping thin plate separates with a COR of ~1e-11; its three grids then agree within
+    COR_FLOOR (1e-9 absolute) and pass the guard, but the weights (0.07, -0.69, 1.62) can take the
+    extrapolated COR below zero. The finest grid's values are kept then, with a message; an ordinary
+    impact is extrapolated as before."""
+    from vcor.solvers.common import Result
+
+    def runs(cors):
+        return [{**{k: 1.0 for k in adaptive.EXTRAPOLATED}, "t0": 0.5, "cor": c} for c in cors]
+
+    creeping = runs([1e-11, 2e-10, 5e-11])
+    fine = adaptive._extrapolated(Result(cor=5e-11, t0=0.5, message=""), creeping)
+    assert fine.cor == 5e-11 and "extrapolated COR" in fine.message and "negative" in fine.message
+    ordinary = runs([0.4320, 0.43198, 0.431987])
+    fine = adaptive._extrapolated(Result(cor=0.431987, t0=0.5, message=""), ordinary)
+    w = adaptive.RICHARDSON_WEIGHTS
+    assert fine.message == "" and fine.cor == pytest.approx(w[0] * 0.4320 + w[1] * 0.43198 + w[2] * 0.431987)
+
+
 def test_step_budget_is_reported_not_a_verdict():
     res = vcor.simulate("sls", 10.0, method="adaptive", h=1e-3, max_adaptive_steps=200)
     assert res.status == "step-budget" and "max_steps = 200" in res.message

@@ -299,6 +299,14 @@ def _extrapolated(fine, runs):
     (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
     gap_t0, gap_cor = abs(fine.t0 - r0["t0"]) / fine.t0, abs(fine.cor - r0["cor"])
     lo, hi = RICHARDSON_RATIO
+    cor = w0 * r0["cor"] + w1 * r1["cor"] + w2 * r2["cor"]
+    if cor < 0.0:
+        # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
+        # may leave the physical range; keep the finest grid's value rather than store a negative COR
+        fine.message = (fine.message + "; " if fine.message else "") + (
+            f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids {r0['cor']:.3g}, "
+            f"{r1['cor']:.3g}, {r2['cor']:.3g}); values of the quartered grid")
+        return fine
     if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, "t0") <= hi)
             and (gap_cor <= RICHARDSON_GAP * fine.cor + COR_FLOOR or lo <= _difference_ratio(runs, "cor") <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
