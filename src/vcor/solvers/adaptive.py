@@ -279,8 +279,8 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
     if not K.adaptive_grids(n_grids, *_march_tables(tab), n_levels, impact.kappa * impact.material.viscosity, *plate,
-                            tab["pe"], tab["pb"], m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS, 0 if rule == "force" else 1, N_EXTRA,
-                            max_steps, START_LEVEL, INITIAL_SIZE, out):
+                            tab["pe"], tab["pb"], m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
+                            0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
     rows = out[:n_grids].tolist()
     runs = [separation_scalars(row, m, v0) for row in rows]
