@@ -122,7 +122,7 @@ def test_one_call_path_falls_back_beyond_the_first_horizon():
     h_base = top * 2.0**-adaptive.FLOOR_BITS
     for n_grids in (1, 3):
         assert adaptive._one_call(imp, imp.contact_time_estimate(), h_base, n_grids, step_tol=3e-4, max_steps=10**6,
-                                  rule="force", tol=1e-10, t_start=0.0) is None
+                                  rule="force", tol=1e-10, kind=adaptive._plate_kind(imp), t_start=0.0) is None
     assert vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3).ok
 
 
@@ -134,11 +134,13 @@ def test_fractional_plate_in_closed_form_equals_its_exponential_sum(monkeypatch)
     the one used."""
     imp = make_impact("butyl-fc", 10.0, {})
     tab = adaptive.level_tables(imp.material, float(imp.kappa), 1e-9, 30, 1.0, 1e-10)
-    assert adaptive._plate(imp, tab)[0] == 2 and adaptive._plate(make_impact("sls", 10.0, {}), tab)[0] == 1
+    sls = make_impact("sls", 10.0, {})
+    assert adaptive._plate_kind(imp) == 2 and adaptive._plate_kind(sls) == 1
+    assert adaptive._plate(imp, tab, 2)[0] == 2 and adaptive._plate(sls, tab, 1)[0] == 1
     cases = [(v0, h) for v0 in (1.0, 10.0) for h in (None, 10e-3)]
     closed = [vcor.simulate("butyl-fc", v0, method="adaptive", h=h) for v0, h in cases]
     monkeypatch.setattr(vcor.materials.FractionalPower, "sqrt_law", lambda self: None)
-    assert adaptive._plate(imp, tab)[0] == 1
+    assert adaptive._plate_kind(imp) == 1
     summed = [vcor.simulate("butyl-fc", v0, method="adaptive", h=h) for v0, h in cases]
     for case, a, b in zip(cases, closed, summed, strict=True):
         assert a.ok and b.ok, (case, a.message, b.message)
@@ -224,7 +226,7 @@ def test_extrapolation_never_stores_a_negative_cor():
     from vcor.solvers.common import Result
 
     def runs(cors):
-        return [{**{k: 1.0 for k in adaptive.EXTRAPOLATED}, "t0": 0.5, "cor": c} for c in cors]
+        return [[{"t0": 0.5, "cor": c}.get(k, 1.0) for k in adaptive.EXTRAPOLATED] for c in cors]
 
     creeping = runs([1e-11, 2e-10, 5e-11])
     fine = adaptive._extrapolated(Result(cor=5e-11, t0=0.5, message=""), creeping)

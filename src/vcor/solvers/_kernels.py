@@ -390,6 +390,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     """
     nk = R.shape[1]
     nmax = t.shape[0] - 1
+    IH = 1.0 / hl
     St = np.empty(nk)
     Xt = np.empty(nk)
     pbe = pb * pe
@@ -403,6 +404,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         kx -= 1
     l = state[6]
     n = state[2] + 1
+    if n >= 2:
+        last_d = (u[n - 1] - u[n - 2]) / (t[n - 1] - t[n - 2])
     frozen = state[7] == 1
     state[3] = STATUS_RUNNING
     tol_abs = step_tol * v0
@@ -429,13 +432,15 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
                 St[k] = v
                 Hh += v
         hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
+        inv_h = IH[lt]
         if n >= 2:
-            cfac = 2.0 / (h * (h + hp))
-            w0 = I0[lt] / h + cfac * M[lt]
-            dprev = (u[n - 1] - u[n - 2]) / hp
-            H = Hh - w0 * u[n - 1] - 2.0 * M[lt] * dprev / (h + hp)
+            r2 = 2.0 / (h + hp)
+            w0 = (I0[lt] + r2 * M[lt]) * inv_h
+            dprev = last_d
+            H = Hh - w0 * u[n - 1] - r2 * M[lt] * dprev
         else:
-            w0 = I0[lt] / h
+            r2 = 0.0
+            w0 = I0[lt] * inv_h
             H = Hh - w0 * u[n - 1]
         if plate == 1:
             if kx > FEW_MODES:
@@ -510,8 +515,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         u[n] = un
         J[n] = Jn
         lev[n] = l
-        d = (un - u[n - 1]) / h
-        c = 2.0 * (d - (u[n - 1] - u[n - 2]) / hp) / (h + hp) if n >= 2 else 0.0
+        d = (un - u[n - 1]) * inv_h
+        c = (d - dprev) * r2 if n >= 2 else 0.0
         GAl = GA[lt]
         GBl = GB[lt]
         for k in range(kl):
@@ -634,8 +639,10 @@ def separation_point(t, s, g, F, J, n, lo, by_overlap, force_rule, m, v0, out):
     """Separation inside [t_{n-1}, t_n] (see ``common.separation``): the root of the cubic through
     nodes lo..lo+3 of the target (s when ``by_overlap``, else F) by the Illinois variant of regula
     falsi to 1e-15 t_n, then s, s', J (and F for the overlap rule) there, the trapezoidal work
-    integrals and the parabola-refined peaks of s and F. Fills ``out`` = [t0, s0, g0, J0, F0, w_h, w_z,
-    s_max, f_max] and returns True; False (nothing filled) when the target does not change sign."""
+    integrals and the parabola-refined peaks of s and F. Fills ``out`` with the outcome in the order
+    of ``common.OUTCOME``: [COR |s'0|/v0, t0, s0, W_h, W_z - W_h, z'0 = v0 - J0/m, energy residual
+    (E_in - m z'0^2/2 - W_z)/E_in with E_in = m v0^2/2, s_max, f_max] (SI units) and returns True;
+    False (nothing filled) when the target does not change sign."""
     tn = t[lo:lo + 4]
     c = _divided(tn, s[lo:lo + 4] if by_overlap else F[lo:lo + 4])
     a = t[n - 1]
@@ -675,22 +682,30 @@ def separation_point(t, s, g, F, J, n, lo, by_overlap, force_rule, m, v0, out):
     J0 = _newton_value(_divided(tn, J[lo:lo + 4]), tn, t0)
     F0 = 0.0 if force_rule else _newton_value(_divided(tn, F[lo:lo + 4]), tn, t0)
     z0 = v0 - J0 / m
-    # trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]
+    # trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]; each node's powers F s' and
+    # F z' computed once (carried to the next interval)
     w_h = 0.0
     w_z = 0.0
+    ph = F[0] * g[0]
+    pz = F[0] * (v0 - J[0] / m)
     for j in range(1, n):
         half = 0.5 * (t[j] - t[j - 1])
-        w_h += half * (F[j] * g[j] + F[j - 1] * g[j - 1])
-        w_z += half * (F[j] * (v0 - J[j] / m) + F[j - 1] * (v0 - J[j - 1] / m))
-    w_h += 0.5 * (t0 - a) * (F[n - 1] * g[n - 1] + F0 * g0)
-    w_z += 0.5 * (t0 - a) * (F[n - 1] * (v0 - J[n - 1] / m) + F0 * z0)
-    out[0] = t0
-    out[1] = s0
-    out[2] = g0
-    out[3] = J0
-    out[4] = F0
-    out[5] = w_h
-    out[6] = w_z
+        qh = F[j] * g[j]
+        qz = F[j] * (v0 - J[j] / m)
+        w_h += half * (qh + ph)
+        w_z += half * (qz + pz)
+        ph = qh
+        pz = qz
+    w_h += 0.5 * (t0 - a) * (ph + F0 * g0)
+    w_z += 0.5 * (t0 - a) * (pz + F0 * z0)
+    e_in = 0.5 * m * v0 * v0
+    out[0] = abs(g0) / v0
+    out[1] = t0
+    out[2] = s0
+    out[3] = w_h
+    out[4] = w_z - w_h
+    out[5] = z0
+    out[6] = (e_in - 0.5 * m * z0 * z0 - w_z) / e_in
     out[7] = parabola_peak(t, s, n)
     out[8] = parabola_peak(t, F, n)
     return True
@@ -713,7 +728,7 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
     """The adaptive march (``march_adaptive``), then (n_grids = 3) its replays with every step halved
     and quartered, and the separation of each, in one call (no histories). The tables have
     n_levels + 2 levels from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k. Fills out[k] = [the 9
-    values of ``separation_point``, separation index, largest step] and returns True when every grid
+    outcome values of ``separation_point``, separation index, largest step] and returns True when every grid
     separated, the first within size0 steps; False (out undefined) for anything else (more steps,
     divergence, time horizon, step budget), which the caller then runs through the general path."""
     nk = R.shape[1]

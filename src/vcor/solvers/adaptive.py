@@ -40,7 +40,7 @@ import numpy as np
 
 from ..soe import soe
 from . import _kernels as K
-from .common import Result, separation_scalars
+from .common import OUTCOME, Result, separation_scalars
 from .march import N_EXTRA, Arrays, finish
 
 __all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "SEP_STEPS", "level_tables", "run_adaptive"]
@@ -120,11 +120,10 @@ def _plate_kind(impact) -> int:
     return 2 if impact.material.sqrt_law() is not None else 1
 
 
-def _plate(impact, tab):
-    """The march's plate arguments (``_kernels.march_adaptive``): (``_plate_kind``, mobility scale,
-    modulus factor, constant of E_b in Pa, coefficient of t^-1/2 in Pa s^0.5, constant alpha) for the
-    level tables ``tab``."""
-    kind = _plate_kind(impact)
+def _plate(impact, tab, kind):
+    """The march's plate arguments (``_kernels.march_adaptive``): (``kind`` = ``_plate_kind(impact)``,
+    mobility scale, modulus factor, constant of E_b in Pa, coefficient of t^-1/2 in Pa s^0.5, constant
+    alpha) for the level tables ``tab``."""
     if kind == 0:
         return 0, 0.0, 0.0, 0.0, 0.0, (0.0 if impact.geometry.rigid else float(impact.alpha(0.0)))
     pc = 1.0 / (1.0 - impact.geometry.nu**2)
@@ -140,10 +139,10 @@ def _plate(impact, tab):
 SPLIT_LEVELS = 2
 
 
-def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, ghost, tol, fixed_level=None,
+def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, ghost, tol, kind, fixed_level=None,
            plan=None, split=0):
     """One adaptive march on steps h_base 2^(level - split) (split 0, 1, 2: the grid, halved,
-    quartered), or the replay of a level ``plan``, with the horizon extension.
+    quartered), or the replay of a level ``plan``, with the horizon extension (``kind``: ``_plate_kind``).
     Returns (t, arrays, state, n_done, levels, horizon, factor)."""
     mat = impact.material
     eta = impact.kappa * mat.viscosity
@@ -157,7 +156,7 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         tab = level_tables(mat, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                            2.0 * horizon, tol)
         nk = tab["GA"].shape[1]
-        plate = _plate(impact, tab)
+        plate = _plate(impact, tab, kind)
         P, X = np.zeros(nk), np.ones(nk)
         first = START_LEVEL if fixed_level is None else int(fixed_level)
         lo, hi = (0, n_levels - 1) if fixed_level is None else (first, first)
@@ -217,8 +216,9 @@ RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.inv(
 RICHARDSON_GAP = 1e-3
 COR_FLOOR = 1e-9
 RICHARDSON_RATIO = (2.5, 8.0)
-#: scalars of a Result that are Richardson-extrapolated
-EXTRAPOLATED = ("cor", "t0", "s_residual", "w_h", "w_plate", "sphere_velocity", "energy_residual", "s_max", "f_max")
+#: scalars of a Result that are Richardson-extrapolated: all of a separation's outcome (omega_min follows t0)
+EXTRAPOLATED = OUTCOME
+_COR, _T0 = OUTCOME.index("cor"), OUTCOME.index("t0")
 
 
 def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10,
@@ -231,16 +231,16 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     error terms); histories are those of the quartered grid.
     ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
     a uniform grid on which the march is the direct scheme with an exponential-sum history."""
-    _plate_kind(impact)  # a plate the method cannot carry: the error before any work
+    kind = _plate_kind(impact)  # a plate the method cannot carry: the error before any work
     top = 2.0 ** math.floor(math.log2(tc))
     h_base = top * 2.0**-FLOOR_BITS
     t_start = time.perf_counter()
     if not history and fixed_level is None:
         res = _one_call(impact, tc, h_base, 3 if extrapolate else 1, step_tol=step_tol, max_steps=max_steps,
-                        rule=rule, tol=tol, t_start=t_start)
+                        rule=rule, tol=tol, kind=kind, t_start=t_start)
         if res is not None:
             return res
-    kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol}
+    kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol, "kind": kind}
     t, arr, state, n_done, lev, horizon, factor = _march(impact, tc, h_base, HORIZON_START, history=history and
                                                          not extrapolate, ghost=ghost, fixed_level=fixed_level, **kw)
     coarse = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=max_steps, rule=rule,
@@ -263,10 +263,10 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         runs.append(run)
     fine = runs[-1]
     fine.steps = sum(r.steps for r in runs)
-    return _extrapolated(fine, [{k: getattr(r, k) for k in EXTRAPOLATED} for r in runs])
+    return _extrapolated(fine, [[getattr(r, k) for k in OUTCOME] for r in runs])
 
 
-def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_start):
+def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, kind, t_start):
     """The usual case of ``run_adaptive`` (no histories; n_grids 3 with ``extrapolate``, else 1) in one
     numba call (``_kernels.adaptive_grids``): the same marches and separations as the general path,
     without its Python between them. None when a grid did not simply separate within the first time
@@ -275,7 +275,7 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
     tab = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                        2.0 * horizon, tol)
-    plate = _plate(impact, tab)
+    plate = _plate(impact, tab, kind)
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
     if not K.adaptive_grids(n_grids, *_march_tables(tab), n_levels, impact.kappa * impact.material.viscosity, *plate,
@@ -283,48 +283,46 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, t_
                             0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
     rows = out[:n_grids].tolist()
-    runs = [separation_scalars(row, m, v0) for row in rows]
     res = Result(steps=int(sum(row[9] for row in rows)), wall_time=0.0, dt=rows[-1][10], method="adaptive")
-    res.__dict__.update(runs[-1])
+    res.__dict__.update(separation_scalars(rows[-1]))
     if n_grids == 3:
-        res = _extrapolated(res, runs)
+        res = _extrapolated(res, rows)
     res.wall_time = time.perf_counter() - t_start
     return res
 
 
 def _extrapolated(fine, runs):
     """``fine`` (the quartered grid's Result) with the scalars Richardson-extrapolated from ``runs``
-    (the grids' EXTRAPOLATED values, coarse to fine), or kept with a message where the grids are not
-    in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO)."""
+    (per grid, coarse to fine, its OUTCOME values in that order; further values ignored), or kept
+    with a message where the grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO)."""
     (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
-    gap_t0, gap_cor = abs(fine.t0 - r0["t0"]) / fine.t0, abs(fine.cor - r0["cor"])
+    gap_t0, gap_cor = abs(fine.t0 - r0[_T0]) / fine.t0, abs(fine.cor - r0[_COR])
     lo, hi = RICHARDSON_RATIO
-    cor = w0 * r0["cor"] + w1 * r1["cor"] + w2 * r2["cor"]
+    cor = w0 * r0[_COR] + w1 * r1[_COR] + w2 * r2[_COR]
     if cor < 0.0:
         # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
         # may leave the physical range; keep the finest grid's value rather than store a negative COR
         fine.message = (fine.message + "; " if fine.message else "") + (
-            f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids {r0['cor']:.3g}, "
-            f"{r1['cor']:.3g}, {r2['cor']:.3g}); values of the quartered grid")
+            f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids {r0[_COR]:.3g}, "
+            f"{r1[_COR]:.3g}, {r2[_COR]:.3g}); values of the quartered grid")
         return fine
-    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, "t0") <= hi)
-            and (gap_cor <= RICHARDSON_GAP * fine.cor + COR_FLOOR or lo <= _difference_ratio(runs, "cor") <= hi)):
+    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, _T0) <= hi)
+            and (gap_cor <= RICHARDSON_GAP * fine.cor + COR_FLOOR or lo <= _difference_ratio(runs, _COR) <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
         fine.message = (fine.message + "; " if fine.message else "") + (
             f"not Richardson-extrapolated: the grid and the grid quartered differ by {gap_t0:.2g} (t0, "
             f"relative) and {gap_cor:.2g} (COR), and the differences between the grid, the grid halved "
-            f"and the grid quartered do not shrink as h^2..h^2.5 (ratios {_difference_ratio(runs, 't0'):.3g} "
-            f"for t0, {_difference_ratio(runs, 'cor'):.3g} for the COR; asymptotically 4..5.7); values of "
+            f"and the grid quartered do not shrink as h^2..h^2.5 (ratios {_difference_ratio(runs, _T0):.3g} "
+            f"for t0, {_difference_ratio(runs, _COR):.3g} for the COR; asymptotically 4..5.7); values of "
             f"the quartered grid")
         return fine
-    for k in EXTRAPOLATED:
-        setattr(fine, k, w0 * r0[k] + w1 * r1[k] + w2 * r2[k])
+    fine.__dict__.update(zip(OUTCOME, [w0 * a + w1 * b + w2 * c for a, b, c in zip(r0, r1, r2)]))
     fine.omega_min = 2.0 * math.pi / fine.t0
     return fine
 
 
-def _difference_ratio(runs, key):
-    """(x0 - x1) / (x1 - x2) of the values ``runs[j][key]`` on the grids h, h/2, h/4 (4 for h^2 errors,
+def _difference_ratio(runs, i):
+    """(x0 - x1) / (x1 - x2) of the values ``runs[j][i]`` on the grids h, h/2, h/4 (4 for h^2 errors,
     5.7 for h^2.5)."""
-    d1, d2 = runs[0][key] - runs[1][key], runs[1][key] - runs[2][key]
+    d1, d2 = runs[0][i] - runs[1][i], runs[1][i] - runs[2][i]
     return d1 / d2 if d2 != 0.0 else math.inf

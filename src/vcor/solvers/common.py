@@ -11,7 +11,7 @@ from scipy.optimize import minimize_scalar
 from ..status import STATUS_CODES
 from . import _kernels as K
 
-__all__ = ["LONG_NAMES", "STATUS_CODES", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
+__all__ = ["LONG_NAMES", "OUTCOME", "STATUS_CODES", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
 
 UNITS = {
     "cor": "1",
@@ -142,28 +142,20 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
         target = s if by_overlap else F
         raise RuntimeError(f"separation step {n}: {'s' if by_overlap else 'F'} does not change sign "
                            f"({target[n - 1]!r} -> {target[n]!r})")
-    return separation_scalars(out, m, v0)
+    return separation_scalars(out)
 
 
-def separation_scalars(out, m, v0) -> dict:
-    """The outcome from ``_kernels.separation_point``'s values [t0, s0, s'0, J0, F0, W_h, W_z, s_max,
-    f_max] (an array or a list, any further values ignored): the Result fields and ``message`` (empty)."""
-    t0, s0, g0, j0, _, w_h, w_z, s_max, f_max = out[:9].tolist() if isinstance(out, np.ndarray) else out[:9]
-    z0 = v0 - j0 / m
-    e_in = 0.5 * m * v0 * v0
-    return {
-        "t0": t0,
-        "cor": abs(g0) / v0,
-        "s_residual": s0,
-        "w_h": w_h,
-        "w_plate": w_z - w_h,
-        "omega_min": 2 * math.pi / t0,
-        "sphere_velocity": z0,
-        "energy_residual": (e_in - 0.5 * m * z0 * z0 - w_z) / e_in,
-        "s_max": s_max,
-        "f_max": f_max,
-        "message": "",
-    }
+#: the outcome of a separation as ``_kernels.separation_point`` returns it, in this order (UNITS)
+OUTCOME = ("cor", "t0", "s_residual", "w_h", "w_plate", "sphere_velocity", "energy_residual", "s_max", "f_max")
+
+
+def separation_scalars(values) -> dict:
+    """The Result fields from ``_kernels.separation_point``'s values (a list or an array in the order
+    of OUTCOME; any further values ignored), with ``omega_min`` and ``message`` (empty)."""
+    out = dict(zip(OUTCOME, values.tolist() if isinstance(values, np.ndarray) else values))
+    out["omega_min"] = 2 * math.pi / out["t0"]
+    out["message"] = ""
+    return out
 
 
 def richardson(coarse: float, fine: float, order: float = 2.0) -> tuple[float, float]:
