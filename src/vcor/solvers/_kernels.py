@@ -737,33 +737,48 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
     # march_adaptive (a Literal[int] argument) besides the one the general path calls from Python
     lowest = np.int64(0)
     # the march writes node n before anything reads it, and reads nothing beyond the last node: the
-    # arrays need only their first node set (np.empty: zeroing the 2049-node arrays cost ~5 us a call)
+    # arrays need only their first node set (np.empty: zeroing the 2049-node arrays cost ~5 us a call);
+    # the replays reuse the first grid's node arrays when they fit (their levels go to ``lev``: the
+    # first grid's, ``base``, are the plan)
     base = np.empty(size0 + 1, dtype=np.int64)
-    base[0] = start_level
+    t = np.empty(size0 + 1)
+    s = np.empty(size0 + 1)
+    g = np.empty(size0 + 1)
+    F = np.empty(size0 + 1)
+    J = np.empty(size0 + 1)
+    u = np.empty(size0 + 1)
+    lev = base
+    P = np.empty(nk)
+    X = np.empty(nk)
+    state = np.empty(8, dtype=np.int64)
     for k in range(n_grids):
         rep = 2**k
         plan = np.empty(n_plan * rep, dtype=np.int64)
         for j in range(n_plan * rep):
             plan[j] = base[1 + j // rep]
         size = min(size0 if k == 0 else plan.shape[0] + 2 * n_extra + 8, max_steps)
-        t = np.empty(size + 1)
-        s = np.empty(size + 1)
-        g = np.empty(size + 1)
-        F = np.empty(size + 1)
-        J = np.empty(size + 1)
-        u = np.empty(size + 1)
-        lev = base if k == 0 else np.empty(size + 1, dtype=np.int64)
+        if k > 0:
+            if size > t.shape[0] - 1:
+                t = np.empty(size + 1)
+                s = np.empty(size + 1)
+                g = np.empty(size + 1)
+                F = np.empty(size + 1)
+                J = np.empty(size + 1)
+                u = np.empty(size + 1)
+            if k == 1 or size > lev.shape[0] - 1:
+                lev = np.empty(t.shape[0], dtype=np.int64)
         t[0] = s[0] = F[0] = J[0] = u[0] = 0.0
         lev[0] = start_level
         g[0] = v0
-        P = np.zeros(nk)
-        X = np.ones(nk)
-        state = np.zeros(8, dtype=np.int64)
+        P[:] = 0.0
+        X[:] = 1.0
+        state[:] = 0
         state[1] = -1
         state[6] = start_level
-        march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, p_half,
-                       alpha_c, pe, pb, m, v0, step_tol, inv_tc, lowest, n_levels - 1, t_horizon, sep_frac, rule,
-                       n_extra, 0.0, P, X, state, plan, 2 - k)
+        e = size + 1  # the march fills at most ``size`` steps (views: no copies)
+        march_adaptive(t[:e], s[:e], g[:e], F[:e], J[:e], u[:e], lev[:e], hl, I0, M, GA, GB, R, live, eta, plate,
+                       pscale, pc, pe_inf, p_half, alpha_c, pe, pb, m, v0, step_tol, inv_tc, lowest, n_levels - 1,
+                       t_horizon, sep_frac, rule, n_extra, 0.0, P, X, state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:
             return False
         n_sep = state[1]
