@@ -283,42 +283,47 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, ki
                             0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
     rows = out[:n_grids].tolist()
-    res = Result(steps=int(sum(row[9] for row in rows)), wall_time=0.0, dt=rows[-1][10], method="adaptive")
-    res.__dict__.update(separation_scalars(rows[-1]))
-    if n_grids == 3:
-        res = _extrapolated(res, rows)
+    values, message = _richardson(rows) if n_grids == 3 else (rows[-1], "")
+    res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
+                 method="adaptive")
+    res.message = message
     res.wall_time = time.perf_counter() - t_start
     return res
 
 
 def _extrapolated(fine, runs):
-    """``fine`` (the quartered grid's Result) with the scalars Richardson-extrapolated from ``runs``
-    (per grid, coarse to fine, its OUTCOME values in that order; further values ignored), or kept
-    with a message where the grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO)."""
+    """``fine`` (the quartered grid's Result) with the scalars of ``_richardson(runs)``, its message
+    appended to fine's."""
+    values, message = _richardson(runs)
+    before = fine.message
+    fine.__dict__.update(separation_scalars(values))
+    fine.message = "; ".join(m for m in (before, message) if m)
+    return fine
+
+
+def _richardson(runs):
+    """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (per grid, coarse
+    to fine, its OUTCOME values in that order; further values ignored) and "", or, where the grids are
+    not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR is
+    negative, the finest grid's values and a message saying why."""
     (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
-    gap_t0, gap_cor = abs(fine.t0 - r0[_T0]) / fine.t0, abs(fine.cor - r0[_COR])
+    gap_t0, gap_cor = abs(r2[_T0] - r0[_T0]) / r2[_T0], abs(r2[_COR] - r0[_COR])
     lo, hi = RICHARDSON_RATIO
     cor = w0 * r0[_COR] + w1 * r1[_COR] + w2 * r2[_COR]
     if cor < 0.0:
         # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
         # may leave the physical range; keep the finest grid's value rather than store a negative COR
-        fine.message = (fine.message + "; " if fine.message else "") + (
-            f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids {r0[_COR]:.3g}, "
-            f"{r1[_COR]:.3g}, {r2[_COR]:.3g}); values of the quartered grid")
-        return fine
+        return r2, (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
+                    f"{r0[_COR]:.3g}, {r1[_COR]:.3g}, {r2[_COR]:.3g}); values of the quartered grid")
     if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, _T0) <= hi)
-            and (gap_cor <= RICHARDSON_GAP * fine.cor + COR_FLOOR or lo <= _difference_ratio(runs, _COR) <= hi)):
+            and (gap_cor <= RICHARDSON_GAP * r2[_COR] + COR_FLOOR or lo <= _difference_ratio(runs, _COR) <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
-        fine.message = (fine.message + "; " if fine.message else "") + (
-            f"not Richardson-extrapolated: the grid and the grid quartered differ by {gap_t0:.2g} (t0, "
-            f"relative) and {gap_cor:.2g} (COR), and the differences between the grid, the grid halved "
-            f"and the grid quartered do not shrink as h^2..h^2.5 (ratios {_difference_ratio(runs, _T0):.3g} "
-            f"for t0, {_difference_ratio(runs, _COR):.3g} for the COR; asymptotically 4..5.7); values of "
-            f"the quartered grid")
-        return fine
-    fine.__dict__.update(zip(OUTCOME, [w0 * a + w1 * b + w2 * c for a, b, c in zip(r0, r1, r2)]))
-    fine.omega_min = 2.0 * math.pi / fine.t0
-    return fine
+        return r2, (f"not Richardson-extrapolated: the grid and the grid quartered differ by {gap_t0:.2g} (t0, "
+                    f"relative) and {gap_cor:.2g} (COR), and the differences between the grid, the grid halved "
+                    f"and the grid quartered do not shrink as h^2..h^2.5 (ratios "
+                    f"{_difference_ratio(runs, _T0):.3g} for t0, {_difference_ratio(runs, _COR):.3g} for the "
+                    f"COR; asymptotically 4..5.7); values of the quartered grid")
+    return [w0 * a + w1 * b + w2 * c for a, b, c in zip(r0, r1, r2)], ""
 
 
 def _difference_ratio(runs, i):
