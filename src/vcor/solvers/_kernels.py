@@ -44,7 +44,7 @@ STATUS_FULL = 4  # adaptive march: arrays full, grow them and call again (resuma
 DECAYED = 1e-18
 
 
-@numba.njit(**_JIT)
+@numba.njit(inline="always", **_JIT)
 def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, m, v0, dt,
                  s_scale, g_guess):
     """Solve the implicit trapezoidal step for s_n.
@@ -418,17 +418,16 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         h = hl[lt]
         tn = t[n - 1] + h
         # history of all steps before this one
-        Rl = R[lt]
         kl = live[lt]
         if kl > kv:
-            _fill(P, kv, kl, last_d, last_c, GA[last_lt], GB[last_lt])
+            _fill(P, kv, kl, last_d, last_c, GA, GB, last_lt)
             kv = kl
         if kl > FEW_MODES:
-            Hh = _decay_sum(Rl, P, St, kl)
+            Hh = _decay_sum(R, lt, P, St, kl)
         else:
             Hh = 0.0
             for k in range(kl):
-                v = Rl[k] * P[k]
+                v = R[lt, k] * P[k]
                 St[k] = v
                 Hh += v
         hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
@@ -444,14 +443,14 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
             H = Hh - w0 * u[n - 1]
         if plate == 1:
             if kx > FEW_MODES:
-                eb, ebd = _plate_sums(Rl, X, Xt, pe, pbe, kx)
+                eb, ebd = _plate_sums(R, lt, X, Xt, pe, pbe, kx)
                 eb = pc * (pe_inf + eb)
                 ebd = -pc * ebd
             else:
                 eb = pe_inf
                 ebd = 0.0
                 for k in range(kx):
-                    x = Rl[k] * X[k]
+                    x = R[lt, k] * X[k]
                     Xt[k] = x
                     eb += pe[k] * x
                     ebd -= pbe[k] * x
@@ -517,10 +516,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         lev[n] = l
         d = (un - u[n - 1]) * inv_h
         c = (d - dprev) * r2 if n >= 2 else 0.0
-        GAl = GA[lt]
-        GBl = GB[lt]
         for k in range(kl):
-            P[k] = St[k] + d * GAl[k] + c * GBl[k]
+            P[k] = St[k] + d * GA[lt, k] + c * GB[lt, k]
         kv = kl
         last_d = d
         last_c = c
@@ -533,7 +530,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
                 kx -= 1
         if _advance(state, n, ok, sn, gn, Fn, rule, n_extra):
             if state[3] != STATUS_SEPARATED or tn >= t[state[1]] * (1.0 + ghost):
-                _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
+                _fill(P, kv, nk, last_d, last_c, GA, GB, last_lt)
                 return
             state[3] = STATUS_RUNNING
         if state[1] >= 0:
@@ -548,11 +545,11 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
             state[6] = l
         if tn >= t_horizon:
             state[3] = STATUS_END
-            _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
+            _fill(P, kv, nk, last_d, last_c, GA, GB, last_lt)
             return
         n += 1
     state[3] = STATUS_FULL
-    _fill(P, kv, nk, last_d, last_c, GA[last_lt], GB[last_lt])
+    _fill(P, kv, nk, last_d, last_c, GA, GB, last_lt)
 
 
 #: adaptive march: sums over more modes than this go through the helpers below, whose additions may be
@@ -564,24 +561,25 @@ _JIT_SUM = dict(_JIT, fastmath={"reassoc"})
 
 
 @numba.njit(**_JIT_SUM)
-def _decay_sum(Rl, P, St, kl):
-    """St[:kl] = Rl P (the modes decayed over a trial step) and their sum, in any order."""
+def _decay_sum(R, lt, P, St, kl):
+    """St[:kl] = R[lt] P (the modes decayed over a trial step on table row lt) and their sum, in any
+    order (rows indexed, not sliced: a row view costs two reference-count calls)."""
     acc = 0.0
     for k in range(kl):
-        v = Rl[k] * P[k]
+        v = R[lt, k] * P[k]
         St[k] = v
         acc += v
     return acc
 
 
 @numba.njit(**_JIT_SUM)
-def _plate_sums(Rl, X, Xt, pe, pbe, kx):
-    """Xt[:kx] = Rl X (the plate's exp(-beta t) at the trial node) and the sums of pe Xt and
+def _plate_sums(R, lt, X, Xt, pe, pbe, kx):
+    """Xt[:kx] = R[lt] X (the plate's exp(-beta t) at the trial node) and the sums of pe Xt and
     pbe Xt (transient of E_b and minus its rate, before the factor pc), in any order."""
     eb = 0.0
     ebd = 0.0
     for k in range(kx):
-        x = Rl[k] * X[k]
+        x = R[lt, k] * X[k]
         Xt[k] = x
         eb += pe[k] * x
         ebd += pbe[k] * x
@@ -589,10 +587,11 @@ def _plate_sums(Rl, X, Xt, pe, pbe, kx):
 
 
 @numba.njit(**_JIT)
-def _fill(P, k0, k1, d, c, GAl, GBl):
-    """P[k0:k1] = the last accepted step's own contribution (modes that had decayed on its level)."""
+def _fill(P, k0, k1, d, c, GA, GB, lt):
+    """P[k0:k1] = the last accepted step's own contribution (modes that had decayed on its level; its
+    table row lt)."""
     for k in range(k0, k1):
-        P[k] = d * GAl[k] + c * GBl[k]
+        P[k] = d * GA[lt, k] + c * GB[lt, k]
 
 
 @numba.njit(**_JIT)
