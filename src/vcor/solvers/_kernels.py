@@ -391,6 +391,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     nk = R.shape[1]
     nmax = t.shape[0] - 1
     IH = 1.0 / hl
+    inv_pscale2 = 1.0 / (pscale * pscale) if pscale > 0.0 else 0.0
     St = np.empty(nk)
     Xt = np.empty(nk)
     pbe = pb * pe
@@ -404,8 +405,16 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         kx -= 1
     l = state[6]
     n = state[2] + 1
+    # slopes of u and g over the last step (of g also over the one before), 2 / (the two steps' sum)
+    last_dg = 0.0
+    prev_dg = 0.0
+    last_r2 = 0.0
     if n >= 2:
         last_d = (u[n - 1] - u[n - 2]) / (t[n - 1] - t[n - 2])
+        last_dg = (g[n - 1] - g[n - 2]) / (t[n - 1] - t[n - 2])
+    if n >= 3:
+        prev_dg = (g[n - 2] - g[n - 3]) / (t[n - 2] - t[n - 3])
+        last_r2 = 2.0 / (t[n - 1] - t[n - 3])
     frozen = state[7] == 1
     state[3] = STATUS_RUNNING
     tol_abs = step_tol * v0
@@ -457,23 +466,25 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
                 eb *= pc
                 ebd *= pc
             a_n = pscale / math.sqrt(eb)
-            ad_n = -0.5 * a_n * ebd / eb
+            ad_n = -0.5 * a_n * a_n * a_n * ebd * inv_pscale2  # 1 / eb = alpha^2 / pscale^2
         elif plate == 2:
+            # E_b t^1/2 = D = pc (pe_inf t^1/2 + p_half); with y = 1 / (D t): alpha = pscale (t^1/2 / D)^1/2
+            # = pscale (t^1/2 y t)^1/2, alpha' = alpha pc p_half / (4 D t) (one division, two roots)
             rt = math.sqrt(tn)
-            eb = pc * (pe_inf + p_half / rt)
-            a_n = pscale / math.sqrt(eb)
-            ad_n = 0.25 * a_n * pc * p_half / (tn * rt * eb)
+            y = 1.0 / (pc * (pe_inf * rt + p_half) * tn)
+            a_n = pscale * math.sqrt(rt * y * tn)
+            ad_n = 0.25 * a_n * pc * p_half * y
         else:
             a_n = alpha_c
             ad_n = 0.0
         # predictor: g extrapolated by the parabola through the last three nodes (a line through two)
+        # (the slopes of g over the last two steps and 2 / (their sum) are carried from their acceptance:
+        # divisions are the march's bottleneck)
         g_guess = g[n - 1]
         if n >= 2:
-            d1 = (g[n - 1] - g[n - 2]) / hp
-            g_guess += h * d1
+            g_guess += h * last_dg
             if n >= 3:
-                hpp = t[n - 2] - t[n - 3]
-                g_guess += h * (h + hp) * (d1 - (g[n - 2] - g[n - 3]) / hpp) / (hp + hpp)
+                g_guess += 0.5 * h * (h + hp) * (last_dg - prev_dg) * last_r2
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
                                               0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h,
                                               g_guess)
@@ -481,8 +492,8 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         est = -1.0
         if not frozen and not planned and ok and n >= 2 and math.isfinite(gn):
             tol_abs = step_tol * min(v0, abs(gn) + abs(sn) * inv_tc)
-            dd = ((gn - g[n - 1]) / h - (g[n - 1] - g[n - 2]) / hp) / (h + hp)
-            est = h * h * abs(dd) / 6.0
+            dd = ((gn - g[n - 1]) * inv_h - last_dg) * r2
+            est = h * h * abs(dd) * (1.0 / 12.0)
             if est > tol_abs and l > lev_floor:
                 drop = 1
                 ratio = est / tol_abs
@@ -516,6 +527,9 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         lev[n] = l
         d = (un - u[n - 1]) * inv_h
         c = (d - dprev) * r2 if n >= 2 else 0.0
+        prev_dg = last_dg
+        last_dg = (gn - g[n - 1]) * inv_h
+        last_r2 = r2
         for k in range(kl):
             P[k] = St[k] + d * GA[lt, k] + c * GB[lt, k]
         kv = kl
