@@ -45,16 +45,16 @@ DECAYED = 1e-18
 
 
 @numba.njit(inline="always", **_JIT)
-def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, m, v0, dt,
+def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q, alpha_n, alphad_n, inv_m, v0, dt,
                  s_scale, g_guess):
     """Solve the implicit trapezoidal step for s_n.
 
     F(s) = w0 u(s) + H + V(u(s) - u_prev) + eta p(s) g, V(d) = a2 + b2 d + c2q d^2,
     g = B - c F, R(s) = s - s_prev - dt/2 (g_prev + g) = 0.
-    Returns (s, g, F, u, J, ok).
+    inv_m = 1 / m (the caller's, once per march). Returns (s, g, F, u, J, ok).
     """
     half = 0.5 * dt
-    kin = 1.0 / m + alphad_n
+    kin = inv_m + alphad_n
     Jb = J_prev + half * F_prev
     B = v0 - Jb * kin
     c = alpha_n + half * kin
@@ -165,6 +165,7 @@ def march_direct(n_start, n_end, s, g, F, J, u, du, w, v, eta, alpha, alphad, m,
     c = 2n - (i + j) - 1 >= 1, S2[m] = running auto-convolution sum_{i+j=m} du_i du_j.
     ``state`` = [loaded flag, separation index, last index, status] (int64), updated in place.
     """
+    inv_m = 1.0 / m
     s_scale = v0 * dt
     inv_dt2 = 1.0 / (dt * dt)
     for n in range(n_start, n_end + 1):
@@ -189,7 +190,8 @@ def march_direct(n_start, n_end, s, g, F, J, u, du, w, v, eta, alpha, alphad, m,
             b2 = c2 * inv_dt2 * 2.0 * bacc
             c2q = c2 * inv_dt2 * Q2[1]
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              a2, b2, c2q, alpha[n], alphad[n], m, v0, dt, s_scale, g[n - 1])
+                                              a2, b2, c2q, alpha[n], alphad[n], inv_m, v0, dt, s_scale,
+                                              g[n - 1])
         s[n] = sn
         g[n] = gn
         F[n] = Fn
@@ -216,6 +218,7 @@ def march_prony(n_start, n_end, s, g, F, J, u, Q, G_inf, G, decay, weight, eta, 
     decay_k = exp(-b_k dt), weight_k = G_k (1 - exp(-b_k dt)) / (b_k dt). This is the recursive
     form of the direct scheme's product integration, so both give the same numbers.
     """
+    inv_m = 1.0 / m
     s_scale = v0 * dt
     nq = G.shape[0]
     w0 = G_inf
@@ -227,7 +230,8 @@ def march_prony(n_start, n_end, s, g, F, J, u, Q, G_inf, G, decay, weight, eta, 
         for k in range(nq):
             H += decay[k] * Q[k] - weight[k] * u[n - 1]
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale, g[n - 1])
+                                              0.0, 0.0, 0.0, alpha[n], alphad[n], inv_m, v0, dt, s_scale,
+                                              g[n - 1])
         d = un - u[n - 1]
         for k in range(nq):
             Q[k] = decay[k] * Q[k] + weight[k] * d
@@ -253,6 +257,7 @@ def march_soe(n_start, n_end, s, g, F, J, u, du, wt, v, n_local, c, vc, r, S, P,
     S_k = sum_{j <= n-2-L} du_j r_k^(n-2-L-j), and P_k = r_k^(n-2-L) gives v_{n-1} for the first
     step's correction. Everything else is the direct march (``march_direct``).
     """
+    inv_m = 1.0 / m
     s_scale = v0 * dt
     nk = c.shape[0]
     for n in range(n_start, n_end + 1):
@@ -271,7 +276,8 @@ def march_soe(n_start, n_end, s, g, F, J, u, du, wt, v, n_local, c, vc, r, S, P,
                     vv += vc[k] * P[k]
                 H -= du[0] * vv
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              0.0, 0.0, 0.0, alpha[n], alphad[n], m, v0, dt, s_scale, g[n - 1])
+                                              0.0, 0.0, 0.0, alpha[n], alphad[n], inv_m, v0, dt, s_scale,
+                                              g[n - 1])
         s[n] = sn
         g[n] = gn
         F[n] = Fn
@@ -388,6 +394,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     (set level to the first step's before the first call). Resumable: when the arrays are full it
     returns STATUS_FULL with P, X and state intact.
     """
+    inv_m = 1.0 / m
     nk = R.shape[1]
     nmax = t.shape[0] - 1
     IH = 1.0 / hl
@@ -486,7 +493,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
             if n >= 3:
                 g_guess += 0.5 * h * (h + hp) * (last_dg - prev_dg) * last_r2
         sn, gn, Fn, un, Jn, ok = _newton_step(s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1], H, w0, eta,
-                                              0.0, 0.0, 0.0, a_n, ad_n, m, v0, h, v0 * h,
+                                              0.0, 0.0, 0.0, a_n, ad_n, inv_m, v0, h, v0 * h,
                                               g_guess)
         # local error estimate and step control
         est = -1.0
