@@ -120,8 +120,11 @@ def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q
     u = sgn * a * sq
     d = u - u_prev
     A = w0 * u + H + a2 + (b2 + c2q * d) * d
-    p = 1.5 * sq
-    F = (A + eta * p * B) / (1.0 + eta * p * c)
+    if eta > 0.0:
+        p = 1.5 * sq
+        F = (A + eta * p * B) / (1.0 + eta * p * c)
+    else:  # the same number without the division
+        F = A
     g = B - c * F
     J = Jb + half * F
     if not ok:
