@@ -429,6 +429,9 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     state[3] = STATUS_RUNNING
     tol_abs = step_tol * v0
     n_plan = plan.shape[0]
+    spec_t = -1.0
+    spec_a = 0.0
+    spec_ad = 0.0
     while n <= nmax:
         planned = n - 1 < n_plan
         if planned:
@@ -478,12 +481,15 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
             a_n = pscale / math.sqrt(eb)
             ad_n = -0.5 * a_n * a_n * a_n * ebd * inv_pscale2  # 1 / eb = alpha^2 / pscale^2
         elif plate == 2:
-            # E_b t^1/2 = D = pc (pe_inf t^1/2 + p_half); with y = 1 / (D t): alpha = pscale (t^1/2 / D)^1/2
-            # = pscale (t^1/2 y t)^1/2, alpha' = alpha pc p_half / (4 D t) (one division, two roots)
-            rt = math.sqrt(tn)
-            y = 1.0 / (pc * (pe_inf * rt + p_half) * tn)
-            a_n = pscale * math.sqrt(rt * y * tn)
-            ad_n = 0.25 * a_n * pc * p_half * y
+            # the roots and the division are a long chain: computed one step ahead, for the step on the
+            # same level (or the plan's next one), while this step's Newton iteration runs
+            if tn == spec_t:
+                a_n = spec_a
+                ad_n = spec_ad
+            else:
+                a_n, ad_n = _sqrt_law_mobility(tn, pscale, pc, pe_inf, p_half)
+            spec_t = tn + hl[(plan[n] if n < n_plan else l) + off]
+            spec_a, spec_ad = _sqrt_law_mobility(spec_t, pscale, pc, pe_inf, p_half)
         else:
             a_n = alpha_c
             ad_n = 0.0
@@ -574,6 +580,17 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
         n += 1
     state[3] = STATUS_FULL
     _fill(P, kv, nk, last_d, last_c, GA, GB, last_lt)
+
+
+@numba.njit(inline="always", **_JIT)
+def _sqrt_law_mobility(t, pscale, pc, pe_inf, p_half):
+    """(alpha, alpha') at t of a plate of the fractional law, E_b = pc (pe_inf + p_half t^-1/2):
+    with D = E_b t^1/2 and y = 1 / (D t), alpha = pscale (t^1/2 / D)^1/2 = pscale (t^1/2 y t)^1/2 and
+    alpha' = alpha pc p_half / (4 D t) (one division, two roots)."""
+    rt = math.sqrt(t)
+    y = 1.0 / (pc * (pe_inf * rt + p_half) * t)
+    a = pscale * math.sqrt(rt * y * t)
+    return a, 0.25 * a * pc * p_half * y
 
 
 #: adaptive march: sums over more modes than this go through the helpers below, whose additions may be
