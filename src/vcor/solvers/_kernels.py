@@ -769,6 +769,12 @@ def locate_separation(t, s, g, F, J, n, size, overlap_rule, m, v0, out):
 
 
 @numba.njit(**_JIT)
+def _node_arrays(n):
+    """Six uninitialised node arrays (t, s, s', F, J, u) of length n."""
+    return np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+
+
+@numba.njit(**_JIT)
 def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
                    pe, pb, m, v0, step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0,
                    out):
@@ -788,12 +794,7 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
     # the replays reuse the first grid's node arrays when they fit (their levels go to ``lev``: the
     # first grid's, ``base``, are the plan)
     base = np.empty(size0 + 1, dtype=np.int64)
-    t = np.empty(size0 + 1)
-    s = np.empty(size0 + 1)
-    g = np.empty(size0 + 1)
-    F = np.empty(size0 + 1)
-    J = np.empty(size0 + 1)
-    u = np.empty(size0 + 1)
+    t, s, g, F, J, u = _node_arrays(size0 + 1)
     lev = base
     P = np.empty(nk)
     X = np.empty(nk)
@@ -806,12 +807,7 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
         size = min(size0 if k == 0 else plan.shape[0] + 2 * n_extra + 8, max_steps)
         if k > 0:
             if size > t.shape[0] - 1:
-                t = np.empty(size + 1)
-                s = np.empty(size + 1)
-                g = np.empty(size + 1)
-                F = np.empty(size + 1)
-                J = np.empty(size + 1)
-                u = np.empty(size + 1)
+                t, s, g, F, J, u = _node_arrays(size + 1)
             if k == 1 or size > lev.shape[0] - 1:
                 lev = np.empty(t.shape[0], dtype=np.int64)
         t[0] = s[0] = F[0] = J[0] = u[0] = 0.0
