@@ -134,8 +134,8 @@ def _newton_step(s_prev, g_prev, u_prev, F_prev, J_prev, H, w0, eta, a2, b2, c2q
 
 
 #: the same step inlined (numba IR) into the adaptive march, where the call and its 18 arguments cost
-#: ~7 % of an impact; the fixed-step marches keep the call (their history sums dominate, and inlining
-#: into all four lengthened a cold compile)
+#: ~3-4 % of a butyl-fc impact; the fixed-step marches keep the call (their history sums dominate, and
+#: inlining into all four lengthened a cold compile more: README, "One numba call per impact")
 #: (NUMBA_DISABLE_JIT: _newton_step is the plain function, without py_func)
 _newton_step_inline = numba.njit(inline="always", **_JIT)(getattr(_newton_step, "py_func", _newton_step))
 
