@@ -358,8 +358,8 @@ def march_paper(n_end, s, g, J, F, kc, alpha, alphad, m, v0, dt, rule, n_extra, 
 
 
 @numba.njit(**_JIT)
-def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
-                   pe, pb, m, v0, step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X,
+def march_adaptive(t, s, g, F, J, u, lev, hl, IH, I0, M, GA, GB, R, live, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
+                   pe, pbe, m, v0, step_tol, inv_tc, lev_floor, lev_max, t_horizon, sep_frac, rule, n_extra, ghost, P, X,
                    state, plan, off):
     """Variable-step march with an exponential-sum history (see ``adaptive``).
 
@@ -381,7 +381,7 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     DECAYED are zero from then on (t only grows).
 
     Plate mobility (plate = 1): alpha = pscale / sqrt(E_b), E_b(t) = pc (pe_inf + sum pe_k X_k),
-    X_k = exp(-pb_k t) carried with the same factors (pb = the modes' rates); plate = 2: in closed
+    X_k = exp(-b_k t) carried with the same factors (pbe = b_k pe_k, b the modes' rates); plate = 2: in closed
     form, E_b(t) = pc (pe_inf + p_half t^-1/2) (the fractional law); plate = 0: alpha_c.
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
@@ -407,11 +407,9 @@ def march_adaptive(t, s, g, F, J, u, lev, hl, I0, M, GA, GB, R, live, eta, plate
     inv_m = 1.0 / m
     nk = R.shape[1]
     nmax = t.shape[0] - 1
-    IH = 1.0 / hl
     inv_pscale2 = 1.0 / (pscale * pscale) if pscale > 0.0 else 0.0
     St = np.empty(nk)
     Xt = np.empty(nk)
-    pbe = pb * pe
     # P is whole on entry; modes kv.. are implicit after the first accepted step (see above)
     kv = nk
     last_d = 0.0
@@ -775,8 +773,8 @@ def _node_arrays(n):
 
 
 @numba.njit(**_JIT)
-def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
-                   pe, pb, m, v0, step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0,
+def adaptive_grids(n_grids, hl, IH, I0, M, GA, GB, R, live, n_levels, eta, plate, pscale, pc, pe_inf, p_half, alpha_c,
+                   pe, pbe, m, v0, step_tol, inv_tc, t_horizon, sep_frac, rule, n_extra, max_steps, start_level, size0,
                    out):
     """The adaptive march (``march_adaptive``), then (n_grids = 3) its replays with every step halved
     and quartered, and the separation of each, in one call (no histories). The tables have
@@ -819,8 +817,8 @@ def adaptive_grids(n_grids, hl, I0, M, GA, GB, R, live, n_levels, eta, plate, ps
         state[1] = -1
         state[6] = start_level
         e = size + 1  # the march fills at most ``size`` steps (views: no copies)
-        march_adaptive(t[:e], s[:e], g[:e], F[:e], J[:e], u[:e], lev[:e], hl, I0, M, GA, GB, R, live, eta, plate,
-                       pscale, pc, pe_inf, p_half, alpha_c, pe, pb, m, v0, step_tol, inv_tc, lowest, n_levels - 1,
+        march_adaptive(t[:e], s[:e], g[:e], F[:e], J[:e], u[:e], lev[:e], hl, IH, I0, M, GA, GB, R, live, eta,
+                       plate, pscale, pc, pe_inf, p_half, alpha_c, pe, pbe, m, v0, step_tol, inv_tc, lowest, n_levels - 1,
                        t_horizon, sep_frac, rule, n_extra, 0.0, P, X, state, plan, 2 - k)
         if state[3] != STATUS_SEPARATED:
             return False

@@ -67,8 +67,8 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     k of the kernel's sum on [h_base, t_max] (column 0: the constant E(inf) + slow modes, rate 0) the step weights
     GA = kappa E_k int_0^h e^{-b x} dx, GB = kappa E_k int_0^h e^{-b x} (h/2 - x) dx and the decay
     R = e^{-b h}, and live[l]: the march touches modes 0..live[l]-1 on level l (every later mode has
-    R < ``_kernels.DECAYED``). Returns a dict of arrays, plus the modes' moduli (Pa) and rates (1/s)
-    for the plate."""
+    R < ``_kernels.DECAYED``). Returns a dict of arrays, plus 1/hl (ih, 1/s) and, for the plate, the modes'
+    moduli (pe, Pa) and moduli times rates (pbe, Pa/s)."""
     mat = material
     rep = soe(mat, h_base, t_max, tol)
     pr = rep.material
@@ -90,14 +90,14 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     i0, m0 = mat.first_step(hl)
     I0, M = kappa * i0, -kappa * m0
     pe = np.concatenate(([0.0], e))
-    pb = np.concatenate(([0.0], b))
+    pbe = np.concatenate(([0.0], b * e))
     return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "live": live, "pe_inf": float(e_inf), "pe": pe,
-            "pb": pb, "n_terms": rep.n_terms, "soe_error": rep.checked_error}
+            "pbe": pbe, "ih": 1.0 / hl, "n_terms": rep.n_terms, "soe_error": rep.checked_error}
 
 
 def _march_tables(tab):
-    """The level tables' arrays in the order of the march's arguments (hl, I0, M, GA, GB, R, live)."""
-    return tab["hl"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"]
+    """The level tables' arrays in the order of the march's arguments (hl, 1/hl, I0, M, GA, GB, R, live)."""
+    return tab["hl"], tab["ih"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"]
 
 
 def _grown(a, n):
@@ -167,7 +167,7 @@ def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, gh
         arr.g[0] = impact.v0
         while True:
             K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, *_march_tables(tab), eta, *plate, tab["pe"],
-                             tab["pb"], impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
+                             tab["pbe"], impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
                              0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
             if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
@@ -279,7 +279,7 @@ def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, ki
     out = np.empty((3, 11))
     m, v0 = impact.m, impact.v0
     if not K.adaptive_grids(n_grids, *_march_tables(tab), n_levels, impact.kappa * impact.material.viscosity, *plate,
-                            tab["pe"], tab["pb"], m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
+                            tab["pe"], tab["pbe"], m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
                             0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None
     rows = out[:n_grids].tolist()
