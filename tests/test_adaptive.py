@@ -8,7 +8,7 @@ import pytest
 
 import vcor
 from vcor.solvers import adaptive
-from vcor.solvers.simulate import make_impact
+from vcor.contact.impact import make_impact
 
 PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
 
@@ -20,7 +20,7 @@ def test_on_a_uniform_grid_it_is_the_direct_scheme(name):
     imp = make_impact(name, 10.0, {})
     tc = imp.contact_time_estimate()
     res = adaptive.run_adaptive(imp, tc, step_tol=1e-7, max_steps=100_000, fixed_level=adaptive.FLOOR_BITS - 11)
-    ref = vcor.simulate(name, 10.0, dt=res.dt)
+    ref = vcor.simulate(name, 10.0, method="direct", dt=res.dt)
     assert res.ok and ref.ok and res.steps == ref.steps
     tol = 1e-13 if vcor.materials.get(name).is_prony else 1e-10
     assert abs(res.cor - ref.cor) <= tol
@@ -149,9 +149,9 @@ def test_fractional_plate_in_closed_form_equals_its_exponential_sum(monkeypatch)
 
 
 def _richardson_reference(name, v0):
-    a = vcor.simulate(name, v0)
-    b = vcor.simulate(name, v0, dt=a.dt / 2)
-    c = vcor.simulate(name, v0, dt=a.dt / 4)
+    a = vcor.simulate(name, v0, method="direct")
+    b = vcor.simulate(name, v0, method="direct", dt=a.dt / 2)
+    c = vcor.simulate(name, v0, method="direct", dt=a.dt / 4)
     return c.cor + (c.cor - b.cor) / 3, c.t0 + (c.t0 - b.t0) / 3
 
 
@@ -255,7 +255,7 @@ def test_histories_and_ghost_on_the_variable_grid():
 
 def test_options_are_checked():
     with pytest.raises(ValueError, match="step_tol is not used by method 'direct'"):
-        vcor.simulate("sls", 1.0, step_tol=1e-6)
+        vcor.simulate("sls", 1.0, method="direct", step_tol=1e-6)
     with pytest.raises(ValueError, match="solver option step_tol must be in"):
         vcor.simulate("sls", 1.0, method="adaptive", step_tol=0.5)
     with pytest.raises(ValueError, match="dt is not used by method 'adaptive'"):

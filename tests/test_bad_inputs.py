@@ -11,7 +11,10 @@ import pytest
 import yaml
 
 import vcor
-from vcor import fit, scene
+from vcor.fitting import fits
+from vcor.fitting import prony as fit
+from vcor.materials import Catalogue
+from vcor.study import scene
 from vcor import materials as M
 from vcor import spheres as S
 
@@ -31,7 +34,7 @@ def _validate(cfg):
     validate(cfg, str(ROOT / "workflow/schemas/config.schema.yaml"))
     for name, sc in cfg["scenes"].items():
         if "grid" in sc:
-            scene.validate_scene(name, sc, fitted=set(cfg.get("fits", {})))
+            scene.validate_scene(name, sc, Catalogue(fits=dict(cfg.get("fits", {}))))
 
 
 _BT = fit.bagley_torvik_data()
@@ -78,16 +81,16 @@ ROWS = [
     ("case 1 with a relaxing material", lambda: vcor.simulate("sls", 10.0, case=1), ["case 1", "elastic material"]),
     ("case 1 with Kelvin-Voigt", lambda: vcor.simulate("kelvin-voigt", 10.0, case=1),
      ["case 1", "elastic material", "kelvin-voigt"]),
-    ("dt bigger than the contact", lambda: vcor.simulate("sls", 10.0, dt=0.1), ["dt must be in"]),
+    ("dt bigger than the contact", lambda: vcor.simulate("sls", 10.0, method="direct", dt=0.1), ["dt must be in"]),
     ("dt negative", lambda: vcor.simulate("sls", 10.0, dt=-1e-6), ["dt must be in (0, inf) s"]),
     ("dt with ive", lambda: vcor.simulate("sls", 10.0, method="ive", dt=1e-6), ["dt", "not used by method 'ive'"]),
-    ("rtol with direct", lambda: vcor.simulate("sls", 10.0, rtol=1e-8), ["rtol", "not used by method 'direct'"]),
+    ("rtol with direct", lambda: vcor.simulate("sls", 10.0, method="direct", rtol=1e-8), ["rtol", "not used by method 'direct'"]),
     ("c2 without volterra", lambda: vcor.simulate("sls", 10.0, c2=2.0), ["c2", "volterra"]),
     ("volterra with ive-numba", lambda: vcor.simulate("sls", 10.0, method="ive-numba", volterra=True),
      ["volterra", "ive-numba"]),
     ("method unknown", lambda: vcor.simulate("sls", 10.0, method="euler"), ["method", "direct"]),
     ("steps_per_contact = 5", lambda: vcor.simulate("sls", 10.0, steps_per_contact=5), ["steps_per_contact", ">= 10"]),
-    ("form b, fractional kernel", lambda: vcor.simulate("butyl-fc", 10.0, form="b"), ["form 'b'"]),
+    ("form b, fractional kernel", lambda: vcor.simulate("butyl-fc", 10.0, method="direct", form="b"), ["form 'b'"]),
     ("ive, fractional kernel", lambda: vcor.simulate("butyl-fc", 10.0, method="ive"), ["Prony", "'ive'"]),
     ("options twice", lambda: vcor.simulate("sls", 10.0, options={"method": "ive"}, rule="overlap"), ["not both"]),
     # --- fits ---------------------------------------------------------------------------------
@@ -149,7 +152,7 @@ def test_valid_inputs_that_were_refused_or_crashed():
     c = vcor.simulate(M.KelvinVoigt(15e6, 0.0), 10.0, case=1)
     assert a.ok and a.cor == b.cor == c.cor
     res = fit.fit({"model": "prony", "n_terms": 3, "domain": "frequency"}, _FREQ_ONLY)
-    ds = fit.result_dataset(res, _FREQ_ONLY, {})
+    ds = fits.result_dataset(res, _FREQ_ONLY, {})
     assert "t" not in ds.coords and np.all(np.isfinite(ds["tan_delta_rel_err"]))
     assert all(np.isfinite(v) for v in res.metrics.values())
 
@@ -161,6 +164,6 @@ def test_cached_geometries_and_options_keep_the_type_of_a_value():
     assert vcor.simulate("sls", 10.0, h=1, rigid=False).ok
     with pytest.raises(ValueError, match="h must be in"):
         vcor.simulate("sls", 10.0, h=True, rigid=False)
-    assert vcor.simulate("sls", 10.0, volterra=True).ok
+    assert vcor.simulate("sls", 10.0, method="direct", volterra=True).ok
     with pytest.raises(ValueError, match="volterra must be true or false"):
-        vcor.simulate("sls", 10.0, volterra=1)
+        vcor.simulate("sls", 10.0, method="direct", volterra=1)

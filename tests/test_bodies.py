@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor import bodies
+from vcor.contact import bodies
 from vcor import materials as M
-from vcor.scene import build_point, settings_of, validate_scene
+from vcor.study.scene import build_point, settings_of, validate_scene
 
 
 def _solve(sphere, plate, v0=10.0, method="adaptive", swept="sls"):
@@ -129,7 +129,7 @@ def test_scene_point_with_bodies():
     scene = {**SCENE, "solver": {"method": "direct"}}
     validate_scene("s", scene)
     settings = settings_of(scene)
-    material, _, geometry = build_point({"material": "sls", "v0": 10.0}, settings, "results/materials")
+    material, _, geometry = build_point({"material": "sls", "v0": 10.0}, settings)
     assert material.kind == "eq1" and geometry["plate_material"] == M.get("sls") and geometry["rho_a"] == 7800.0
     assert geometry["rho_b"] == 1100.0 and geometry["nu_plate"] == 0.5
 

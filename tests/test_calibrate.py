@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor import calibrate as C
+from vcor.fitting import calibrate as C
+from vcor.materials import Catalogue
 from vcor import materials as M
 
 TRUE = M.SLS(15e6, 300.0, 1200.0)
@@ -118,7 +119,7 @@ def test_bad_data_name_file_line_and_column(tmp_path, text, words):
 def test_bad_calibration_specs_name_the_key(tmp_path, free, words):
     spec = {"data": str(_csv(tmp_path, "v0,cor\n1,0.5\n")), "material": "sls", "free": free}
     with pytest.raises(ValueError) as exc:
-        C.run_calibration(spec, where="calibrations.c")
+        C.run_calibration(spec, catalogue=Catalogue(), where="calibrations.c")
     for w in words:
         assert w in str(exc.value), (w, str(exc.value))
 
@@ -173,7 +174,7 @@ def test_ice_g_star_against_the_paper():
 def test_spheres_dataset_carries_the_ice_fits():
     """The spheres scene's dataset (figure spheres_ice) holds the same g* as fit_g_star; a fit that fails
     is stored with its status and message, not raised."""
-    from vcor import datasets
+    from vcor.study import datasets
 
     ds = datasets.spheres_dataset([0.5], rules=("overlap",), ice={"g_min_cm_s": 0.05, "g_max_cm_s": 5.0, "n": 21})
     g = np.geomspace(0.05, 5.0, 21)

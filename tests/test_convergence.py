@@ -4,8 +4,9 @@ import json
 
 import numpy as np
 
-from vcor import convergence, status
-from vcor.options import SolverOptions
+from vcor import status
+from vcor.study import convergence
+from vcor.solvers.options import SolverOptions
 
 
 def test_study_records_options_statuses_and_order_two():

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor import dma
+from vcor.fitting import dma
+from vcor.materials import shift as tts
 
 DATA = Path(__file__).resolve().parents[1] / "data/pyvisco"
 
@@ -66,7 +67,7 @@ def _synthetic(path, seed):
     f = np.geomspace(0.1, 100, 10)
     rows = ["f,E_stor,E_loss,T,Set", "Hz, MPa, MPa, C, -"]
     for k, T in enumerate(TEMPS):
-        es = TRUE.complex_modulus(2 * np.pi * f * 10 ** dma.wlf_log_aT(T, T_REF, C1, C2))
+        es = TRUE.complex_modulus(2 * np.pi * f * 10 ** tts.wlf_log_aT(T, T_REF, C1, C2))
         noise = 1 + 0.01 * rng.standard_normal((2, f.size))
         rows += [f"{fi:.17g},{e.real * n1 / 1e6:.17g},{e.imag * n2 / 1e6:.17g},{T},{k}" for fi, e, n1, n2 in zip(f, es, *noise)]
     path.write_text("\n".join(rows) + "\n")
@@ -78,15 +79,15 @@ def test_synthetic_prony_wlf_material_is_recovered(tmp_path, seed):
     """Issue 12 acceptance: five temperatures, 1 % noise: log shift factors within 0.1 of the true
     ones, and the COR at three temperatures within 1 % of the known material's."""
     sp = dma.superpose(_synthetic(tmp_path / "s.csv", seed), T_REF)
-    true = dma.wlf_log_aT(sp.T, T_REF, C1, C2)
+    true = tts.wlf_log_aT(sp.T, T_REF, C1, C2)
     assert np.max(np.abs(sp.log_aT - true)) <= 0.1, (sp.log_aT, true)
     c1, c2, _ = dma.wlf_fit(sp.T, sp.log_aT, T_REF)
     fit = dma.fit_master(sp)
     worst = 0.0
     for T in (0.0, 20.0, 40.0):
-        got = vcor.simulate(dma.shifted(fit.material, float(dma.wlf_log_aT(T, T_REF, c1, c2))), 1.0,
+        got = vcor.simulate(tts.time_shifted(fit.material, float(tts.wlf_log_aT(T, T_REF, c1, c2))), 1.0,
                             method="adaptive", rigid=True).cor
-        ref = vcor.simulate(dma.shifted(TRUE, float(dma.wlf_log_aT(T, T_REF, C1, C2))), 1.0,
+        ref = vcor.simulate(tts.time_shifted(TRUE, float(tts.wlf_log_aT(T, T_REF, C1, C2))), 1.0,
                             method="adaptive", rigid=True).cor
         worst = max(worst, abs(got / ref - 1))
     print(f"\nseed {seed}: shift error {np.max(np.abs(sp.log_aT - true)):.3f}, WLF C1 {c1:.2f} C2 {c2:.1f} K, "
@@ -135,16 +136,16 @@ def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
     smk(path, "--report", "report.html")
     assert "cor_temperature.png" in (path / "report.html").read_text(errors="replace")
     nc = path / "results/materials/measured.nc"
-    shift = dma.shift_from_file(nc)
+    shift = tts.shift_from_file(nc)
     assert shift.model == "wlf" and abs(shift.C1 - C1) < 0.5
     mat = vcor.materials.from_file(nc)
     fit_ds = xr.open_dataset(nc)
     assert set(np.unique(fit_ds["T_set"].values)) == set(np.unique(dma.read_table(path / "data/dma.csv").columns["T"]))
     ds = xr.open_dataset(path / "results/temp/sweep.nc")
     for T in (0.0, 20.0, 40.0):
-        want = vcor.simulate(dma.shifted(mat, shift.log_aT(T)), 1.0, method="adaptive", rigid=True).cor
+        want = vcor.simulate(tts.time_shifted(mat, shift.log_aT(T)), 1.0, method="adaptive", rigid=True).cor
         assert ds["cor"].sel(material="measured", v0=1.0, T=T).item() == want
-        true = vcor.simulate(dma.shifted(TRUE, float(dma.wlf_log_aT(T, T_REF, C1, C2))), 1.0, method="adaptive",
+        true = vcor.simulate(tts.time_shifted(TRUE, float(tts.wlf_log_aT(T, T_REF, C1, C2))), 1.0, method="adaptive",
                              rigid=True).cor
         assert abs(want / true - 1) <= 0.01
 
@@ -155,7 +156,7 @@ def pyvisco_fits():
     data, and pyvisco's shipped shift factors."""
     import json
 
-    from vcor import fit
+    from vcor.fitting import fits
 
     class Fits(dict):
         residuals: dict
@@ -165,8 +166,8 @@ def pyvisco_fits():
     out = Fits()
     out.residuals = {}
     for name, extra in (("ours", {}), ("pyvisco", {"shift_file": str(DATA / "freq_user_master__shift_factors.csv")})):
-        result, _, attrs = fit.run_fit({"model": "prony", "data": {**data, **extra}})
-        out[name] = (result.material, dma.ShiftFunction.from_spec(json.loads(attrs["shift"])), result.metrics)
+        result, _, attrs = fits.run_fit({"model": "prony", "data": {**data, **extra}})
+        out[name] = (result.material, tts.ShiftFunction.from_spec(json.loads(attrs["shift"])), result.metrics)
         sup = json.loads(attrs["superposition"])
         out.residuals[name], out.T = sup["shift_fit_residual"], sup["T_degC"]
     return out
@@ -187,7 +188,7 @@ def test_pyvisco_cor_against_temperature(pyvisco_fits):
     for name, (mat, shift, met) in pyvisco_fits.items():
         for nu in (0.5, 0.35):
             for v0 in (1.0, 10.0):
-                rs = [vcor.simulate(dma.shifted(mat, shift.log_aT(t)), v0, method="adaptive", nu=nu, **geometry)
+                rs = [vcor.simulate(tts.time_shifted(mat, shift.log_aT(t)), v0, method="adaptive", nu=nu, **geometry)
                       for t in temps]
                 assert all(r.status == "ok" for r in rs), [r.message for r in rs]
                 cor[name, nu, v0] = np.array([r.cor for r in rs])
@@ -252,7 +253,7 @@ def test_pyvisco_loss_peak_temperature(pyvisco_fits):
         f_peak = f[np.argmax(e.imag / e.real)]
         stars = []
         for v0 in (1.0, 10.0):
-            r = vcor.simulate(dma.shifted(mat, shift.log_aT(100.0)), v0, method="adaptive", nu=0.5, r=0.01, case=3)
+            r = vcor.simulate(tts.time_shifted(mat, shift.log_aT(100.0)), v0, method="adaptive", nu=0.5, r=0.01, case=3)
             target = math.log10(f_peak * 2 * r.t0)
             lo = shift.valid_range()[0] + 1e-6
             T_star = brentq(lambda T, s=shift, y=target: s.log_aT(T) - y, max(lo, -50.0), 400.0)

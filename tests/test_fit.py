@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor import fit, io
+from vcor.fitting import fits
+from vcor.fitting import prony as fit
+from vcor.io import netcdf as io
 from vcor import materials as M
 
 
@@ -67,7 +69,7 @@ def test_fit_is_deterministic_bytes(tmp_path, data):
     for i in range(2):
         spec = {"model": "prony", "n_terms": "auto", "tol": 0.01}
         res = fit.fit(spec, data)
-        path = io.write_dataset(fit.result_dataset(res, data, spec), tmp_path / f"f{i}.nc", title="t",
+        path = io.write_dataset(fits.result_dataset(res, data, spec), tmp_path / f"f{i}.nc", title="t",
                                 command="test", timestamp=False)
         digests.append(hashlib.sha256(path.read_bytes()).hexdigest())
     assert digests[0] == digests[1]
@@ -75,10 +77,10 @@ def test_fit_is_deterministic_bytes(tmp_path, data):
 
 
 def test_expand_fits():
-    out = fit.expand_fits({"p-n{n}": {"model": "prony", "n_terms": [1, 3]}, "c": {"model": "cerf"}})
+    out = fits.expand_fits({"p-n{n}": {"model": "prony", "n_terms": [1, 3]}, "c": {"model": "cerf"}})
     assert set(out) == {"p-n1", "p-n3", "c"} and out["p-n3"]["n_terms"] == 3
     with pytest.raises(ValueError, match="needs a list"):
-        fit.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
+        fits.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
 
 
 #: README "Fitted materials" table: (max E(t), max |E*|, max tan delta) relative errors and the COR gap

@@ -10,7 +10,7 @@ from test_workflow import make_project, smk
 
 import vcor
 from vcor import cli
-from vcor.material_specs import from_spec
+from vcor.materials.specs import from_spec
 
 PRONY3 = vcor.materials.get("butyl-prony3")
 E_INF, MODULI, RATES = 10.421e6, [20.181e6, 38.204e6, 87.344e6], [972.0, 6426.0, 34221.0]
@@ -142,7 +142,7 @@ def test_workflow_refuses_a_bad_config_material(tmp_path):
 def test_the_cases_are_shortcuts_with_their_densities(case, sphere, plate):
     """Issue 12: the viscoelastic body has the polymer's density, a stiff elastic one steel's (cases 2
     and 4 used to take case 3's steel sphere and polymer plate); given densities still win."""
-    from vcor.impact import Geometry
+    from vcor.contact.impact import Geometry
 
     g = Geometry(case=case)
     assert (g.sphere_density, g.plate_density) == (sphere, plate)
@@ -162,15 +162,15 @@ T_CONFIG = {
 
 def test_temperature_axis_shifts_the_material(tmp_path):
     """Issue 12: a material with a shift function; T (deg C) as a grid axis, E(t; T) = E(t / a_T)."""
-    from vcor import dma
+    from vcor.materials import shift as tts
 
     path = make_project(tmp_path, T_CONFIG)
     smk(path, "-j2")
     ds = xr.open_dataset(path / "results/temp/sweep.nc")
     assert ds["T"].attrs["units"] == "degC"
-    shift = dma.ShiftFunction.from_spec(WLF)
+    shift = tts.ShiftFunction.from_spec(WLF)
     for T in (0.0, 20.0, 40.0):
-        mat = dma.shifted(PRONY3, shift.log_aT(T))
+        mat = tts.time_shifted(PRONY3, shift.log_aT(T))
         assert ds["cor"].sel(material="warm-prony", v0=10.0, T=T).item() == vcor.simulate(mat, 10.0, method="adaptive").cor
     assert ds["cor"].sel(material="warm-prony", v0=10.0, T=20.0).item() == vcor.simulate(PRONY3, 10.0, method="adaptive").cor
     # colder is stiffer-and-slower: the curve moves, it is not the same number
@@ -195,11 +195,13 @@ def test_temperature_axis_errors_name_the_key(tmp_path, change, words):
 
 
 def test_a_changed_shift_function_changes_the_identity():
-    from vcor import shards
+    from vcor.materials import Catalogue
 
     other = {**T_CONFIG["materials"]["warm-prony"], "shift": {**WLF, "C1": 9.0}}
-    a = shards.material_identity("warm-prony", materials=T_CONFIG["materials"])
-    b = shards.material_identity("warm-prony", materials={"warm-prony": other})
+    a = Catalogue(specs=T_CONFIG["materials"]).identity("warm-prony")
+    b = Catalogue(specs={"warm-prony": other}).identity("warm-prony")
     assert a != b
-    with pytest.raises(ValueError, match="materials.f.shift: temperature shifting is implemented for prony"):
-        from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": WLF}, name="f")
+    # every model shifts (one time-temperature scaling, vcor.materials.Material.scaled)
+    assert from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": WLF}, name="f").kind == "fractional"
+    with pytest.raises(ValueError, match="materials.f.shift.C2"):
+        from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": {**WLF, "C2": -1.0}}, name="f")

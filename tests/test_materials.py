@@ -152,3 +152,21 @@ def test_scalar_modulus_against_mpmath(name):
 def test_scalar_modulus_at_zero():
     assert M.FractionalPower(E0=1e6, E1=2e5).modulus_at(0.0) == math.inf
     assert M.FractionalPower(E0=1e6, E1=0.0).modulus_at(0.0) == 1e6
+
+
+@pytest.mark.parametrize("name", sorted(M.PRESETS))
+def test_scaled_is_the_time_temperature_scaling_of_every_model(name):
+    """E_new(t) = m E(t / a) and E*_new(omega) = m E*(a omega): one scaling for every model (the
+    temperature shift with a = a_T, calibration's modulus_scale and log_aT)."""
+    mat, m, a = M.get(name), 2.5, 10.0**0.7
+    new = mat.scaled(m, a)
+    t, w = np.geomspace(1e-7, 1e-1, 25), np.geomspace(1e1, 1e7, 25)
+    assert new.kind == mat.kind
+    np.testing.assert_allclose(new.relaxation_modulus(t), m * mat.relaxation_modulus(t / a), rtol=1e-13)
+    np.testing.assert_allclose(new.complex_modulus(w), m * mat.complex_modulus(a * w), rtol=1e-13)
+    assert new.viscosity == pytest.approx(m * a * mat.viscosity, rel=1e-14)
+    assert mat.scaled() is mat
+    eq1 = M.EqOne(mat if mat.viscosity == 0 else M.get("sls"), 1.2, M.get("butyl-prony3"), 1.3)
+    np.testing.assert_allclose(eq1.scaled(m, a).relaxation_modulus(t), m * eq1.relaxation_modulus(t / a), rtol=1e-13)
+    with pytest.raises(ValueError, match="time must be in"):
+        mat.scaled(1.0, 0.0)

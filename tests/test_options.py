@@ -1,5 +1,5 @@
-"""One table of solver options (README, "Solver options"): the workflow's JSON schema, the CLI and
-``simulate`` take their defaults and allowed values from ``vcor.options.SolverOptions``."""
+"""One table of solver options: the workflow's JSON schema, the CLI and ``simulate`` take their
+defaults and allowed values from ``vcor.solvers.options.SolverOptions``."""
 
 import dataclasses
 from pathlib import Path
@@ -9,7 +9,7 @@ import yaml
 
 import vcor
 from vcor import cli
-from vcor.options import BOOLEAN_OPTIONS, SWEEP_METHOD, SolverOptions, solver_options
+from vcor.solvers.options import BOOLEAN_OPTIONS, DEFAULT_METHOD, SolverOptions, solver_options
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text())
@@ -25,8 +25,8 @@ def test_schema_default_and_enum_match_the_dataclass(name):
     field = {f.name: f for f in dataclasses.fields(SolverOptions)}[name]
     entry = SOLVER[name]
     # the schema's default is the dataclass field's default (None <-> null: "not set"); a scene's
-    # method defaults to SWEEP_METHOD
-    assert entry["default"] == (SWEEP_METHOD if name == "method" else field.default), name
+    # method defaults to DEFAULT_METHOD
+    assert entry["default"] == (DEFAULT_METHOD if name == "method" else field.default), name
     allowed = SolverOptions.allowed_of(name)
     if allowed is not None:
         expected = list(allowed) + ([None] if field.default is None else [])
@@ -41,12 +41,18 @@ def test_schema_default_and_enum_match_the_dataclass(name):
 def test_schema_bounds_match_the_dataclass():
     assert SOLVER["steps_per_contact"]["minimum"] == 10 and SOLVER["max_steps"]["minimum"] == 100
     for name, bad, good in [("steps_per_contact", 9, 10), ("max_steps", 99, 100)]:
-        SolverOptions(**{name: good})
+        SolverOptions(method="direct", **{name: good})
         with pytest.raises(ValueError, match=name):
-            SolverOptions(**{name: bad})
+            SolverOptions(method="direct", **{name: bad})
     assert (SOLVER["ghost"]["minimum"], SOLVER["ghost"]["maximum"]) == (0, 10)
     SolverOptions(ghost=0.0), SolverOptions(ghost=10.0)
-    assert SOLVER["rtol"]["exclusiveMinimum"] == 0 and SOLVER["rtol"]["exclusiveMaximum"] == 1
+    assert SOLVER["rtol"]["minimum"] == 1e-13 and SOLVER["rtol"]["exclusiveMaximum"] == 1
+    SolverOptions(method="ive", rtol=1e-13)
+    with pytest.raises(ValueError, match=r"rtol must be in \[1e-13, 1\)"):
+        SolverOptions(method="ive", rtol=1e-20)  # scipy would clamp it with a warning
+    assert SOLVER["soe_tol"]["minimum"] == 1e-15 and SOLVER["soe_tol"]["exclusiveMaximum"] == 0.01
+    with pytest.raises(ValueError, match=r"soe_tol must be in \[1e-15, 0.01\)"):
+        SolverOptions(soe_tol=1e-300)
     assert SOLVER["dt"]["exclusiveMinimum"] == 0
 
 
@@ -89,17 +95,20 @@ def test_an_option_the_method_ignores_is_an_error_naming_it(method, option, valu
 
 
 def test_defaults_are_filled_for_the_method_and_unused_options_stay_unset():
-    d = SolverOptions().to_dict()
+    d = SolverOptions().to_dict()  # the default method, adaptive
+    assert d["method"] == "adaptive" and d["step_tol"] == 3e-4 and d["richardson"] is True and d["soe_tol"] == 1e-10
+    assert d["dt"] is None and d["steps_per_contact"] is None and d["form"] is None and d["rtol"] is None
+    d = SolverOptions(method="direct").to_dict()
     assert d["dt"] is None and d["steps_per_contact"] == 2000 and d["max_steps"] == 200_000 and d["form"] == "a"
-    assert d["rtol"] is None and d["ive_method"] is None and d["c2"] is None
+    assert d["rtol"] is None and d["ive_method"] is None and d["c2"] is None and d["step_tol"] is None
     i = SolverOptions(method="ive").to_dict()
     assert i["rtol"] == 1e-10 and i["ive_method"] == "Radau" and i["steps_per_contact"] is None and i["form"] is None
-    assert SolverOptions(volterra=True).c2 == 1.0
+    assert SolverOptions(method="direct", volterra=True).c2 == 1.0
     # the O(N) methods get a larger step budget (their cost is linear in the steps)
     assert SolverOptions(method="soe").max_steps == SolverOptions(method="ive-numba").max_steps == 4_000_000
-    assert SolverOptions(method="soe").soe_tol == 1e-10 and SolverOptions().soe_tol is None
+    assert SolverOptions(method="soe").soe_tol == 1e-10 and SolverOptions(method="direct").soe_tol is None
     # replace switches method and drops what the new one does not use
-    assert SolverOptions(dt=1e-7).replace(method="ive").dt is None
+    assert SolverOptions(method="direct", dt=1e-7).replace(method="ive").dt is None
     with pytest.raises(dataclasses.FrozenInstanceError):
         SolverOptions().dt = 1.0
     with pytest.raises(TypeError):

@@ -11,7 +11,7 @@ from scipy.integrate import solve_ivp
 
 import vcor
 from vcor import materials as M
-from vcor.solvers.simulate import make_impact
+from vcor.contact.impact import make_impact
 
 
 def zener_cor(lam):
@@ -75,7 +75,7 @@ def test_invariants_random_prony():
               suppress_health_check=[HealthCheck.too_slow])
     @given(material=prony, geom=geometry, v0=st.floats(0.1, 50.0))
     def check(material, geom, v0):
-        r = vcor.simulate(material, v0, **geom)
+        r = vcor.simulate(material, v0, method="direct", **geom)
         outcomes[r.status] += 1
         if r.status == "step-budget":
             print(f"\nflagged: {material}, {geom}, v0 = {v0}: {r.message}")
@@ -93,12 +93,17 @@ def test_invariants_random_prony():
         ive = vcor.simulate(material, v0, method="ive", rtol=1e-9, **geom)
         assert ive.status == "ok", ive.message
         worst["direct - ive"] = max(worst["direct - ive"], abs(ive.cor - r.cor))
-        assert abs(ive.cor - r.cor) < 2e-6  # README "Stability": direct = ive to 2e-6
+        assert abs(ive.cor - r.cor) < 2e-6  # direct = ive to 2e-6 (docs, "Validation")
+        fast = vcor.simulate(material, v0, **geom)  # the default method, adaptive
+        assert fast.status == "ok", fast.message
+        worst["adaptive - ive"] = max(worst["adaptive - ive"], abs(ive.cor - fast.cor))
+        worst["adaptive energy_residual"] = max(worst["adaptive energy_residual"], abs(fast.energy_residual))
+        assert abs(ive.cor - fast.cor) < 5e-6  # adaptive = ive to 5e-6 (docs, "Validation")
+        assert abs(fast.energy_residual) < 1e-6  # not an identity on a variable grid (docs, "Numerics")
 
-    worst = {"energy_residual": 0.0, "direct - ive": 0.0}
+    worst = {"energy_residual": 0.0, "direct - ive": 0.0, "adaptive - ive": 0.0, "adaptive energy_residual": 0.0}
     check()
-    print(f"\nrandom Prony examples: {dict(outcomes)}; largest |energy residual| {worst['energy_residual']:.1e}, "
-          f"|COR direct - ive| {worst['direct - ive']:.1e}")
+    print(f"\nrandom Prony examples: {dict(outcomes)}; largest " + ", ".join(f"|{k}| {v:.1e}" for k, v in worst.items()))
     assert sum(outcomes.values()) >= N_EXAMPLES  # every example ran (none filtered away)
     assert outcomes["step-budget"] <= MAX_FLAGGED
     assert set(outcomes) <= {"ok", "step-budget"}
@@ -109,7 +114,7 @@ def test_stiff_prony_found_by_hypothesis():
     numerical Jacobian overflowed in Radau; the solution itself is fine and matches direct."""
     m = M.Prony(10421000.0, (999999999.9999999,), (172015.88059577186,))
     g = dict(r=0.026023144776597902, rho_a=4357.0, rho_b=500.0, h=0.01171875, nu=0.0)
-    d = vcor.simulate(m, 11.0, **g)
+    d = vcor.simulate(m, 11.0, method="direct", **g)
     i = vcor.simulate(m, 11.0, method="ive", **g)
     assert d.ok and i.ok
     assert abs(d.cor - i.cor) < 1e-6

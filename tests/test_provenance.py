@@ -16,7 +16,10 @@ import xarray as xr
 import yaml
 
 import vcor
-from vcor import aggregation, provenance, runner, scene, shards
+from vcor import provenance
+from vcor.materials import Catalogue
+from vcor.materials.catalogue import content_hash
+from vcor.study import aggregation, runner, scene, shards
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = {"materials": ["sls"], "grid": {"v0": [2.0, 10.0]}, "shard_size": 1}
@@ -76,8 +79,8 @@ def test_changed_code_recomputes_the_shards_and_the_aggregate_carries_one_finger
     ds = xr.open_dataset(path / TARGET)
     assert ds.attrs["code_fingerprint"] == second and second in ds.attrs["source"]
     # every shard the new plan uses carries the new fingerprint; the stale ones are not inputs
-    new = sorted((path / "results/tiny/shards").glob(f"{shards.content_hash({**_settings(), 'code': second}, 10)}-*.nc"))
-    old = sorted((path / "results/tiny/shards").glob(f"{shards.content_hash({**_settings(), 'code': first}, 10)}-*.nc"))
+    new = sorted((path / "results/tiny/shards").glob(f"{content_hash({**_settings(), 'code': second}, 10)}-*.nc"))
+    old = sorted((path / "results/tiny/shards").glob(f"{content_hash({**_settings(), 'code': first}, 10)}-*.nc"))
     assert len(new) == 2 and len(old) == 2
     assert {xr.open_dataset(p).attrs["code_fingerprint"] for p in new} == {second}
     assert {xr.open_dataset(p).attrs["code_fingerprint"] for p in old} == {first}
@@ -92,7 +95,7 @@ def _shard(code):
     pts = [{**p, "material_id": "x"} for p in scene.scene_points(SCENE)]
     ds = runner.run_points(pts, _settings())
     ds.attrs["code_fingerprint"] = code
-    ds.attrs["materials"] = json.dumps({"sls": scene.resolve_material("sls").to_dict()})
+    ds.attrs["materials"] = json.dumps({"sls": vcor.materials.get("sls").to_dict()})
     return ds
 
 
@@ -106,7 +109,7 @@ def test_aggregate_refuses_shards_of_different_code():
 
 def test_aggregate_refuses_changed_material_parameters():
     ds = _shard(provenance.code_fingerprint())
-    p = scene.resolve_material("sls").to_dict()
+    p = vcor.materials.get("sls").to_dict()
     p["E0"] = p.get("E0", 1.0) * 1.01
     ds.attrs["materials"] = json.dumps({"sls": p})
     with pytest.raises(ValueError, match="material 'sls'"):
@@ -114,15 +117,15 @@ def test_aggregate_refuses_changed_material_parameters():
 
 
 def test_shard_identity_covers_code_material_content_and_options():
-    ident = {"sls": shards.material_identity("sls")}
+    ident = {"sls": Catalogue().identity("sls")}
     base = shards.plan_shards(SCENE, "/nonexistent", 1, ident)
     # a material's identity is its content, not its name
-    assert shards.material_identity("sls") == shards.content_hash({"material": scene.resolve_material("sls").to_dict()})
-    assert shards.material_identity("sls") != shards.material_identity("butyl-prony3")
+    assert Catalogue().identity("sls") == content_hash({"material": vcor.materials.get("sls").to_dict()})
+    assert Catalogue().identity("sls") != Catalogue().identity("butyl-prony3")
     # another fit spec, another identity (the fitted parameters follow from it)
     fits = {"f": {"model": "prony", "n_terms": 3}}
-    a = shards.material_identity("f", fits=fits)
-    b = shards.material_identity("f", fits={"f": {"model": "prony", "n_terms": 4}})
+    a = Catalogue(fits=fits).identity("f")
+    b = Catalogue(fits={"f": {"model": "prony", "n_terms": 4}}).identity("f")
     assert a != b
     # another material content: other shard names; other solver options: other shard names
     other = shards.plan_shards(SCENE, "/nonexistent", 1, {"sls": "another-content"})

@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 import vcor
 from vcor import materials as M
 from vcor.solvers.common import richardson
-from vcor.solvers.simulate import make_impact
+from vcor.contact.impact import make_impact
 
 
 def rel(a, b):
@@ -47,8 +47,8 @@ def test_butyl_fractional_paper_section7():
 @pytest.mark.parametrize("v0", [1.0, 10.0, 30.0])
 def test_direct_ive_and_forms_agree(name, v0):
     """The paper's "identical results" claim, as numbers: all four within 1e-6 in COR."""
-    a = vcor.simulate(name, v0)
-    b = vcor.simulate(name, v0, form="b")
+    a = vcor.simulate(name, v0, method="direct")
+    b = vcor.simulate(name, v0, method="direct", form="b")
     c = vcor.simulate(name, v0, method="ive")
     d = vcor.simulate(name, v0, method="ive-numba")
     for other in (b, c, d):
@@ -61,7 +61,7 @@ def test_direct_ive_and_forms_agree(name, v0):
 def _observed_orders(name, v0, ref=None):
     tc = make_impact(name, v0, {}).contact_time_estimate()
     ns = np.array([250, 500, 1000, 2000])
-    cors = np.array([vcor.simulate(name, v0, dt=tc / n).cor for n in ns])
+    cors = np.array([vcor.simulate(name, v0, method="direct", dt=tc / n).cor for n in ns])
     if ref is None:  # differences of successive refinements
         err = np.abs(np.diff(cors))
         h = 1.0 / ns[1:]
@@ -93,7 +93,7 @@ def test_convergence_order_fractional_kernel():
 def test_energy_residual_small(name):
     """README "Numerics": the energy residual (kinetic energy lost - hysteresis - work into the plate,
     relative) is ~1e-11 (measured 2.0e-11 .. 3.3e-11 at v0 = 10)."""
-    r = vcor.simulate(name, 10.0)
+    r = vcor.simulate(name, 10.0, method="direct")
     print(f"\n{name}: energy residual {r.energy_residual:.2e}")
     assert abs(r.energy_residual) < 1e-10
     assert r.w_h > 0 and r.w_plate > 0
@@ -113,8 +113,8 @@ VOLTERRA_EFFECT = {"sls": 1.0e-5, "butyl-fc": 6.3e-6, "butyl-prony3": 7.3e-6}
 @pytest.mark.parametrize("name", sorted(VOLTERRA_EFFECT))
 def test_volterra_effect_sizes(name):
     """The README's effect sizes, to a tolerance that catches a factor of two (or a wrong sign)."""
-    off = vcor.simulate(name, 10.0)
-    on = vcor.simulate(name, 10.0, volterra=True)
+    off = vcor.simulate(name, 10.0, method="direct")
+    on = vcor.simulate(name, 10.0, method="direct", volterra=True)
     assert on.status == "ok"
     change = on.cor - off.cor
     print(f"\n{name:14s} COR off {off.cor:.8f} on {on.cor:.8f} change {change:+.2e}")
@@ -126,7 +126,7 @@ def test_volterra_effect_sizes(name):
 def test_volterra_against_separable_ive(name, c2):
     """For Prony kernels the Volterra term is separable (G_inf u^2 + sum Q_k^2/G_k): an
     independent check of the O(N^2) running auto-convolution."""
-    a = vcor.simulate(name, 10.0, volterra=True, c2=c2)
+    a = vcor.simulate(name, 10.0, method="direct", volterra=True, c2=c2)
     b = vcor.simulate(name, 10.0, method="ive", volterra=True, c2=c2)
     assert abs(a.cor - b.cor) < 1e-6
 
@@ -145,7 +145,7 @@ def test_volterra_elastic_closed_form():
     ev.terminal, ev.direction = True, -1
     sol = solve_ivp(rhs, (0, 0.01), [0.0, v0], events=ev, rtol=1e-12, atol=1e-15, method="DOP853")
     vout = sol.y_events[0][0][1]
-    r = vcor.simulate("elastic", 10.0, rigid=True, volterra=True, c2=c2)
+    r = vcor.simulate("elastic", 10.0, method="direct", rigid=True, volterra=True, c2=c2)
     assert abs(r.cor - 1.0) < 1e-6  # still conservative
     assert rel(r.t0, sol.t_events[0][0]) < 1e-6
     assert abs(vout / v0 + 1) < 1e-9
@@ -236,8 +236,8 @@ def test_fractional_cor_against_converged_prony_with_ive(v0):
     t = np.geomspace(1e-10, 1e-1, 60)
     kernel_err = np.max(np.abs(soe.relaxation_modulus(t) / frac.relaxation_modulus(t) - 1))
     assert len(soe.beta) >= 20 and kernel_err < 1e-6
-    a = vcor.simulate(frac, v0, steps_per_contact=8000)
-    b = vcor.simulate(frac, v0, steps_per_contact=16000)
+    a = vcor.simulate(frac, v0, method="direct", steps_per_contact=8000)
+    b = vcor.simulate(frac, v0, method="direct", steps_per_contact=16000)
     direct, err = richardson(a.cor, b.cor)
     oracle = vcor.simulate(soe, v0, method="ive", rtol=1e-12)
     assert oracle.ok, oracle.message

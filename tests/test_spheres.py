@@ -79,9 +79,11 @@ def test_dimensional_and_dimensionless_agree():
         b = S.b_group(**pair, g=g)
         # one direct run (2000 steps per contact) against the Richardson-extrapolated eps(b): the gap is
         # that run's discretisation error (3.9e-7, 5.6e-7), 16 times smaller at 4x the steps (second order)
-        coarse = abs(S.cor_spheres(**pair, g=g) - S.cor_numeric(b))
-        fine = abs(S.cor_spheres(**pair, g=g, steps_per_contact=8000) - S.cor_numeric(b))
+        coarse = abs(S.cor_spheres(**pair, g=g, options={"method": "direct"}) - S.cor_numeric(b))
+        fine = abs(S.cor_spheres(**pair, g=g, options={"method": "direct", "steps_per_contact": 8000}) - S.cor_numeric(b))
         assert coarse < 1e-6 and fine < coarse / 10, (coarse, fine)
+        # the default method (adaptive) is within its default accuracy of the dimensionless eps
+        assert abs(S.cor_spheres(**pair, g=g) - S.cor_numeric(b)) < 1e-6
     wall = dict(R1=0.01, R2=math.inf, m1=0.03, m2=math.inf, E=1e7, nu=0.3, A=2e-5)
     assert abs(S.cor_spheres(**wall, g=2.0, rule="force") - S.cor_numeric(S.b_group(**wall, g=2.0), "force")) < 1e-6
 

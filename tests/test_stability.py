@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 import yaml
 
-from vcor import runner, scene, status
+from vcor import status
+from vcor.study import runner, scene
 
 CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config.yaml").read_text())
 SCENES = {k: v for k, v in CONFIG["scenes"].items() if k.startswith("stability-")}

@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor import datasets, runner, scene, status
-from vcor.impact import Impact
+from vcor import status
+from vcor.study import datasets, runner, scene
+from vcor.contact.impact import Impact
 
 SCENE = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}}
 
@@ -30,7 +31,7 @@ def test_ok():
 
 
 def test_step_budget_is_not_no_separation():
-    r = vcor.simulate("sls", 10.0, max_steps=500)
+    r = vcor.simulate("sls", 10.0, method="direct", max_steps=500)
     assert r.status == "step-budget" and not r.ok
     assert "step budget" in r.message and "T_max" in r.message and math.isnan(r.cor)
 
@@ -54,7 +55,7 @@ def test_diverged(monkeypatch):
         return np.where(np.asarray(t) > 2e-4, np.nan, a)
 
     monkeypatch.setattr(Impact, "alpha", poisoned)
-    r = vcor.simulate("sls", 10.0, dt=1e-6)
+    r = vcor.simulate("sls", 10.0, method="direct", dt=1e-6)
     assert r.status == "diverged" and "non-finite" in r.message and "step" in r.message
 
 
@@ -93,7 +94,7 @@ def test_a_failing_error_estimate_has_its_own_status():
 
 def test_failed_history_is_nan_with_its_status_and_rule_is_honoured():
     runs = [("sls", "direct"), ("butyl-fc", "ive"), ("sls", "ive")]
-    ds = datasets.histories_dataset(runs, 10.0, options={"max_steps": 1000})
+    ds = datasets.histories_dataset(runs, 10.0, options={"method": "direct", "max_steps": 1000})
     names = [status.STATUS_NAMES[int(c)] for c in ds["status"].values]
     assert names == ["step-budget", "invalid-input", "ok"]
     assert "Prony" in str(ds["message"].values[1])

@@ -12,7 +12,8 @@ import xarray as xr
 import yaml
 
 import vcor
-from vcor import shards
+from vcor.materials import Catalogue
+from vcor.study import shards
 
 ROOT = Path(__file__).resolve().parents[1]
 SNAKEMAKE = [sys.executable, "-m", "snakemake"]
@@ -138,7 +139,7 @@ def test_failed_point_kept_with_status(tiny_run):
     ds = xr.open_dataset(tiny_run / "results/thin/sweep.nc")
     st = ds["status"].sel(material="sls", v0=10.0)
     assert st.sel(h=0.02).item() == 0
-    assert st.sel(h=0.002).item() == vcor.solvers.STATUS_CODES["step-budget"]
+    assert st.sel(h=0.002).item() == vcor.status.STATUS_CODES["step-budget"]
     assert np.isnan(ds["cor"].sel(material="sls", v0=10.0, h=0.002).item())
     assert "T_max" in str(ds["message"].sel(material="sls", v0=10.0, h=0.002).values)
     assert ds["cor"].sel(material="sls", v0=10.0, h=0.02).item() > 0
@@ -173,7 +174,7 @@ def test_noop_rerun_and_extension_recomputes_only_new_points(tiny_run, tmp_path)
         out = smk(tiny_run, "-n", "-j1", "--quiet", "rules")
         text = out.stdout + out.stderr
         # 2 new points (2 beta at v0 = 20) -> 1 new shard; old shards untouched
-        ids = {"sls": shards.material_identity("sls")}
+        ids = {"sls": Catalogue().identity("sls")}
         plan = shards.plan_shards(cfg["scenes"]["tiny"], tiny_run / "results/tiny/shards", 3, ids)
         new = [k for k in plan if not (tiny_run / f"results/tiny/shards/{k}.nc").exists()]
         assert len(new) == 1 and sum(len(plan[k]) for k in new) == 2

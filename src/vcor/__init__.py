@@ -1,17 +1,23 @@
 """vcor: the viscoelastic coefficient of restitution (Green 2026; Ramirez et al. 1999).
 
+The public surface: :func:`simulate` (one impact, method ``adaptive`` by default), :class:`Result`,
+:class:`SolverOptions`, and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
+:mod:`~vcor.solvers`, :mod:`~vcor.fitting`, :mod:`~vcor.study`, :mod:`~vcor.io`, :mod:`~vcor.plots`
+and the modules :mod:`~vcor.spheres` and :mod:`~vcor.status`.
+
 Names are loaded on first use (PEP 562), so that a process that only draws figures or fits a
 material does not import the numba solvers (workflow jobs start faster).
 """
 
 from importlib import import_module
 
-__version__ = "0.1.0"
+from .version import __version__
+
 __all__ = ["Result", "SolverOptions", "__version__", "materials", "simulate"]
 
-_NAMES = {"Result": "vcor.solvers", "simulate": "vcor.solvers", "SolverOptions": "vcor.options"}
-_MODULES = ("checks", "cli", "convergence", "datasets", "fit", "impact", "io", "materials", "options", "plots",
-            "provenance", "runner", "scene", "shards", "soe", "solvers", "spheres", "status")
+_NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options"}
+_SUBMODULES = ("checks", "cli", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers", "spheres",
+               "status", "study")
 
 
 def __getattr__(name):
@@ -19,6 +25,6 @@ def __getattr__(name):
         value = getattr(import_module(_NAMES[name]), name)
         globals()[name] = value  # loaded once: later look-ups do not come here (~1 us per vcor.simulate call)
         return value
-    if name in _MODULES:
+    if name in _SUBMODULES:
         return import_module(f"vcor.{name}")
     raise AttributeError(f"module 'vcor' has no attribute {name!r}")

@@ -7,9 +7,9 @@ import json
 import sys
 
 from . import materials
-from .impact import GEOMETRY_DEFAULTS
-from .options import BOOLEAN_OPTIONS, OPTION_HELP, SolverOptions
-from .solvers import simulate
+from .contact.impact import GEOMETRY_DEFAULTS
+from .solvers.options import BOOLEAN_OPTIONS, OPTION_HELP, SolverOptions
+from .solvers.simulate import simulate
 from .solvers.common import UNITS
 
 _INTEGER_OPTIONS = ("steps_per_contact", "max_steps", "max_adaptive_steps")
@@ -57,7 +57,7 @@ def _config_material(path, name):
 
     import yaml
 
-    from .material_specs import from_spec
+    from .materials.specs import from_spec
 
     path = Path(path)
     if not path.is_file():

@@ -2,7 +2,7 @@
 
 ``code_fingerprint()`` is a short hash of everything in the installed package that can change a
 number in a dataset: the vcor version, the source of every module except the drawing and
-command-line ones (``plots.py``, ``cli.py``), and the versions of numpy, scipy and numba. It enters
+command-line ones (the ``plots`` subpackage, ``cli.py``), and the versions of numpy, scipy and numba. It enters
 the identity of every sweep shard and the parameters of every computing workflow rule, so a
 change of code recomputes what it may have changed (and ``snakemake -n`` lists it), and an
 aggregate never combines results of different code. ``plots_fingerprint()`` does the same for the
@@ -21,7 +21,8 @@ __all__ = ["code_fingerprint", "git_commit", "plots_fingerprint", "source"]
 
 _PACKAGE = Path(__file__).resolve().parent
 #: modules that draw or parse arguments but compute no stored number
-_NOT_COMPUTING = {"plots.py", "cli.py"}
+_PLOTS = _PACKAGE / "plots"
+_CLI = _PACKAGE / "cli.py"
 
 
 def _hash_files(paths) -> hashlib._Hash:
@@ -38,9 +39,9 @@ def code_fingerprint() -> str:
     workflow's aggregate jobs, which do not solve, ~0.3 s each)."""
     from importlib.metadata import version
 
-    from . import __version__
+    from .version import __version__
 
-    files = [p for p in _PACKAGE.rglob("*.py") if p.name not in _NOT_COMPUTING]
+    files = [p for p in _PACKAGE.rglob("*.py") if p != _CLI and _PLOTS not in p.parents]
     h = _hash_files(files)
     h.update(f"vcor {__version__}; numpy {version('numpy')}; scipy {version('scipy')}; "
              f"numba {version('numba')}".encode())
@@ -49,8 +50,8 @@ def code_fingerprint() -> str:
 
 @functools.lru_cache(maxsize=1)
 def plots_fingerprint() -> str:
-    """16 hex digits identifying the figure code (``plots.py``)."""
-    return _hash_files([_PACKAGE / "plots.py"]).hexdigest()[:16]
+    """16 hex digits identifying the figure code (the ``plots`` subpackage)."""
+    return _hash_files(_PLOTS.glob("*.py")).hexdigest()[:16]
 
 
 @functools.lru_cache(maxsize=1)
@@ -69,6 +70,6 @@ def git_commit() -> str:
 
 def source() -> str:
     """The CF ``source`` attribute: vcor version, code fingerprint and git commit."""
-    from . import __version__
+    from .version import __version__
 
     return f"vcor {__version__} (code {code_fingerprint()}, git {git_commit()})"

@@ -25,9 +25,9 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import gamma
 
-from . import materials as _materials
+from .materials import models as _materials
 from .checks import positive
-from .solvers import simulate
+from .solvers.simulate import simulate
 from .solvers.common import richardson
 
 __all__ = [
@@ -229,14 +229,15 @@ def g_star(*, R1, R2, m1, m2, E, nu, A):
     return (C1_CLOSED_FORM * 1.5 * positive("A", A) * (rho / m_eff) ** 0.4) ** -5
 
 
-def cor_spheres(*, R1, R2, m1, m2, E, nu, A, g, rule="overlap", steps_per_contact=2000):
+def cor_spheres(*, R1, R2, m1, m2, E, nu, A, g, rule="overlap", options=None):
     """eps of a dimensional sphere pair, solved directly with vcor.simulate: Kelvin-Voigt E, tau = A;
     one material for both bodies (case 2, E' = E/(2(1 - nu^2))); the two-body problem reduced to
-    m_eff and R_eff on an immovable target (alpha = 0). Units: m, kg, Pa, s, m/s."""
+    m_eff and R_eff on an immovable target (alpha = 0). ``options``: further solver options (default
+    method ``adaptive``). Units: m, kg, Pa, s, m/s."""
     r_eff, m_eff, _ = _pair(R1, R2, m1, m2, E, nu)
     if not (A >= 0):
         raise ValueError(f"A must be >= 0 s, got {A!r}")
-    res = simulate(_materials.KelvinVoigt(E, A), positive("g", g), rule=rule, steps_per_contact=steps_per_contact,
+    res = simulate(_materials.KelvinVoigt(E, A), positive("g", g), options={"rule": rule, **(options or {})},
                    r=r_eff, rho_a=m_eff / (4.0 / 3.0 * math.pi * r_eff**3), nu=nu, case=2, rigid=True)
     if res.status != "ok":
         raise SolverFailure(res.status, res.message)

@@ -1,5 +1,4 @@
-# Calibrations from measured COR (vcor.calibrate): the full record and the calibrated material.
-import os
+# Calibrations from measured COR (vcor.fitting.calibrate): the full record and the calibrated material.
 
 
 rule calibrate:
@@ -13,12 +12,12 @@ rule calibrate:
     benchmark:
         "results/calibrations/benchmarks/{cal}.tsv"
     wildcard_constraints:
-        cal="|".join(re.escape(c) for c in sorted(CALIBRATIONS)) or "no-calibration",
+        cal="|".join(re.escape(c) for c in sorted(CATALOGUE.calibrations))
+        or "no-calibration",
     params:
         code=CODE,
         spec=get_calibration_spec,
-        # a named start material is read from the folder the calibrated material is written to
-        material_dir=lambda wildcards, output: os.path.dirname(output.material),
+        catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/calibrate.py"
 
@@ -36,7 +35,8 @@ rule calibration_figure:
     log:
         "results/calibrations/logs/{cal}.figure.log",
     wildcard_constraints:
-        cal="|".join(re.escape(c) for c in sorted(CALIBRATIONS)) or "no-calibration",
+        cal="|".join(re.escape(c) for c in sorted(CATALOGUE.calibrations))
+        or "no-calibration",
     params:
         plots_code=PLOTS_CODE,
     script:

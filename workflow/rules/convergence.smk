@@ -3,7 +3,7 @@
 
 rule convergence_case:
     input:
-        materials=get_fitted_inputs,
+        materials=get_material_files,
     output:
         "results/{scene}/convergence/{material_case}.nc",
     log:
@@ -16,7 +16,7 @@ rule convergence_case:
         code=CODE,
         material="{material_case}",
         v0=get_convergence_v0s,
-        material_dir=MATERIAL_DIR,
+        catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/convergence_case.py"
 

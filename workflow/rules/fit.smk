@@ -10,7 +10,7 @@ rule config_material:
     log:
         f"{MATERIAL_DIR}/logs/{{name}}.log",
     wildcard_constraints:
-        name="|".join(re.escape(m) for m in sorted(CONFIG_MATERIALS))
+        name="|".join(re.escape(m) for m in sorted(CATALOGUE.specs))
         or "no-config-material",
     params:
         code=CODE,

@@ -3,7 +3,7 @@
 
 rule sweep_shard:
     input:
-        materials=get_fitted_inputs,
+        materials=get_material_files,
     output:
         nc="results/{scene}/shards/{shard}.nc",
         index="results/{scene}/shards/{shard}.json",
@@ -17,7 +17,7 @@ rule sweep_shard:
     params:
         points=get_shard_points,
         settings=get_settings,
-        material_dir=MATERIAL_DIR,
+        catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/sweep_shard.py"
 
@@ -25,7 +25,7 @@ rule sweep_shard:
 rule aggregate:
     input:
         shards=get_shard_files,
-        materials=get_fitted_inputs,
+        materials=get_material_files,
     output:
         "results/{scene}/sweep.nc",
     log:
@@ -37,14 +37,14 @@ rule aggregate:
         identities=get_identities,
         code=CODE,
         scene=get_scene,
-        material_dir=MATERIAL_DIR,
+        catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/aggregate.py"
 
 
 rule moduli:
     input:
-        materials=get_fitted_inputs,
+        materials=get_material_files,
     output:
         "results/{scene}/moduli.nc",
     log:
@@ -54,14 +54,14 @@ rule moduli:
     params:
         code=CODE,
         materials=get_moduli_materials,
-        material_dir=MATERIAL_DIR,
+        catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/moduli.py"
 
 
 rule histories:
     input:
-        materials=get_fitted_inputs,
+        materials=get_material_files,
     output:
         "results/{scene}/histories.nc",
     log:
@@ -74,6 +74,6 @@ rule histories:
         code=CODE,
         histories=get_histories_spec,
         settings=get_settings,
-        material_dir=MATERIAL_DIR,
+        catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/histories.py"

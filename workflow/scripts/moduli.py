@@ -4,10 +4,13 @@ import sys
 
 sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
 
-from vcor import datasets, io, scene
+from vcor.io import netcdf
+from vcor.materials import Catalogue
+from vcor.study import datasets, scene
 
 names = list(snakemake.params.materials)  # noqa: F821
-ds = datasets.moduli_dataset(names, material_dir=snakemake.params.material_dir)  # noqa: F821
-attrs = {"materials": scene.material_params(names, snakemake.params.material_dir)}  # noqa: F821
-io.write_dataset(ds, snakemake.output[0], title="vcor material moduli", extra_attrs=attrs,  # noqa: F821
+catalogue = Catalogue(**snakemake.params.catalogue)  # noqa: F821
+ds = datasets.moduli_dataset(names, catalogue=catalogue)
+attrs = {"materials": scene.material_params(names, catalogue)}
+netcdf.write_dataset(ds, snakemake.output[0], title="vcor material moduli", extra_attrs=attrs,  # noqa: F821
                  command="snakemake rule moduli")

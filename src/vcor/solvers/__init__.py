@@ -1,8 +1,26 @@
-"""Impact solvers: ``direct`` (numba, any kernel), ``ive`` (scipy solve_ivp) and ``ive-numba``."""
+"""Impact solvers: one front end, :func:`simulate`, and a table of methods (``METHODS``).
 
-from ..options import SolverOptions
-from ..status import STATUS_CODES
-from .common import Histories, Result
-from .simulate import METHODS, default_dt, simulate
+``adaptive`` (the default) is the product-integration scheme on a variable grid with an
+exponential-sum history and Richardson extrapolation; the others are references chosen by name:
+``direct`` (full history, O(N^2), the paper's scheme), ``soe`` (fixed step, exponential-sum
+history), ``ive`` (internal variables, scipy ``solve_ivp``; Prony kernels), ``ive-numba`` (internal
+variables, fixed step; Prony kernels) and ``paper`` (an explicit baseline for benchmarks).
 
-__all__ = ["METHODS", "STATUS_CODES", "Histories", "Result", "SolverOptions", "default_dt", "simulate"]
+Names are loaded on first use (PEP 562): importing :mod:`vcor.solvers.options` alone does not
+import numba.
+"""
+
+from importlib import import_module
+
+__all__ = ["METHODS", "Histories", "Result", "SolverOptions", "simulate"]
+
+_NAMES = {"METHODS": "simulate", "simulate": "simulate", "Histories": "common", "Result": "common",
+          "SolverOptions": "options"}
+
+
+def __getattr__(name):
+    if name in _NAMES:
+        value = getattr(import_module(f"vcor.solvers.{_NAMES[name]}"), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'vcor.solvers' has no attribute {name!r}")

@@ -38,12 +38,12 @@ import time
 
 import numpy as np
 
-from ..soe import soe
+from ..materials.expsums import soe
 from . import _kernels as K
 from .common import OUTCOME, Result, separation_scalars
 from .march import N_EXTRA, Arrays, finish
 
-__all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "SEP_STEPS", "level_tables", "run_adaptive"]
+__all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "SEP_STEPS", "level_tables", "run_adaptive", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -58,6 +58,13 @@ MAX_HORIZON = 2.0**30
 INITIAL_SIZE = 2048
 #: the largest step is this fraction of the horizon
 MAX_STEP_FRACTION = 1.0 / 16.0
+
+
+def solve(impact, options, tc, history):
+    """Runner of method ``adaptive`` (``vcor.solvers.simulate.METHODS``)."""
+    return run_adaptive(impact, tc, step_tol=options.step_tol, max_steps=options.max_adaptive_steps,
+                        rule=options.rule, history=history, ghost=options.ghost, tol=options.soe_tol,
+                        extrapolate=options.richardson)
 
 
 @functools.lru_cache(maxsize=64)

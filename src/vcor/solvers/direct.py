@@ -13,12 +13,25 @@ import time
 import numpy as np
 
 from . import _kernels as K
-from .march import Arrays, drive, finish
+from .march import Arrays, drive, finish, step_plan
 
-__all__ = ["MAX_T_FACTOR", "folded_weights", "kernel_weights", "run_direct", "run_paper", "volterra_weights"]
+__all__ = ["folded_weights", "kernel_weights", "run_direct", "run_paper", "solve", "solve_paper", "volterra_weights"]
 
-#: T_max doubles from its start value (simulate.T_MAX_START contact times) up to this many contact times
-MAX_T_FACTOR = 32.0
+
+def solve(impact, options, tc, history):
+    """Runner of method ``direct`` (``vcor.solvers.simulate.METHODS``)."""
+    plan = step_plan(impact, options, tc, linear=False)
+    return run_direct(impact, plan.dt, plan.n_steps, max_steps=plan.max_steps, rule=options.rule,
+                      volterra=options.volterra, c2=options.c2 if options.volterra else 0.0, form=options.form,
+                      history=history, ghost=options.ghost)
+
+
+def solve_paper(impact, options, tc, history):
+    """Runner of method ``paper``, the explicit baseline (no histories)."""
+    if history:
+        raise ValueError("method 'paper' (benchmark baseline) has no history option")
+    plan = step_plan(impact, options, tc, linear=False)
+    return run_paper(impact, plan.dt, plan.n_steps, max_steps=plan.max_steps, rule=options.rule)
 
 
 def kernel_weights(impact, dt, n):

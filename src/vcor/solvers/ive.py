@@ -17,9 +17,24 @@ from scipy.integrate import solve_ivp
 
 from . import _kernels as K
 from .common import Histories, Result, peak
-from .march import drive, finish
+from .march import LINEAR_MAX_T_FACTOR, T_MAX_START, drive, finish, step_plan
 
-__all__ = ["run_ive_fixed", "run_ive_scipy"]
+__all__ = ["run_ive_fixed", "run_ive_scipy", "solve_fixed", "solve_scipy"]
+
+
+def solve_fixed(impact, options, tc, history):
+    """Runner of method ``ive-numba`` (``vcor.solvers.simulate.METHODS``)."""
+    plan = step_plan(impact, options, tc, linear=True)
+    return run_ive_fixed(impact, plan.dt, plan.n_steps, max_steps=plan.max_steps, rule=options.rule,
+                         history=history, ghost=options.ghost)
+
+
+def solve_scipy(impact, options, tc, history):
+    """Runner of method ``ive`` (scipy ``solve_ivp``; the horizon grows from T_MAX_START to
+    LINEAR_MAX_T_FACTOR contact-time estimates)."""
+    return run_ive_scipy(impact, rtol=options.rtol, method=options.ive_method, tc=tc, t_max=T_MAX_START * tc,
+                         max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=options.ghost, rule=options.rule,
+                         volterra=options.volterra, c2=options.c2 if options.volterra else 0.0)
 
 
 def prony_terms(impact, method):

@@ -15,16 +15,58 @@ Budget and verdicts:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from . import _kernels as K
 from .common import Histories, Result, separation
 
-__all__ = ["N_EXTRA", "Arrays", "drive", "finish"]
+__all__ = ["LINEAR_MAX_T_FACTOR", "MAX_T_FACTOR", "N_EXTRA", "T_MAX_START", "Arrays", "StepPlan", "default_dt", "drive",
+           "finish", "step_plan"]
 
 #: steps marched past the separation step (the cubic separation interpolant needs two)
 N_EXTRA = 2
+#: T_max starts at this many contact-time estimates and doubles while the impact has not separated
+T_MAX_START = 1.5
+#: ... up to this many contact-time estimates for the O(N^2) methods (direct, paper)
+MAX_T_FACTOR = 32.0
+#: ... and this many for the methods whose cost is linear in time (soe, ive-numba, ive): the long
+#: contacts of thin plates (600 t_c at h = 1 mm) fit
+LINEAR_MAX_T_FACTOR = 2048.0
+
+
+def default_dt(impact, steps_per_contact: int, tc: float | None = None) -> float:
+    """dt = t_c / N (s), t_c the rigid-target Hertz contact-time estimate
+    (``Impact.contact_time_estimate``), N = steps_per_contact.
+
+    t_c is an estimate, not a bound: in the paper's SLS case the contact is shorter (t0/t_c = 0.845,
+    0.82..0.91 for h = 12..100 mm), so the default 2000 steps per t_c are about 1690 steps per real
+    contact; on thin plates the contact is longer (T_max grows). A fast relaxation rate alone does
+    not limit dt: kernels are integrated exactly over each step, and a relaxation time tau << dt
+    enters only as O(tau dt / t_c^2) times the relaxing fraction.
+    """
+    return (impact.contact_time_estimate() if tc is None else tc) / steps_per_contact
+
+
+@dataclass(frozen=True)
+class StepPlan:
+    """A fixed-step run's time step ``dt`` (s), first horizon ``n_steps`` and budget ``max_steps``."""
+
+    dt: float
+    n_steps: int
+    max_steps: int
+
+
+def step_plan(impact, options, tc: float, *, linear: bool) -> StepPlan:
+    """dt (``options.dt`` or automatic), the first horizon T_MAX_START t_c and the budget: the
+    smaller of ``options.max_steps`` and the method's horizon (MAX_T_FACTOR t_c, or
+    LINEAR_MAX_T_FACTOR t_c for a method whose cost is linear in time)."""
+    dt = default_dt(impact, options.steps_per_contact, tc) if options.dt is None else options.dt
+    n_steps = max(math.ceil(T_MAX_START * tc / dt), 16)
+    t_factor = LINEAR_MAX_T_FACTOR if linear else MAX_T_FACTOR
+    max_n = min(options.max_steps, max(n_steps, int(t_factor * tc / dt)))
+    return StepPlan(dt, min(n_steps, max_n), max_n)
 
 
 class Arrays:

@@ -14,10 +14,11 @@ import time
 
 import numpy as np
 
-from . import status as _status
+from .. import status as _status
+from ..materials.catalogue import Catalogue
+from ..solvers.common import LONG_NAMES, UNITS, richardson
+from ..solvers.simulate import simulate
 from .scene import build_point
-from .solvers import simulate
-from .solvers.common import LONG_NAMES, UNITS, richardson
 
 __all__ = ["ERRORS", "SCALARS", "run_points", "solve_point"]
 
@@ -27,9 +28,9 @@ SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega
 ERRORS = ("cor_err", "t0_err")
 
 
-def solve_point(point, settings, material_dir) -> dict:
+def solve_point(point, settings, catalogue: Catalogue) -> dict:
     """Scalars, status and message of one point (and the error estimates with ``error_estimate``)."""
-    material, v0, geometry = build_point(point, settings, material_dir)
+    material, v0, geometry = build_point(point, settings, catalogue)
     opts = settings["solver"]
     res = simulate(material, v0, options=opts, **geometry)
     out = {k: getattr(res, k) for k in SCALARS}
@@ -60,12 +61,14 @@ def _error_estimate(res, material, v0, opts, geometry) -> dict:
     return {**out, "error_status": fine.status, "error_message": fine.message if not fine.ok else ""}
 
 
-def run_points(points, settings, material_dir="results/materials"):
-    """Solve each point; a failure is stored with its status and message, never raised."""
+def run_points(points, settings, catalogue: Catalogue | None = None):
+    """Solve each point (materials named in ``catalogue``, default: presets); a failure is stored with
+    its status and message, never raised."""
+    catalogue = catalogue or Catalogue()
     rows = []
     for p in points:
         t = time.perf_counter()
-        row, name, message = _status.guarded(solve_point, p, settings, material_dir)
+        row, name, message = _status.guarded(solve_point, p, settings, catalogue)
         if row is None:
             row = {"status": name, "message": message}
         row.setdefault("wall_time", time.perf_counter() - t)

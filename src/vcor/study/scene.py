@@ -2,10 +2,10 @@
 
 A *scene* (as in ``config.yaml``) names materials, grid axes and solver settings:
 
-    materials: [sls]                      # presets or fitted names (results/materials/<name>.nc)
+    materials: [sls]                      # names of vcor.materials.Catalogue (presets, config, fits)
     grid: {v0: {start: 1, stop: 30, step: 1}, beta: [600, 1200, 2400]}
     tie: {alpha: {to: beta, ratio: 0.25}}  # alpha = 0.25 * beta at every point
-    solver: {method: direct, steps_per_contact: 2000}   # vcor.options.SolverOptions (default: adaptive)
+    solver: {method: direct, steps_per_contact: 2000}   # vcor.solvers.options.SolverOptions
     geometry: {}                          # fixed geometry keywords (r, rho_a, rho_b, h, nu, case, rigid)
     # or, instead of geometry, two bodies (vcor.bodies; the one without material takes the swept one):
     sphere: {material: {model: elastic, E: 200.0e+9}, r: 0.01, rho: 7800, nu: 0.3}
@@ -19,26 +19,23 @@ This module validates scenes and builds points; shard identity and planning are 
 
 from __future__ import annotations
 
-import functools
 import itertools
 import math
-from pathlib import Path
 
 import numpy as np
 
-from . import materials as _materials
-from .impact import GEOMETRY_DEFAULTS
-from .options import SWEEP_METHOD, SolverOptions
+from ..contact.bodies import impact_inputs, scene_bodies
+from ..contact.impact import GEOMETRY_DEFAULTS, make_impact
+from ..materials.catalogue import Catalogue
+from ..solvers.options import SolverOptions
 
 __all__ = [
     "AXIS_UNITS",
     "axis_values",
     "build_point",
     "canon",
-    "check_material_name",
     "check_temperature_axis",
     "material_params",
-    "resolve_material",
     "scene_axes",
     "scene_points",
     "settings_of",
@@ -99,42 +96,6 @@ def axis_values(spec) -> list[float]:
     return vals
 
 
-def check_material_name(name: str, fitted=(), where: str = "materials") -> None:
-    """ValueError naming ``where`` unless ``name`` is a preset or one of the ``fitted`` names."""
-    if name not in _materials.PRESETS and name not in fitted:
-        raise ValueError(f"{where}: unknown material {name!r}; presets {sorted(_materials.PRESETS)}, "
-                         f"fitted {sorted(fitted)}")
-
-
-@functools.lru_cache(maxsize=64)
-def _file_material(path: str, mtime_ns: int):
-    """A fitted or config material file, read once per file version (a sweep resolves it at every
-    point; materials are immutable)."""
-    return _materials.from_file(path)
-
-
-def resolve_material(name: str, overrides: dict | None = None, material_dir: str | Path = "results/materials"):
-    """Material by preset name or fitted file ``<material_dir>/<name>.nc``, with parameter overrides."""
-    if name in _materials.PRESETS:
-        mat = _materials.get(name)
-    else:
-        path = Path(material_dir) / f"{name}.nc"
-        if not path.exists():
-            raise ValueError(
-                f"unknown material {name!r}: not a preset ({sorted(_materials.PRESETS)}) and no fitted file {path}"
-            )
-        mat = _file_material(str(path.resolve()), path.stat().st_mtime_ns)
-    if overrides:
-        d = mat.to_dict()
-        for key, value in overrides.items():
-            if key not in d or isinstance(d[key], list):
-                scalars = [k for k, v in d.items() if k != "kind" and not isinstance(v, list)]
-                raise ValueError(f"material {name!r} has no scalar parameter {key!r}; allowed: {scalars}")
-            d[key] = float(value)
-        mat = _materials.from_dict(d)
-    return mat
-
-
 def scene_axes(scene) -> dict[str, list[float]]:
     grid = scene.get("grid") or {}
     if "v0" not in grid:
@@ -154,9 +115,8 @@ def scene_points(scene) -> list[dict]:
 
 
 def solver_options_of(scene) -> SolverOptions:
-    """The scene's validated solver options (``scene['solver']``; unset ones take their defaults, the
-    method ``vcor.options.SWEEP_METHOD``)."""
-    return SolverOptions(**{"method": SWEEP_METHOD, **(scene.get("solver") or {})})
+    """The scene's validated solver options (``scene['solver']``; unset ones take their defaults)."""
+    return SolverOptions(**(scene.get("solver") or {}))
 
 
 def settings_of(scene) -> dict:
@@ -191,16 +151,15 @@ def _check_bodies(where, scene, axes):
                          f"omit material in the body that takes them")
 
 
-def validate_scene(name: str, scene: dict, material_dir="results/materials", fitted=()) -> None:
+def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None) -> None:
     """Checks that need vcor (the JSON schema checks the shape): solver options, axes, ties,
     materials, values.
 
     Builds the material and geometry of the grid's corner points so that bad values fail now,
-    naming the key, before any job runs. Fitted materials (listed in ``fitted``) are checked by
-    name only, since their files may not exist yet.
+    naming the key, before any job runs. Computed materials (fits, calibrations: their files may not
+    exist yet) are checked by name only.
     """
-    from .solvers.simulate import make_impact
-
+    catalogue = catalogue or Catalogue()
     where = f"scenes.{name}"
     try:
         solver_options_of(scene)
@@ -219,14 +178,14 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
     _check_bodies(where, scene, axes)
     settings = settings_of(scene)
     for mat in scene["materials"]:
-        check_material_name(mat, fitted, f"{where}.materials")
-        if mat in fitted:
+        catalogue.check(mat, f"{where}.materials")
+        if mat in catalogue.computed():
             continue
         corners = itertools.product(*[(v[0], v[-1]) for v in axes.values()])
         for combo in corners:
             point = {"material": mat, **dict(zip(axes, combo))}
             try:
-                material, v0, geometry = build_point(point, settings, material_dir)
+                material, v0, geometry = build_point(point, settings, catalogue)
                 make_impact(material, v0, geometry)
             except ValueError as exc:
                 raise ValueError(f"{where}: point {point}: {exc}") from None
@@ -237,25 +196,22 @@ def validate_scene(name: str, scene: dict, material_dir="results/materials", fit
                                  f"deformable one): set solver: {{method: direct}}")
 
 
-def check_temperature_axis(name: str, scene: dict, config_materials: dict, fits: dict | None = None) -> None:
+def check_temperature_axis(name: str, scene: dict, catalogue: Catalogue) -> None:
     """A grid axis T (deg C) needs every material of the scene to have a shift function (a config
     material with ``shift:``, valid at the axis' ends, or a fit to raw multi-temperature data, whose
     shift function is known only after the fit: a T outside its range is then that point's
     invalid-input status); ValueError naming the key otherwise."""
-    from .material_specs import shift_function
-
     grid = scene.get("grid") or {}
     if "T" not in grid:
         return
     temps = axis_values(grid["T"])
     for mat in scene["materials"]:
-        if mat in (fits or {}) and "file" in ((fits[mat].get("data")) or {}):
+        if catalogue.source(mat) == "fit" and "file" in (catalogue.fits[mat].get("data") or {}):
             continue
-        spec = config_materials.get(mat)
-        shift = shift_function(spec, mat) if spec else None
+        shift = catalogue.shift(mat)
         if shift is None:
             raise ValueError(f"scenes.{name}.grid.T: material {mat!r} has no shift function (a temperature axis "
-                             f"needs materials.{mat}.shift in the config)")
+                             f"needs materials.{mat}.shift in the config, or a fit to multi-temperature data)")
         for T in (temps[0], temps[-1]):
             try:
                 shift.log_aT(T)
@@ -263,9 +219,11 @@ def check_temperature_axis(name: str, scene: dict, config_materials: dict, fits:
                 raise ValueError(f"scenes.{name}.grid.T: material {mat!r}: {exc}") from None
 
 
-def build_point(point, settings, material_dir):
+def build_point(point, settings, catalogue: Catalogue | None = None):
     """(material, v0, geometry) of one point: grid axes are v0, geometry keywords or material
-    parameters; ties set a material parameter from an axis."""
+    parameters (and T, deg C, through the material's shift function); ties set a material parameter
+    from an axis."""
+    catalogue = catalogue or Catalogue()
     geometry = dict(settings["geometry"])
     overrides = {}
     v0 = None
@@ -280,12 +238,8 @@ def build_point(point, settings, material_dir):
             overrides[key] = value
     for target, spec in settings["tie"].items():
         overrides[target] = float(spec["ratio"]) * float(point[spec["to"]])
-    material = resolve_material(point["material"], overrides, material_dir)
-    if "T" in point:
-        material = at_temperature(point["material"], material, float(point["T"]), material_dir)
+    material = catalogue.at(point["material"], overrides, float(point["T"]) if "T" in point else None)
     if "bodies" in settings:
-        from .bodies import impact_inputs, scene_bodies
-
         material, geometry = impact_inputs(*scene_bodies(settings["bodies"], material))
     return material, v0, geometry
 
@@ -297,18 +251,7 @@ def _needs_direct(material, geometry) -> bool:
     return material.kind == "eq1" or (plate is not None and not plate.is_elastic)
 
 
-def at_temperature(name, material, T, material_dir):
-    """``material`` at temperature T (deg C) through the shift function stored with it."""
-    from .dma import shift_from_file, shifted
-
-    path = Path(material_dir) / f"{name}.nc"
-    shift = shift_from_file(path) if path.exists() else None
-    if shift is None:
-        raise ValueError(f"material {name!r} has no shift function: a temperature axis T needs one "
-                         f"(materials.{name}.shift in the config)")
-    return shifted(material, shift.log_aT(T))
-
-
-def material_params(names, material_dir="results/materials") -> dict:
-    """{name: Material.to_dict()} for provenance (fitted materials included)."""
-    return {n: resolve_material(n, material_dir=material_dir).to_dict() for n in names}
+def material_params(names, catalogue: Catalogue | None = None) -> dict:
+    """{name: what the catalogue records of it} for provenance (source, parameters, shift, spec, identity)."""
+    catalogue = catalogue or Catalogue()
+    return {n: catalogue.describe(n) for n in names}

@@ -12,26 +12,25 @@ Every model provides
 * ``viscosity`` the weight (Pa s) of a Dirac term eta * delta(t) in E(t) (Kelvin-Voigt
   only), ``glassy`` = E(0+) (may be ``inf``) and ``rubbery`` = E(inf).
 
-Presets (Green 2026, Eqs. 14, 23b, 24, 26) are available through :func:`get`.
-Materials written by the fit rule are loaded with :func:`from_file`.
+* ``scaled(modulus, time)`` the same model with E(t) -> modulus E(t / time) (time-temperature
+  superposition and calibration scale every model through this one method).
+
+Presets (Green 2026, Eqs. 14, 23b, 24, 26) are in :mod:`vcor.materials.presets`.
 """
 
 from __future__ import annotations
 
-import functools
 import json
 import math
 import numbers
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 from scipy.special import erfcx, gamma
 
-from .checks import positive as _positive
+from ..checks import positive as _positive
 
 __all__ = [
-    "PRESETS",
     "SLS",
     "Cerf",
     "Elastic",
@@ -41,8 +40,6 @@ __all__ = [
     "Material",
     "Prony",
     "from_dict",
-    "from_file",
-    "get",
 ]
 
 _SQRT_PI = math.sqrt(math.pi)
@@ -81,6 +78,21 @@ class Material:
 
     def params(self) -> dict:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def _scaled(self, modulus: float, time: float) -> Material:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def scaled(self, modulus: float = 1.0, time: float = 1.0) -> Material:
+        """The same model with every modulus times ``modulus`` and time stretched by ``time``:
+
+        .. math:: E_{new}(t) = m \\, E(t / a)
+
+        (``modulus`` = m, dimensionless, > 0; ``time`` = a, dimensionless, > 0). Time-temperature
+        superposition uses a = a_T (a material at T relaxes a_T times slower than at T_ref); calibration
+        uses both factors."""
+        m = _positive("modulus", modulus, unit="(factor)")
+        a = _positive("time", time, unit="(factor)")
+        return self if m == 1.0 and a == 1.0 else self._scaled(m, a)
 
     # -- shared -----------------------------------------------------------------------
     @property
@@ -312,6 +324,9 @@ class Prony(Material):
     def params(self) -> dict:
         return {"E_inf": float(self.E_inf), "E": [float(x) for x in self.E], "beta": [float(x) for x in self.beta]}
 
+    def _scaled(self, modulus, time):
+        return Prony(self.E_inf * modulus, tuple(e * modulus for e in self.E), tuple(b / time for b in self.beta))
+
 
 @dataclass(frozen=True, init=False)
 class SLS(Prony):
@@ -354,6 +369,9 @@ class SLS(Prony):
     def params(self) -> dict:
         return {"E_glassy": self.E_glassy, "alpha": self.alpha, "beta": self.beta[0]}
 
+    def _scaled(self, modulus, time):
+        return SLS(self.E_glassy * modulus, self.alpha / time, self.beta[0] / time)
+
 
 @dataclass(frozen=True, init=False)
 class Elastic(Prony):
@@ -368,6 +386,9 @@ class Elastic(Prony):
 
     def params(self) -> dict:
         return {"E": self.E_inf}
+
+    def _scaled(self, modulus, time):
+        return Elastic(self.E_inf * modulus)
 
 
 @dataclass(frozen=True)
@@ -455,6 +476,10 @@ class FractionalPower(Material):
 
     def params(self) -> dict:
         return {"E0": self.E0, "E1": self.E1}
+
+    def _scaled(self, modulus, time):
+        # E1 / sqrt(pi t / a) = (E1 sqrt(a)) / sqrt(pi t)
+        return FractionalPower(self.E0 * modulus, self.E1 * modulus * math.sqrt(time))
 
 
 def _erfcx_tail(x, start: int):
@@ -567,6 +592,10 @@ class Cerf(Material):
     def params(self) -> dict:
         return {"E0": float(self.E0), "E1": float(self.E1), "b1": float(self.b1)}
 
+    def _scaled(self, modulus, time):
+        # erfcx(b1 sqrt(t / a)) = erfcx((b1 / sqrt(a)) sqrt(t))
+        return Cerf(self.E0 * modulus, self.E1 * modulus, self.b1 / math.sqrt(time))
+
 
 @dataclass(frozen=True)
 class KelvinVoigt(Material):
@@ -628,6 +657,10 @@ class KelvinVoigt(Material):
 
     def params(self) -> dict:
         return {"E": self.E, "tau": self.tau}
+
+    def _scaled(self, modulus, time):
+        # E tau delta(t / a) = E (tau a) delta(t)
+        return KelvinVoigt(self.E * modulus, self.tau * time)
 
 
 # --------------------------------------------------------------------------------------
@@ -710,21 +743,9 @@ class EqOne(Material):
     def params(self) -> dict:
         return {"a": self.a.to_dict(), "c_a": self.c_a, "b": self.b.to_dict(), "c_b": self.c_b}
 
+    def _scaled(self, modulus, time):
+        return EqOne(self.a.scaled(modulus, time), self.c_a, self.b.scaled(modulus, time), self.c_b)
 
-PRESETS = {
-    # Green 2026 Eq. 14: E_g = 15 MPa, alpha = 300 1/s, beta = 1200 1/s
-    "sls": lambda: SLS(15e6, 300.0, 1200.0),
-    # Eq. 23b: Bagley & Torvik Butyl B252, fractional order 1/2
-    "butyl-fc": lambda: FractionalPower(3 * 7.6e5, 3 * 2.95e5),
-    # Eq. 24: the paper's CERF fit
-    "butyl-cerf": lambda: Cerf(0.442e6, 0.6765e9, 700.0),
-    # Eq. 26: Szumski's 3-term Prony fit
-    "butyl-prony3": lambda: Prony(10.421e6, (20.181e6, 38.204e6, 87.344e6), (972.0, 6426.0, 34221.0)),
-    # the SLS glassy modulus without relaxation (the paper's elastic-limit check)
-    "elastic": lambda: Elastic(15e6),
-    # illustrative Kelvin-Voigt solid (E = 15 MPa, tau = 0.1 ms); chosen, not from a paper
-    "kelvin-voigt": lambda: KelvinVoigt(15e6, 1e-4),
-}
 
 _KINDS = {
     "prony": Prony,
@@ -737,23 +758,6 @@ _KINDS = {
 }
 
 
-def get(name: str) -> Material:
-    """Preset material by name (see ``PRESETS``)."""
-    if isinstance(name, Material):
-        return name
-    if not isinstance(name, str) or name not in PRESETS:
-        raise ValueError(
-            f"unknown material {name!r}; allowed presets: {sorted(PRESETS)} "
-            "(fitted materials: vcor.materials.from_file)"
-        )
-    return _preset(name)
-
-
-@functools.lru_cache(maxsize=None)
-def _preset(name: str) -> Material:
-    # materials are frozen: one object per preset serves every call (and keys the solvers' caches)
-    return PRESETS[name]()
-
 
 def from_dict(d: dict) -> Material:
     """Material from ``Material.to_dict()`` output."""
@@ -764,17 +768,3 @@ def from_dict(d: dict) -> Material:
     if kind == "eq1":
         d["a"], d["b"] = from_dict(d["a"]), from_dict(d["b"])
     return _KINDS[kind](**d)
-
-
-def from_file(path) -> Material:
-    """Load a fitted material: a NetCDF written by the fit rule (attribute ``material``,
-    a JSON ``to_dict``) or a JSON file holding the same dict."""
-    path = Path(path)
-    if not path.exists():
-        raise ValueError(f"material file {str(path)!r} does not exist")
-    if path.suffix == ".json":
-        return from_dict(json.loads(path.read_text()))
-    import xarray as xr
-
-    with xr.open_dataset(path) as ds:
-        return from_dict(json.loads(ds.attrs["material"]))

@@ -14,34 +14,34 @@ import json
 
 import numpy as np
 
-from .provenance import code_fingerprint
+from ..contact.impact import GEOMETRY_DEFAULTS
+from ..materials.catalogue import Catalogue
+from ..provenance import code_fingerprint
 from .scene import AXIS_UNITS, canon, material_params, scene_axes, settings_of
 from .shards import identified_points, point_key
 
 __all__ = ["aggregate", "dataset_attrs"]
 
 
-def dataset_attrs(scene_name, scene, material_dir="results/materials") -> dict:
+def dataset_attrs(scene_name, scene, catalogue: Catalogue | None = None) -> dict:
     """Global attributes that make a dataset enough to re-run its scene."""
-    from .impact import GEOMETRY_DEFAULTS
-
     return {
         "scene": scene_name,
         "scene_config": scene,
         "solver_settings": settings_of(scene),
-        "materials": material_params(scene["materials"], material_dir),
+        "materials": material_params(scene["materials"], catalogue),
         "geometry_defaults": dict(GEOMETRY_DEFAULTS),
     }
 
 
-def _check_provenance(shards, scene, material_dir):
+def _check_provenance(shards, scene, catalogue):
     """Refuse shards of other code or other material parameters (see the module docstring)."""
     current = code_fingerprint()
     prints = {ds.attrs.get("code_fingerprint", "missing") for ds in shards}
     if prints != {current}:
         raise ValueError(f"shards were computed by different code (fingerprints {sorted(prints)}, running "
                          f"code {current}): refusing to combine them; recompute the stale shards")
-    params = material_params(scene["materials"], material_dir)
+    params = material_params(scene["materials"], catalogue)
     for ds in shards:
         used = json.loads(ds.attrs.get("materials", "{}"))
         for name, p in used.items():
@@ -50,11 +50,12 @@ def _check_provenance(shards, scene, material_dir):
                                  f"{params[name]}: refusing to combine them; recompute the stale shards")
 
 
-def aggregate(shards, scene, identities: dict, material_dir="results/materials"):
+def aggregate(shards, scene, identities: dict, catalogue: Catalogue | None = None):
     """Combine shard datasets into one Dataset with dims (material, *grid axes)."""
     import xarray as xr
 
-    _check_provenance(shards, scene, material_dir)
+    catalogue = catalogue or Catalogue()
+    _check_provenance(shards, scene, catalogue)
     axes = scene_axes(scene)
     mats = list(scene["materials"])
     names = list(axes)

@@ -23,9 +23,10 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import least_squares, nnls
 
-from . import materials as _materials
+from ..materials import models as _materials
+from ..materials.presets import get as _preset
 
-__all__ = ["FitData", "FitResult", "bagley_torvik_data", "fit", "fit_cerf", "fit_identity", "fit_prony", "metrics"]
+__all__ = ["FitData", "FitResult", "bagley_torvik_data", "fit", "fit_cerf", "fit_prony", "metrics"]
 
 
 def _axis_and_values(axis_name, unit, axis, values_name, values, dtype):
@@ -94,7 +95,7 @@ class FitData:
 
 def bagley_torvik_data(n_freq: int = 61, n_time: int = 61, f_min=1e2, f_max=1e5) -> FitData:
     """The fractional law of Green Eq. 23 sampled on the paper's band (log-spaced)."""
-    mat = _materials.get("butyl-fc")
+    mat = _preset("butyl-fc")
     w = 2 * math.pi * np.geomspace(f_min, f_max, n_freq)
     t = np.geomspace(1.0 / w[-1], 1.0 / w[0], n_time)
     return FitData(t=t, E_t=mat.relaxation_modulus(t), omega=w, E_star=mat.complex_modulus(w),
@@ -289,185 +290,3 @@ def fit(spec: dict, data: FitData | None = None) -> FitResult:
     if model == "cerf":
         return fit_cerf(data, domain=domain)
     raise ValueError(f"fit model must be 'prony' or 'cerf', got {model!r}")
-
-
-def expand_fits(fits: dict) -> dict:
-    """Config ``fits`` -> {material name: spec}. A name containing ``{n}`` with a list ``n_terms``
-    expands to one Prony fit per N (e.g. ``butyl-prony-n{n}`` -> butyl-prony-n1, ...)."""
-    out = {}
-    for name, spec in (fits or {}).items():
-        n_terms = spec.get("n_terms", "auto")
-        if "{n}" in name:
-            if not isinstance(n_terms, list):
-                raise ValueError(f"fits.{name}: a name with {{n}} needs a list n_terms")
-            for n in n_terms:
-                out[name.replace("{n}", str(int(n)))] = {**spec, "n_terms": int(n)}
-        else:
-            if isinstance(n_terms, list):
-                raise ValueError(f"fits.{name}: a list n_terms needs {{n}} in the name")
-            out[name] = dict(spec)
-    return out
-
-
-def fit_identity(spec: dict, base_dir=".") -> dict:
-    """What determines a fit's parameters: its spec (model, N, tolerance, domain, data selection), the
-    contents of its data files (measured data) and the code that fits (the built-in data are generated
-    by that code; fits are deterministic)."""
-    import hashlib
-
-    from .provenance import code_fingerprint
-
-    files = {}
-    d = spec.get("data") or {}
-    for key in ("file", "shift_file"):
-        if key in d:
-            path = Path(base_dir) / d[key]
-            files[key] = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else "missing"
-    return {"spec": spec, "files": files, "code": code_fingerprint()}
-
-
-#: keys of a measured-data fit's ``data`` mapping
-DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model"}
-
-
-def run_fit(spec: dict, base_dir="."):
-    """(FitResult, FitData, extra attributes) of a fit spec: the built-in Bagley-Torvik data, or measured
-    DMA data (``data: {file, T_ref [deg C], shift_file?, shift_model: wlf|arrhenius}``; pyvisco's CSV
-    conventions, ``vcor.dma``). Raw multi-temperature sets are superposed at T_ref (with the shift
-    factors of ``shift_file``, or found from the data), a WLF (default) or Arrhenius shift function is
-    fitted to the per-set log a_T and stored with the material (attribute ``shift``), and a Prony
-    series is fitted to the master curve (``n_terms``: an integer, or auto = one term per decade)."""
-    import json
-
-    d = spec.get("data") or {}
-    if "file" not in d:
-        data = data_from_spec(spec)
-        return fit(spec, data), data, {}
-    from . import dma
-
-    unknown = set(d) - DMA_DATA_KEYS
-    if unknown or "T_ref" not in d:
-        raise ValueError(f"fit data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
-    if spec.get("model") != "prony":
-        raise ValueError(f"a fit to measured data is a Prony fit (model: prony), got {spec.get('model')!r}")
-    T_ref = float(d["T_ref"])
-    raw = dma.read_table(Path(base_dir) / d["file"])
-    if raw.kind != "frequency":
-        raise ValueError(f"{raw.path}: measured-data fits take frequency-domain data (f,E_stor,E_loss)")
-    shifts = dma.read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
-    attrs = {}
-    if raw.is_raw:
-        sp = dma.superpose(raw, T_ref, shifts)
-        model = d.get("shift_model", "wlf")
-        if model == "wlf":
-            c1, c2, res = dma.wlf_fit(sp.T, sp.log_aT, T_ref)
-            shift = dma.ShiftFunction("wlf", T_ref, C1=c1, C2=c2)
-        elif model == "arrhenius":
-            ea, res = dma.arrhenius_fit(sp.T, sp.log_aT, T_ref)
-            shift = dma.ShiftFunction("arrhenius", T_ref, E_a=ea)
-        else:
-            raise ValueError(f"fit data.shift_model must be wlf or arrhenius, got {model!r}")
-        attrs = {"shift": json.dumps(shift.to_dict()), "superposition": json.dumps({
-            "T_degC": sp.T.tolist(), "log_aT": sp.log_aT.tolist(), "shift_fit_residual": np.asarray(res).tolist(),
-            "source": sp.source, "overlap_rms_log10_E_stor": sp.overlap_rms})}
-    else:
-        c = raw.columns
-        order = np.argsort(c["f"])
-        sp = dma.Superposition(np.array([T_ref]), np.zeros(1), T_ref, c["f"][order], c["E_stor"][order],
-                               c["E_loss"][order], "a master curve as given (no temperature sets)")
-    n = spec.get("n_terms", "auto")
-    result = dma.fit_master(sp, None if n == "auto" else int(n))
-    data = FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name=str(d["file"]),
-                   measured=True, T_point=sp.T_point)
-    return result, data, attrs
-
-
-def data_from_spec(spec: dict) -> FitData:
-    """The data a fit spec names (only the Bagley-Torvik fractional law is built in)."""
-    d = dict(spec.get("data") or {})
-    source = d.pop("source", "bagley-torvik")
-    if source != "bagley-torvik":
-        raise ValueError(f"fit data source must be 'bagley-torvik', got {source!r}")
-    return bagley_torvik_data(**d)
-
-
-def result_dataset(result: FitResult, data: FitData, spec: dict):
-    """NetCDF-ready record of a fit: parameters (attrs), metrics, data and fit curves, residuals.
-    Deterministic: no time stamps or timings inside."""
-    import json
-
-    import xarray as xr
-
-    mat = result.material
-    ds = xr.Dataset()
-    if data.has_time:
-        ds = ds.assign_coords(t=("t", data.t, {"units": "s", "long_name": "time (fit window)"}))
-        ef = mat.relaxation_modulus(data.t)
-        ds["E_t_data"] = ("t", data.E_t, {"units": "Pa", "long_name": "relaxation modulus, data"})
-        ds["E_t_fit"] = ("t", ef, {"units": "Pa", "long_name": "relaxation modulus, fit"})
-        ds["E_t_rel_err"] = ("t", ef / data.E_t - 1, {"units": "1", "long_name": "relative error of E(t)"})
-    if data.has_freq:
-        ds = ds.assign_coords(omega=("omega", data.omega, {"units": "rad s-1", "long_name": "angular frequency (fit band)"}))
-        es = mat.complex_modulus(data.omega)
-        for part, fn in (("storage", np.real), ("loss", np.imag)):
-            ds[f"{part}_data"] = ("omega", fn(data.E_star), {"units": "Pa", "long_name": f"{part} modulus, data"})
-            ds[f"{part}_fit"] = ("omega", fn(es), {"units": "Pa", "long_name": f"{part} modulus, fit"})
-        ds["abs_E_star_rel_err"] = ("omega", np.abs(es) / np.abs(data.E_star) - 1,
-                                    {"units": "1", "long_name": "relative error of |E*|"})
-        if data.T_point is not None:
-            ds["T_set"] = ("omega", np.asarray(data.T_point, float),
-                           {"units": "degC", "long_name": "temperature of the measured set of each point"})
-        ds["tan_delta_rel_err"] = ("omega", (es.imag / es.real) / (data.E_star.imag / data.E_star.real) - 1,
-                                   {"units": "1", "long_name": "relative error of tan delta"})
-    ds.attrs.update({
-        "material": json.dumps(mat.to_dict(), sort_keys=True),
-        "fit_spec": json.dumps(spec, sort_keys=True),
-        "fit_settings": json.dumps(result.settings, sort_keys=True, default=str),
-        "metrics": json.dumps(result.metrics, sort_keys=True),
-        "n_terms_tried": json.dumps(result.tried),
-        "data": data.name,
-    })
-    return ds
-
-
-def scene_metrics_table(names, material_dir) -> str:
-    """The fit-metrics table of a scene: fits of the built-in Bagley-Torvik data beside the paper's own
-    sets, evaluated on those data; fits of measured data against their own (superposed) data, as
-    recorded in their files (attribute ``metrics``)."""
-    import json
-
-    import xarray as xr
-
-    from . import scene
-
-    builtin, measured = [], []
-    for name in names:
-        path = Path(material_dir) / f"{name}.nc"
-        with xr.open_dataset(path) as ds:
-            spec, met = json.loads(ds.attrs["fit_spec"]), json.loads(ds.attrs["metrics"])
-        mat = scene.resolve_material(name, material_dir=material_dir)
-        (measured if "file" in (spec.get("data") or {}) else builtin).append((name, mat, met))
-    out = ""
-    if builtin or not measured:
-        data = bagley_torvik_data()
-        rows = [(n, _materials.get(n), None) for n in ("butyl-cerf", "butyl-prony3")] + builtin
-        out += metrics_table([(n, m, metrics(m, data)) for n, m, _ in rows])
-    if measured:
-        out += metrics_table(measured, ["abs_E_star_rms", "storage_rms", "loss_rms", "tan_delta_rms",
-                                        "storage_max", "loss_max", "tan_delta_max"],
-                             "# fits of measured data: relative errors against their own superposed data (master\n"
-                             "# curve at T_ref: E', E'', tan delta); max and RMS, dimensionless")
-    return out
-
-
-def metrics_table(rows, keys=None, header=None) -> str:
-    """Plain-text table of metrics: rows = [(name, material, metrics dict)]."""
-    keys = keys or ["E_t_max", "E_t_rms", "abs_E_star_max", "abs_E_star_rms", "tan_delta_max", "tan_delta_rms"]
-    head = f"{'material':22s} {'terms':>5s} " + " ".join(f"{k:>15s}" for k in keys)
-    header = header or ("# relative errors against each fit's data (built-in fits: the Bagley-Torvik fractional law,"
-                        " E(t)\n# over the window, |E*| and tan delta over 1e2..1e5 Hz); max and RMS, dimensionless")
-    lines = [header, head]
-    for name, mat, met in rows:
-        terms = str(len(mat.E)) if getattr(mat, "kind", "") == "prony" else "-"
-        lines.append(f"{name:22s} {terms:>5s} " + " ".join(f"{met.get(k, math.nan):15.4e}" for k in keys))
-    return "\n".join(lines) + "\n"

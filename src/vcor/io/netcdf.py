@@ -1,5 +1,4 @@
-"""NetCDF output with CF-style metadata (provenance from :mod:`vcor.provenance`), and the per-scene
-manifest of what to archive."""
+"""NetCDF output with CF-style metadata (provenance from :mod:`vcor.provenance`)."""
 
 from __future__ import annotations
 
@@ -10,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 
-from . import provenance as _provenance
+from .. import provenance as _provenance
 
-__all__ = ["REFERENCES", "scalar_dataset_check", "write_dataset", "write_manifest"]
+__all__ = ["REFERENCES", "scalar_dataset_check", "write_dataset"]
 
 REFERENCES = (
     "Green, I. (2026) The viscoelastic coefficient of restitution: integrating the wave equation with "
@@ -66,14 +65,3 @@ def scalar_dataset_check(ds) -> None:
             raise ValueError(f"variable {name!r} lacks {missing}")
     if np.any([np.isnan(ds[c].values).any() for c in ds.coords if ds[c].dtype.kind == "f"]):
         raise ValueError("coordinates contain NaN")
-
-
-def write_manifest(scene: str, paths, out) -> None:
-    """List a scene's outputs with their sizes (bytes) and SHA-256 digests in ``out`` (what to archive)."""
-    import hashlib
-
-    with open(out, "w") as fh:
-        fh.write(f"# scene {scene}: outputs (bytes, sha256)\n")
-        for path in paths:
-            data = Path(path).read_bytes()
-            fh.write(f"{path}\t{len(data)}\t{hashlib.sha256(data).hexdigest()}\n")

@@ -16,78 +16,87 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from dataclasses import dataclass
 
-from .checks import interned
+from ..checks import interned
 
-__all__ = ["BOOLEAN_OPTIONS", "FIXED_STEP_METHODS", "METHODS", "OPTION_HELP", "SWEEP_METHOD", "SolverOptions", "solver_options"]
+__all__ = ["BOOLEAN_OPTIONS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES", "OPTION_HELP", "OPTION_UNITS",
+           "SolverOptions", "solver_options"]
 
-#: solver methods; ``paper`` is the explicit baseline of the work-precision study
-METHODS = ("adaptive", "direct", "ive", "ive-numba", "paper", "soe")
+#: solver methods (``vcor.solvers.simulate.METHODS`` maps each to its runner); ``paper`` is the
+#: explicit baseline of the work-precision study
+METHOD_NAMES = ("adaptive", "direct", "ive", "ive-numba", "paper", "soe")
+#: the method everywhere a user does not choose one (simulate, the CLI, sweeps, histories,
+#: calibration): the fastest that meets the default accuracy (COR and t0 within 1e-6 relative of
+#: Richardson-extrapolated direct) on every preset, and the one that solves thin plates
+DEFAULT_METHOD = "adaptive"
 #: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
 FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
-#: the method of a sweep (scene) that names none: the fastest one that meets the default accuracy (COR and
-#: t0 within 1e-6 relative of Richardson-extrapolated direct) on every preset and every stability point
-#: (README, "Which method a sweep uses"); ``simulate`` itself defaults to ``direct``, the paper's method
-SWEEP_METHOD = "adaptive"
 #: options that take true or false
 BOOLEAN_OPTIONS = ("volterra", "richardson")
 IVE_METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853")
 
 
-def _spec(default, methods, help_text, allowed=None, bounds=None, method_defaults=None):
+def _spec(default, methods, help_text, allowed=None, bounds=None, method_defaults=None, unit="none"):
     """Field metadata: the value used when the option is not set (``default``; ``method_defaults``
-    overrides it per method), the methods that use it, the allowed values (a tuple) and a help text
-    with units."""
+    overrides it per method), the methods that use it, the allowed values (a tuple), a help text and
+    the unit (UDUNITS; "1" for a dimensionless number, "none" for a choice or a switch)."""
     return {"default": default, "methods": tuple(methods), "help": help_text, "allowed": allowed, "bounds": bounds,
-            "method_defaults": dict(method_defaults or {})}
+            "method_defaults": dict(method_defaults or {}), "unit": unit}
 
 
 _SPEC = {
-    "method": _spec("direct", METHODS, "solver: direct (full-history product integration, any kernel), ive "
-                    "(internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal variables, fixed "
-                    "step, O(N); Prony kernels), paper (explicit baseline for benchmarks), soe (the direct scheme with an "
-                    "exponential-sum history: any kernel, O(N K)), adaptive (the same on a variable grid with local error "
-                    "control: any kernel, O(N K), steps grow in long contacts)", METHODS),
+    "method": _spec(DEFAULT_METHOD, METHOD_NAMES, "solver: adaptive (variable steps with error control, "
+                    "exponential-sum history, Richardson-extrapolated: any kernel, O(N K)); references: direct "
+                    "(full-history product integration, the paper's scheme, O(N^2)), soe (fixed step, exponential-sum "
+                    "history), ive (internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal "
+                    "variables, fixed step; Prony kernels), paper (explicit baseline for benchmarks)", METHOD_NAMES),
     "dt": _spec(None, FIXED_STEP_METHODS, "time step, s (null: contact-time estimate / steps_per_contact)",
-                bounds=("float", 0.0, math.inf, "(0, inf) s")),
+                bounds=("float", 0.0, math.inf, "(0, inf) s"), unit="s"),
     "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
-                               bounds=("int", 10, math.inf, "an integer >= 10")),
+                               bounds=("int", 10, math.inf, "an integer >= 10"), unit="1"),
     "max_steps": _spec(200_000, FIXED_STEP_METHODS, "step budget of the fixed-step march (integer >= 100; "
                        "4000000 for soe and ive-numba, whose cost is linear in the steps); a run that reaches it without "
                        "separating ends with status step-budget",
-                       bounds=("int", 100, math.inf, "an integer >= 100"), method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000}),
+                       bounds=("int", 100, math.inf, "an integer >= 100"),
+                       method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000}, unit="1"),
     "step_tol": _spec(3e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
                       "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in (0, 0.01); "
                       "the default 3e-4 is the largest that keeps the extrapolated COR and t0 within 1e-6 of the "
-                      "reference on every preset (README)", bounds=("float", 0.0, 1e-2, "(0, 0.01)")),
+                      "reference on every preset", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
     "richardson": _spec(True, ("adaptive",), "adaptive only: march again on the accepted grid with every step "
                         "halved and quartered and Richardson-extrapolate the results (eliminates the h^2 and h^2.5 "
                         "error terms; 7 times the steps of the grid, error order ~3 instead of 2)"),
     "max_adaptive_steps": _spec(1_000_000, ("adaptive",), "adaptive only: step budget (integer >= 100); a run that "
                                 "reaches it without separating ends with status step-budget",
-                                bounds=("int", 100, math.inf, "an integer >= 100")),
+                                bounds=("int", 100, math.inf, "an integer >= 100"), unit="1"),
     "volterra": _spec(False, ("direct", "ive"), "add the second-order Volterra term (Green Eqs. 10, 15, 16)"),
     "c2": _spec(1.0, ("direct", "ive"), "Volterra coefficient, m^-1.5 (only with volterra: true)",
-                bounds=("float", -math.inf, math.inf, "a finite number, m^-1.5")),
+                bounds=("float", -math.inf, math.inf, "a finite number, m^-1.5"), unit="m-1.5"),
     "form": _spec("a", ("direct",), "hereditary Hertz law form (Green Eq. 8): a (any kernel) or b (finite k(0))",
                   ("a", "b")),
-    "rule": _spec("force", METHODS, "separation: force (F returns to zero, the paper's) or overlap (s returns to "
+    "rule": _spec("force", METHOD_NAMES, "separation: force (F returns to zero, the paper's) or overlap (s returns to "
                   "zero)", ("force", "overlap")),
-    "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in (0, 1)", bounds=("float", 0.0, 1.0, "(0, 1)")),
+    "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in [1e-13, 1) (scipy clamps smaller "
+                  "ones)", bounds=("float", 1e-13, 1.0, "[1e-13, 1)"), unit="1"),
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
     "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's history part "
-                     "(vcor.soe), in (0, 0.01)", bounds=("float", 0.0, 1e-2, "(0, 0.01)")),
-    "ghost": _spec(0.5, METHODS, "histories only: continue the solution this fraction of t0 past separation, "
-                   "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]")),
+                     "(vcor.materials.expsums), in [1e-15, 0.01)", bounds=("float", 1e-15, 1e-2, "[1e-15, 0.01)"),
+                     unit="1"),
+    "ghost": _spec(0.5, METHOD_NAMES, "histories only: continue the solution this fraction of t0 past separation, "
+                   "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]"), unit="1"),
 }
 
 #: option name -> help text (the CLI and the schema descriptions use it)
 OPTION_HELP = {k: v["help"] for k, v in _SPEC.items()}
+#: option name -> unit ("1": dimensionless, "none": a choice or a switch)
+OPTION_UNITS = {k: v["unit"] for k, v in _SPEC.items()}
 
 
 def _number(name, value, *, integer=False):
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or (integer and not float(value).is_integer()):
+    if (isinstance(value, bool) or not isinstance(value, numbers.Real)
+            or (integer and not (math.isfinite(value) and float(value).is_integer()))):
         kind = "an integer" if integer else "a number"
         raise ValueError(f"solver option {name} must be {kind}, got {value!r}")
     return int(value) if integer else float(value)
@@ -114,8 +123,8 @@ class SolverOptions:
     ghost: float = _SPEC["ghost"]["default"]
 
     def __post_init__(self):
-        if self.method not in METHODS:
-            raise ValueError(f"solver option method must be one of {METHODS}, got {self.method!r}")
+        if isinstance(self.method, bool) or self.method not in METHOD_NAMES:
+            raise ValueError(f"solver option method must be one of {METHOD_NAMES}, got {self.method!r}")
         values = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         # 1. types and ranges of what was set
         for name, value in values.items():
@@ -131,8 +140,10 @@ class SolverOptions:
             else:
                 kind, lo, hi, text = spec["bounds"]
                 v = _number(name, value, integer=kind == "int")
-                closed = name == "ghost" or kind == "int"  # [lo, hi]; the others are open (lo, hi)
-                inside = (lo <= v <= hi) if closed else (lo < v < hi)
+                # the interval text says which ends are closed: "[lo, hi)" ...; integers are closed
+                lo_closed = kind == "int" or text.startswith("[")
+                hi_closed = kind == "int" or text.endswith("]")
+                inside = (lo <= v if lo_closed else lo < v) and (v <= hi if hi_closed else v < hi)
                 if not (math.isfinite(v) and inside):
                     raise ValueError(f"solver option {name} must be {text if kind == 'int' else 'in ' + text}, "
                                      f"got {value!r}")

@@ -1,4 +1,4 @@
-"""Calibration from measured COR(v0): material parameters and their uncertainty (issue 13).
+"""Calibration from measured COR(v0): material parameters and their uncertainty.
 
 A calibration (``calibrations.<name>`` in ``config.yaml``, or :func:`calibrate` from Python) fits
 free parameters of a material to COR data at several impact speeds with the forward model of a sweep
@@ -41,11 +41,16 @@ from pathlib import Path
 
 import numpy as np
 
-from . import materials as _materials
-from .csvfile import cell_number, data_rows, read_rows, units_row
+from .. import spheres as S
+from ..io.csvfile import cell_number, data_rows, read_rows, units_row
+from ..materials import models as _materials
+from ..materials.presets import get as _preset
+from ..materials.specs import from_spec
+from ..solvers.common import UNITS
+from ..solvers.simulate import simulate
 
-__all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "calibration_identity",
-           "check_spec", "read_cor_data", "run_calibration", "scaled"]
+__all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "check_spec",
+           "read_cor_data", "run_calibration", "scaled"]
 
 #: scale parameters every material has (besides its own scalar parameters)
 SCALE_PARAMS = ("modulus_scale", "log_aT")
@@ -108,25 +113,8 @@ def read_cor_data(path) -> CorData:
 
 def scaled(material, modulus_scale: float = 1.0, log_aT: float = 0.0):
     """``material`` with every modulus times ``modulus_scale`` and time stretched by a_T = 10^log_aT:
-    E(t) -> modulus_scale E(t / a_T) (rates / a_T, relaxation times * a_T; the fractional E1 * sqrt(a_T),
-    CERF b1 / sqrt(a_T))."""
-    d = material.to_dict()
-    kind, s, a = d["kind"], float(modulus_scale), 10.0 ** float(log_aT)
-    if kind == "eq1":
-        raise ValueError("modulus_scale / log_aT: a two-body (Eq. 1) contact modulus is not calibrated here")
-    for key in ("E_glassy", "E_inf", "E", "E0", "E1"):
-        if key in d:
-            d[key] = [x * s for x in d[key]] if isinstance(d[key], list) else d[key] * s
-    for key in ("alpha", "beta"):
-        if key in d:
-            d[key] = [x / a for x in d[key]] if isinstance(d[key], list) else d[key] / a
-    if kind == "kelvin-voigt":
-        d["tau"] *= a
-    if kind == "fractional":
-        d["E1"] *= math.sqrt(a)
-    if kind == "cerf":
-        d["b1"] /= math.sqrt(a)
-    return _materials.from_dict(d)
+    E(t) -> modulus_scale E(t / a_T) (:meth:`vcor.materials.Material.scaled`)."""
+    return material.scaled(modulus_scale, 10.0 ** float(log_aT))
 
 
 def _flat_params(material) -> dict:
@@ -251,8 +239,6 @@ class _Model:
         return scaled(mat, values.get("modulus_scale", 1.0), values.get("log_aT", 0.0))
 
     def cor(self, x, v0s, mat=None):
-        from .solvers.simulate import simulate
-
         mat = self.material(x) if mat is None else mat
         out = np.empty(len(v0s))
         for i, v in enumerate(v0s):
@@ -269,16 +255,14 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
               where: str = "free") -> Calibration:
     """Fit the ``free`` parameters (name -> [lower, upper]) of ``material`` (its values are the start) to
     ``data`` (module docstring). ``geometry``: keywords of ``vcor.simulate``; ``options``: solver options
-    (default: the sweeps' method, ``vcor.options.SWEEP_METHOD``)."""
+    (default: ``adaptive``, as everywhere)."""
     from scipy.optimize import least_squares
     from scipy.stats import norm
     from scipy.stats import t as student_t
 
-    from .options import SWEEP_METHOD
-
-    base = _materials.get(material) if isinstance(material, str) else material
+    base = _preset(material) if isinstance(material, str) else material
     geometry = dict(geometry or {})
-    options = {"method": SWEEP_METHOD, **(options or {})}
+    options = dict(options or {})
     names, start, lo, hi = _check_free(base, free, len(data.v0), where)
     model = _Model(base, names, start, geometry, options)
     model.material(np.zeros(len(names)))  # the start must be a valid material (else: an error now)
@@ -366,24 +350,22 @@ def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return c, c - q * sd, c + q * sd
 
 
-def _start_material(spec, where, base_dir, material_dir):
-    from .material_specs import from_spec
-    from .scene import resolve_material
-
+def _start_material(spec, where, catalogue):
     mat = spec["material"]
     if isinstance(mat, dict):
-        return from_spec(mat, where=f"{where}.material", base_dir=base_dir)
+        return from_spec(mat, where=f"{where}.material", base_dir=catalogue.base_dir)
     if not isinstance(mat, str):
         raise ValueError(f"{where}.material: a material name or a spec {{model: ...}}, got {mat!r}")  # noqa: TRY004 (config values)
-    return resolve_material(mat, material_dir=material_dir)
+    catalogue.check(mat, f"{where}.material")
+    return catalogue.material(mat)
 
 
-def check_spec(spec: dict, *, where: str = "calibration", base_dir=".", material_dir="results/materials",
-               pending=()) -> CorData:
+def check_spec(spec: dict, *, catalogue, where: str = "calibration", pending=()) -> CorData:
     """Everything about a calibration spec that can be checked before solving: its keys, the data file
-    (file, line, column), the start material, the free parameters' names, bounds and start values, and
-    the number of points. ``pending``: material names whose files do not exist yet (fits): only the
-    scale parameters can be checked for them. Returns the data."""
+    (file, line, column), the start material (a name of ``catalogue``, a
+    :class:`vcor.materials.Catalogue`, or an inline spec), the free parameters' names, bounds and start
+    values, and the number of points. ``pending``: material names whose files do not exist yet (fits,
+    calibrations): only their names are checked. Returns the data."""
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: a mapping with keys {sorted(SPEC_KEYS)}, got {spec!r}")  # noqa: TRY004 (config values)
     unknown = set(spec) - SPEC_KEYS
@@ -393,34 +375,23 @@ def check_spec(spec: dict, *, where: str = "calibration", base_dir=".", material
                          f"unknown {sorted(unknown)}, missing {sorted(missing)}")
     if not isinstance(spec["data"], str):
         raise ValueError(f"{where}.data: the path of a CSV file (v0,cor[,cor_std]), got {spec['data']!r}")  # noqa: TRY004 (config values)
-    data = read_cor_data(Path(base_dir) / spec["data"])
+    data = read_cor_data(Path(catalogue.base_dir) / spec["data"])
     if isinstance(spec["material"], str) and spec["material"] in pending:
+        catalogue.check(spec["material"], f"{where}.material")
         return data
-    material = _start_material(spec, where, base_dir, material_dir)
+    material = _start_material(spec, where, catalogue)
     _check_free(material, spec["free"], len(data.v0), f"{where}.free")
     return data
 
 
-def run_calibration(spec: dict, *, base_dir=".", material_dir="results/materials", where="calibration") -> Calibration:
-    """A calibration from a config spec (``data``, ``material``: a spec {model: ...} or a material name,
-    ``free``, optional ``geometry`` and ``solver``); errors name ``<where>.<key>`` or the data file's
-    line and column."""
-    data = check_spec(spec, where=where, base_dir=base_dir, material_dir=material_dir)
-    material = _start_material(spec, where, base_dir, material_dir)
+def run_calibration(spec: dict, *, catalogue, where="calibration") -> Calibration:
+    """A calibration from a config spec (``data``, ``material``: a spec {model: ...} or a name of
+    ``catalogue``, ``free``, optional ``geometry`` and ``solver``); errors name ``<where>.<key>`` or the
+    data file's line and column."""
+    data = check_spec(spec, where=where, catalogue=catalogue)
+    material = _start_material(spec, where, catalogue)
     return calibrate(data, material, spec["free"], geometry=spec.get("geometry"), options=spec.get("solver"),
                      where=f"{where}.free")
-
-
-def calibration_identity(spec: dict, base_dir=".", material_identity: str | None = None) -> dict:
-    """What determines a calibration's result: its spec, the data file's content, the start material's
-    content identity (a named material) and the code."""
-    import hashlib
-
-    from .provenance import code_fingerprint
-
-    path = Path(base_dir) / str(spec.get("data", ""))
-    data = hashlib.sha256(path.read_bytes()).hexdigest() if path.is_file() else "missing"
-    return {"spec": spec, "data": data, "start": material_identity, "code": code_fingerprint()}
 
 
 def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int = 40):
@@ -431,8 +402,6 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
     import json
 
     import xarray as xr
-
-    from .solvers.common import UNITS
 
     units = {"modulus_scale": "1", "log_aT": "1 (log10 of a_T)"}
     param_units = [units.get(n, _param_unit(n, cal.base.kind if cal.base else "")) for n in cal.names]
@@ -515,8 +484,6 @@ def fit_g_star(g, eps, *, model: str = "numeric", rule: str = "overlap", start: 
     (vcor.spheres: x = (g/g*)^(1/5) = C1 b). The exact numerical eps uses ``spheres.cor_numeric``
     (Kelvin-Voigt, rigid target, Richardson-extrapolated, error ~1e-9)."""
     from scipy.optimize import least_squares
-
-    from . import spheres as S
 
     g, eps = np.asarray(g, float), np.asarray(eps, float)
     if g.ndim != 1 or g.size < 2 or g.shape != eps.shape or np.any(g <= 0) or not np.all(np.isfinite(eps)):

@@ -1,4 +1,4 @@
-"""Materials from config specs (the ``materials:`` block of ``config.yaml``; issue 12).
+"""Materials from config specs (the ``materials:`` block of ``config.yaml``).
 
 A spec is a mapping with ``model`` and the parameters named as the material classes name them (SI):
 
@@ -15,8 +15,8 @@ A spec is a mapping with ``model`` and the parameters named as the material clas
 * ``elastic``: E (Pa)
 
 Optional ``shift: {model: wlf, C1, C2 [K], T_ref [deg C]}`` or ``{model: arrhenius, E_a [J/mol],
-T_ref}`` (Prony, SLS, elastic): the material is then E(t; T) = E(t / a_T(T)) at temperature T, and a
-scene may use ``T`` (deg C) as a grid axis.
+T_ref}`` (any model): the material is then E(t; T) = E(t / a_T(T)) at temperature T
+(:mod:`vcor.materials.shift`), and a scene may use ``T`` (deg C) as a grid axis.
 
 A Prony table from a file: ``{model: prony, E_inf or E_0, file: table.csv}``; the CSV has a header row
 with ``tau`` or ``beta`` and ``E`` or ``g`` (``g`` needs ``E_0``, ``E`` needs ``E_inf``), one term per
@@ -29,11 +29,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from . import materials as _materials
-from .checks import number, positive
-from .csvfile import cell_number, data_rows, read_rows
+from ..checks import number, positive
+from ..io.csvfile import cell_number, data_rows, read_rows
+from . import models as _materials
+from .shift import ShiftFunction
 
-__all__ = ["MODELS", "from_spec", "read_prony_csv", "shift_function", "write_material"]
+__all__ = ["MODELS", "from_spec", "read_prony_csv", "shift_function"]
 
 #: model -> (required keys, optional keys)
 MODELS = {
@@ -141,10 +142,7 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
             x for x in (f"missing {sorted(missing)}" if missing else "", f"unknown {sorted(unknown)}" if unknown else "")
             if x) + f"; a {model} material takes {sorted(required | optional)}")
     if "shift" in spec:
-        shift_function(spec, name)  # checked here, applied per temperature (``dma.shifted``)
-        if model not in ("prony", "sls", "elastic"):
-            raise ValueError(f"{where}.shift: temperature shifting is implemented for prony, sls and elastic "
-                             f"materials, not {model}")
+        ShiftFunction.from_spec(spec["shift"], f"{where}.shift")  # checked here, applied per temperature
     spec = {k: v for k, v in spec.items() if k != "shift"}
     if model == "prony":
         return _prony(where, spec, base_dir)
@@ -157,31 +155,6 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
         raise ValueError(f"{where}: {exc}") from None
 
 
-def shift_function(spec: dict, name: str = "material"):
-    """The material's shift function (``shift:`` in its spec; ``vcor.dma.ShiftFunction``) or None."""
-    from .dma import ShiftFunction
-
+def shift_function(spec: dict, name: str = "material") -> ShiftFunction | None:
+    """The material's shift function (``shift:`` in its spec) or None."""
     return ShiftFunction.from_spec(spec["shift"], f"materials.{name}.shift") if "shift" in spec else None
-
-
-def write_material(name: str, spec: dict, path, *, base_dir=".") -> None:
-    """Write the material of ``spec`` as ``path`` (NetCDF: attribute ``material`` = its ``to_dict`` JSON,
-    attribute ``spec`` = the config spec, E(t) on a log grid), readable by ``materials.from_file`` like
-    a fitted material. Same bytes for the same spec (no time stamp)."""
-    import json
-
-    import numpy as np
-    import xarray as xr
-
-    from .io import write_dataset
-
-    mat = from_spec(spec, name=name, base_dir=base_dir)
-    t = np.geomspace(1e-9, 1e3, 121)
-    ds = xr.Dataset({"E_t": ("t", mat.relaxation_modulus(t), {"units": "Pa", "long_name": "relaxation modulus E(t)"})},
-                    coords={"t": ("t", t, {"units": "s", "long_name": "time"})})
-    attrs = {"material": json.dumps(mat.to_dict()), "spec": json.dumps(spec, sort_keys=True)}
-    shift = shift_function(spec, name)
-    if shift is not None:
-        attrs["shift"] = json.dumps(shift.to_dict())
-    write_dataset(ds, path, title=f"vcor material {name} (config materials block)", extra_attrs=attrs,
-                  command="vcor.material_specs.write_material (deterministic: no time stamp)", timestamp=False)

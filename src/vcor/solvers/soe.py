@@ -15,15 +15,22 @@ import time
 
 import numpy as np
 
-from ..soe import soe
+from ..materials.expsums import soe
 from . import _kernels as K
 from .direct import folded_weights
-from .march import drive, finish
+from .march import drive, finish, step_plan
 
-__all__ = ["N_LOCAL", "run_soe"]
+__all__ = ["N_LOCAL", "run_soe", "solve"]
 
 #: steps of exact local history (lags 0..N_LOCAL)
 N_LOCAL = 8
+
+
+def solve(impact, options, tc, history):
+    """Runner of method ``soe`` (``vcor.solvers.simulate.METHODS``)."""
+    plan = step_plan(impact, options, tc, linear=True)
+    return run_soe(impact, plan.dt, plan.n_steps, max_steps=plan.max_steps, rule=options.rule, history=history,
+                   ghost=options.ghost, tol=options.soe_tol)
 
 
 def mode_weights(material, kappa, dt, tol, t_max):

@@ -6,17 +6,19 @@ import json
 
 import numpy as np
 
-from . import status as _status
-from .options import solver_options
-from .scene import resolve_material
-from .solvers import simulate
-from .solvers.common import LONG_NAMES, UNITS
+from .. import spheres as S
+from .. import status as _status
+from ..fitting.calibrate import bridges_ice, fit_g_star
+from ..materials.catalogue import Catalogue
+from ..solvers.common import LONG_NAMES, UNITS
+from ..solvers.options import solver_options
+from ..solvers.simulate import simulate
 
 __all__ = ["histories_dataset", "moduli_dataset"]
 
 
 def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e7, n=400,
-                   material_dir="results/materials"):
+                   catalogue: Catalogue | None = None):
     """E(t) on a log time grid and E*(omega) (storage, loss, tan delta) on a log frequency grid."""
     import xarray as xr
 
@@ -25,7 +27,7 @@ def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e
     et, st, lo = [], [], []
     glassy, rubbery = [], []
     for name in names:
-        mat = resolve_material(name, material_dir=material_dir)
+        mat = (catalogue or Catalogue()).material(name)
         et.append(mat.relaxation_modulus(t))
         e = mat.complex_modulus(w)
         st.append(e.real)
@@ -51,13 +53,13 @@ def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e
     return ds
 
 
-def _history_run(material, method, v0, base, geometry, material_dir):
-    mat = resolve_material(material, material_dir=material_dir)
+def _history_run(material, method, v0, base, geometry, catalogue):
+    mat = catalogue.material(material)
     return simulate(mat, float(v0), options=base.replace(method=method), history=True, **geometry)
 
 
 def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_samples=600,
-                      material_dir="results/materials"):
+                      catalogue: Catalogue | None = None):
     """Time histories of ``runs`` = [(material, method), ...] at impact speed v0 (m/s).
 
     ``options`` are the scene's solver options (``SolverOptions`` or a dict); each run uses its own
@@ -69,6 +71,7 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     """
     import xarray as xr
 
+    catalogue = catalogue or Catalogue()
     base = solver_options(options or {})
     if ghost is not None:
         base = base.replace(ghost=ghost)
@@ -77,7 +80,7 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     scal = {k: [] for k in ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "wall_time")}
     status, message = [], []
     for material, method in runs:
-        res, name, text = _status.guarded(_history_run, material, method, v0, base, geometry, material_dir)
+        res, name, text = _status.guarded(_history_run, material, method, v0, base, geometry, catalogue)
         labels.append(f"{material}/{method}")
         status.append(res.status if res is not None else name)
         message.append(res.message if res is not None else text)
@@ -131,8 +134,6 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
     ``ice`` ({g_min_cm_s, g_max_cm_s, n}): g* fitted to the Bridges ice law on that range
     (``vcor.calibrate.fit_g_star``; the numerical eps for each rule, and the Pade) and the fitted curves."""
     import xarray as xr
-
-    from . import spheres as S
 
     b = np.array(sorted(float(x) for x in b_values))
     rules = list(rules)
@@ -188,9 +189,6 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
 def _ice_fits(ice, rules):
     """g* of the Ramirez model fitted to the Bridges ice law (see :func:`spheres_dataset`)."""
     import xarray as xr
-
-    from . import spheres as S
-    from .calibrate import bridges_ice, fit_g_star
 
     g = np.geomspace(float(ice.get("g_min_cm_s", 0.05)), float(ice.get("g_max_cm_s", 5.0)), int(ice.get("n", 21)))
     eps = bridges_ice(g)

@@ -1,4 +1,4 @@
-"""Measured DMA data (issue 12, part 3): pyvisco's CSV conventions, time-temperature superposition,
+"""Measured DMA data: pyvisco's CSV conventions, time-temperature superposition,
 WLF / Arrhenius shift functions.
 
 Files (the column and units conventions of NREL's pyvisco input files):
@@ -17,12 +17,11 @@ are shifted horizontally onto each other by matching log f at equal log E' over 
 share (E' superposes; in pyvisco's example E'' does not), and the shifts are summed from the
 reference temperature. Where E' is flat (glassy, rubbery plateaus) that is ill-conditioned. ``wlf_fit`` / ``arrhenius_fit`` fit the shift function to the per-set log a_T and report
 the residuals. The convention is pyvisco's: the master curve is E'(f a_T) at T_ref, so that a
-material at T relaxes a_T times slower than at T_ref: E(t; T) = E_ref(t / a_T) (:func:`shifted`).
+material at T relaxes a_T times slower than at T_ref: E(t; T) = E_ref(t / a_T) (:mod:`vcor.materials.shift`).
 """
 
 from __future__ import annotations
 
-import functools
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -30,12 +29,11 @@ from pathlib import Path
 
 import numpy as np
 
-from . import materials as _materials
-from .checks import number, positive
-from .csvfile import cell_number, data_rows, read_rows, units_row
+from ..io.csvfile import cell_number, data_rows, read_rows, units_row
+from ..materials.shift import GAS_CONSTANT, wlf_log_aT
+from .prony import FitData, fit_prony
 
-__all__ = ["DMATable", "ShiftFunction", "Superposition", "arrhenius_fit", "fit_master", "read_table", "shift_from_file", "shifted", "superpose", "wlf_fit",
-           "wlf_log_aT"]
+__all__ = ["DMATable", "Superposition", "arrhenius_fit", "fit_master", "read_table", "superpose", "wlf_fit"]
 
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 UNITS = {"f": {"Hz": 1.0}, "t": {"s": 1.0}, "E_stor": MODULUS_UNITS, "E_loss": MODULUS_UNITS,
@@ -97,12 +95,6 @@ def read_table(path) -> DMATable:
             raise ValueError(f"{_where(path, line, 'log_aT')}: shift factors must be strictly monotone in T "
                              f"(log_aT falls as T rises), and temperatures distinct")
     return DMATable(kind, cols, str(path))
-
-
-def wlf_log_aT(T, T_ref, C1, C2):
-    """WLF: log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref) (deg C, C2 in K)."""
-    dT = np.asarray(T, dtype=float) - T_ref
-    return -C1 * dT / (C2 + dT)
 
 
 @dataclass
@@ -222,20 +214,10 @@ def wlf_fit(T, log_aT, T_ref):
 
 def arrhenius_fit(T, log_aT, T_ref):
     """(activation energy E_a in J/mol, residuals): log10 a_T = E_a / (R ln 10) (1/T - 1/T_ref), T in K."""
-    R = 8.314462618
     x = 1.0 / (np.asarray(T, dtype=float) + 273.15) - 1.0 / (T_ref + 273.15)
     y = np.asarray(log_aT, dtype=float)
     slope = float(x @ y / (x @ x))
-    return slope * R * math.log(10.0), slope * x - y
-
-
-def shifted(material, log_aT: float):
-    """The material at a temperature where log10 a_T = ``log_aT`` relative to its reference:
-    E(t; T) = E_ref(t / a_T). Prony types: rates divided by a_T (fractional and CERF: not here)."""
-    if not material.is_prony or material.kind == "kelvin-voigt":
-        raise ValueError(f"temperature shifting is implemented for Prony materials, got {material.kind!r}")
-    e_inf, e, b = material.prony_terms()
-    return _materials.Prony(e_inf, tuple(map(float, e)), tuple(map(float, b / 10.0**log_aT)))
+    return slope * GAS_CONSTANT * math.log(10.0), slope * x - y
 
 
 def fit_master(sp: Superposition, n_terms: int | None = None):
@@ -243,74 +225,7 @@ def fit_master(sp: Superposition, n_terms: int | None = None):
     ``n_terms`` defaults to one term per decade of reduced frequency (a tolerance on the worst error
     would chase the noise of measured data). Returns the FitResult (metrics: worst and RMS relative
     errors of |E*| and tan delta)."""
-    from . import fit as _fit
-
-    data = _fit.FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name="master curve",
+    data = FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name="master curve",
                         measured=True)
     n = n_terms or max(1, math.ceil(math.log10(sp.f_reduced.max() / sp.f_reduced.min())))
-    return _fit.fit_prony(data, n_terms=n)
-
-
-@dataclass(frozen=True)
-class ShiftFunction:
-    """log10 a_T(T) of a material: ``model`` "wlf" (C1, C2 in K) or "arrhenius" (E_a in J/mol), at the
-    reference temperature ``T_ref`` (deg C). Built from a config spec by :meth:`from_spec`."""
-
-    model: str
-    T_ref: float
-    C1: float = math.nan
-    C2: float = math.nan
-    E_a: float = math.nan
-
-    @classmethod
-    def from_spec(cls, spec: dict, where: str = "shift") -> ShiftFunction:
-        if not isinstance(spec, dict) or spec.get("model") not in ("wlf", "arrhenius"):
-            raise ValueError(f"{where}: a mapping with model wlf (C1, C2 [K], T_ref [deg C]) or arrhenius "
-                             f"(E_a [J/mol], T_ref [deg C]), got {spec!r}")
-        need = {"wlf": ("C1", "C2", "T_ref"), "arrhenius": ("E_a", "T_ref")}[spec["model"]]
-        extra = set(spec) - set(need) - {"model"}
-        missing = [k for k in need if k not in spec]
-        if missing or extra:
-            raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; takes {list(need)}")
-        units = {"C1": "", "C2": "K", "E_a": "J/mol"}
-        values = {k: (number(f"{where}.T_ref", spec[k], -273.15, unit="deg C") if k == "T_ref"
-                      else positive(f"{where}.{k}", spec[k], unit=units[k])) for k in need}
-        return cls(spec["model"], **values)
-
-    def valid_range(self) -> tuple[float, float]:
-        """Temperatures (deg C, open interval) where a_T is defined: T > T_ref - C2 (WLF), T > -273.15."""
-        lo = self.T_ref - self.C2 if self.model == "wlf" else -273.15
-        return lo, math.inf
-
-    def log_aT(self, T: float) -> float:
-        lo, _ = self.valid_range()
-        if not (math.isfinite(T) and T > lo):
-            raise ValueError(f"temperature T must be in ({lo:g}, inf) deg C for this {self.model} shift function "
-                             f"(T_ref = {self.T_ref:g} deg C), got {T!r}")
-        if self.model == "wlf":
-            return float(wlf_log_aT(T, self.T_ref, self.C1, self.C2))
-        R = 8.314462618
-        return self.E_a / (R * math.log(10.0)) * (1.0 / (T + 273.15) - 1.0 / (self.T_ref + 273.15))
-
-    def to_dict(self) -> dict:
-        d = {"model": self.model, "T_ref": self.T_ref}
-        d.update({"C1": self.C1, "C2": self.C2} if self.model == "wlf" else {"E_a": self.E_a})
-        return d
-
-
-def shift_from_file(path):
-    """The ShiftFunction stored with a material file (attribute ``shift``), or None. Read once per
-    file version (cached on path and modification time: a sweep asks for it at every point)."""
-    path = Path(path)
-    return _shift_cached(str(path.resolve()), path.stat().st_mtime_ns)
-
-
-@functools.lru_cache(maxsize=64)
-def _shift_cached(path: str, mtime_ns: int):
-    import json
-
-    import xarray as xr
-
-    with xr.open_dataset(path) as ds:
-        text = ds.attrs.get("shift")
-    return ShiftFunction.from_spec(json.loads(text)) if text else None
+    return fit_prony(data, n_terms=n)

@@ -28,10 +28,11 @@ from functools import cached_property
 
 import numpy as np
 
-from . import materials as _materials
-from .checks import number
+from ..checks import interned, number
+from ..materials import models as _materials
+from ..materials.presets import get as _preset
 
-__all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "Geometry", "Impact"]
+__all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "Geometry", "Impact", "make_impact"]
 
 #: densities (kg/m^3) used when rho_a / rho_b are not given: the viscoelastic body is the paper's polymer
 #: (1100), a stiff elastic one steel (7800). Case 1 and 3: steel sphere on a polymer plate; case 2: both
@@ -223,3 +224,19 @@ class Impact:
             smax = (energy / (4.0 * (kappa * modulus_at(t / 4)))) ** 0.4
             t = 2.9432 * smax / v0
         return t
+
+
+def make_impact(material, v0, geometry: dict) -> Impact:
+    """The validated :class:`~vcor.contact.impact.Impact` of a material (a preset name or a Material),
+    an impact speed (m/s) and geometry keywords."""
+    unknown = set(geometry) - set(GEOMETRY_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown geometry keyword(s) {sorted(unknown)}; allowed: {sorted(GEOMETRY_DEFAULTS)}")
+    mat = _preset(material) if isinstance(material, str) else material
+    if not isinstance(mat, _materials.Material):
+        raise ValueError(f"material must be a preset name or a vcor.materials.Material, got {material!r}")
+    return Impact(mat, v0, _geometry(**geometry))
+
+
+#: Geometry(**keywords), validated once per distinct keyword set (immutable: a sweep's points share it)
+_geometry = interned(Geometry)

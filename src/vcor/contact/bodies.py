@@ -3,7 +3,7 @@ material, size, density and Poisson ratio, combined as Green 2026 Eq. 1 says.
 
 * ``sphere: {material, r, rho, nu}``, ``plate: {material, h, rho, nu}``; ``material`` is a
   material (a preset name, a config material's name (the workflow inlines its parameters:
-  :func:`inline_config_materials`), an inline spec ``{model: ...}`` as in the config's ``materials:``
+  :func:`vcor.study.config.inline_config_materials`), an inline spec ``{model: ...}`` as in the config's ``materials:``
   block, ``rigid``, or ``{model: elastic, E: ...}``); in a scene a body without ``material`` takes the
   scene's swept material (its ``materials`` list). A fitted material can only be the swept one. h is the plate's half-thickness (default 2 r).
 * Defaults: a rigid or elastic body is steel (rho 7800 kg/m^3, nu 0.3), a viscoelastic one the
@@ -37,12 +37,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import materials as _materials
+from ..materials import models as _materials
+from ..materials.presets import PRESETS, get
 from .impact import DENSITIES, GEOMETRY_DEFAULTS
-from .material_specs import from_spec
+from ..materials.specs import from_spec
 
-__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "inline_config_materials", "scene_bodies",
-           "series_modulus"]
+__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "scene_bodies", "series_modulus"]
 
 #: keys of a body mapping (size: r for the sphere, h for the plate)
 BODY_KEYS = {"sphere": {"material", "r", "rho", "nu"}, "plate": {"material", "h", "rho", "nu"}}
@@ -81,11 +81,11 @@ def _material_of(value, where, swept):
     if value == "rigid":
         return None
     if isinstance(value, str):
-        if value not in _materials.PRESETS:
-            raise ValueError(f"{where}.material: {value!r} is not a preset ({sorted(_materials.PRESETS)}), a config "
+        if value not in PRESETS:
+            raise ValueError(f"{where}.material: {value!r} is not a preset ({sorted(PRESETS)}), a config "
                              f"material or 'rigid'; a fitted material goes into the scene's materials list (the "
                              f"swept body, which then omits material), another material inline as {{model: ...}}")
-        return _materials.get(value)
+        return get(value)
     if isinstance(value, dict):
         return from_spec(value, where=f"{where}.material")
     raise ValueError(f"{where}.material: a preset name, 'rigid' or a mapping {{model: ...}}, got {value!r}")
@@ -117,23 +117,6 @@ def body_from_spec(kind: str, spec: dict, swept=None, where: str | None = None) 
     if not (isinstance(nu, (int, float)) and -1 < nu <= 0.5):
         raise ValueError(f"{where}.nu must be in (-1, 0.5], got {nu!r}")
     return Body(material, None if size is None else float(size), float(rho), float(nu))
-
-
-def inline_config_materials(scene: dict, materials: dict, base_dir=".") -> dict:
-    """The scene with each body's ``material`` that names a config material (``materials:`` block)
-    replaced by that material's built parameters as an inline spec, so that the material's content
-    (CSV tables included) is part of the scene's settings and of its shards' identity."""
-    if not any(isinstance((scene.get(k) or {}).get("material"), str) for k in ("sphere", "plate")):
-        return scene
-    out = dict(scene)
-    for key in ("sphere", "plate"):
-        body = dict(scene.get(key) or {})
-        name = body.get("material")
-        if isinstance(name, str) and name in materials:
-            d = from_spec(materials[name], name=name, base_dir=base_dir).to_dict()
-            body["material"] = {"model": d.pop("kind"), **d}
-            out[key] = body
-    return out
 
 
 @functools.lru_cache(maxsize=64)

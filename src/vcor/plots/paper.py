@@ -1,0 +1,227 @@
+"""The paper's figures (Green 2026, Figs. 1-9) and the Prony-terms study: one function per figure,
+datasets in, Figure out."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .common import cor_line, json_materials, mark_failed, plt, point, status_name, v0_line
+
+__all__ = ["fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fig9", "prony_terms"]
+
+
+def moduli_axes(fig, mod, materials, marks, inset_tmax=None):
+    """E(t) left; storage (solid), loss (dashed) and tan delta (dotted, right axis) right.
+    One colour per material."""
+    ax_t, ax_w = fig.subplots(1, 2)
+    ax_tan = ax_w.twinx()
+    for i, m in enumerate(materials):
+        c = f"C{i}"
+        ax_t.loglog(mod["t"], mod["relaxation_modulus"].sel(material=m), color=c, label=m)
+        ax_w.loglog(mod["omega"], mod["storage_modulus"].sel(material=m), "-", color=c, label=f"{m}: E'")
+        ax_w.loglog(mod["omega"], mod["loss_modulus"].sel(material=m), "--", color=c, label=f"{m}: E''")
+        ax_tan.semilogx(mod["omega"], mod["tan_delta"].sel(material=m), ":", color=c, label=f"{m}: tan δ")
+    ax_t.set_xlabel("t [s]")
+    ax_t.set_ylabel("E(t) [Pa]")
+    ax_w.set_xlabel(r"$\omega$ [rad/s]")
+    ax_w.set_ylabel("storage E' (solid), loss E'' (dashed) [Pa]")
+    ax_tan.set_ylabel(r"tan $\delta$ (dotted) [-]")
+    for t0, wmin, lab in marks:
+        if math.isfinite(t0):
+            ax_t.axvline(t0, color="k", lw=0.8)
+            ax_t.annotate(f"t0 = {t0 * 1e3:.3g} ms\n({lab})", (t0, 0.02), xycoords=("data", "axes fraction"),
+                          fontsize=7, xytext=(3, 0), textcoords="offset points")
+            ax_w.axvline(wmin, color="k", lw=0.8)
+            ax_w.annotate(f"ω_min = {wmin:.4g} rad/s", (wmin, 0.02), xycoords=("data", "axes fraction"),
+                          fontsize=7, xytext=(3, 0), textcoords="offset points")
+    if inset_tmax:
+        ins = ax_t.inset_axes([0.52, 0.55, 0.45, 0.42])
+        for i, m in enumerate(materials):
+            sel = mod["t"] <= inset_tmax
+            ins.plot(mod["t"][sel] * 1e3, mod["relaxation_modulus"].sel(material=m)[sel] / 1e6, color=f"C{i}")
+        ins.set_xlabel("t [ms]", fontsize=7)
+        ins.set_ylabel("E [MPa]", fontsize=7)
+        ins.set_yscale("log")
+        ins.tick_params(labelsize=6)
+    ax_t.legend(fontsize=7, loc="lower left")
+    h1, l1 = ax_w.get_legend_handles_labels()
+    h2, l2 = ax_tan.get_legend_handles_labels()
+    ax_w.legend(h1 + h2, l1 + l2, fontsize=6, loc="upper left")
+    return ax_t, ax_w
+
+
+def fig1(sweep, moduli, opts):
+    """SLS moduli in time and frequency with t0 and omega_min of the v0 = 10 m/s impact."""
+    mat = opts.get("material", "sls")
+    p = point(sweep, mat, opts.get("v0", 10.0), beta=opts.get("beta", 1200.0))
+    fig = plt.figure(figsize=(10, 4), layout="constrained")
+    moduli_axes(fig, moduli, [mat], [(float(p["t0"]), float(p["omega_min"]), f"v0={float(p['v0']):g} m/s")])
+    fig.suptitle(f"Fig. 1: {mat} relaxation and dynamic moduli")
+    return fig
+
+
+def responses(hist, runs, title):
+    fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
+    for i, run in enumerate(runs):
+        h = hist.sel(run=run)
+        if int(h["status"]) != 0:
+            ax.text(0.02, 0.02 + 0.05 * i, f"{run}: {status_name(h['status'])} ({h['message'].values})", color="red",
+                    transform=ax.transAxes, fontsize=7)
+            continue
+        t = h["t"].values * 1e3
+        ghost = h["ghost"].values.astype(bool)
+        v0 = hist.attrs["v0"]
+        curves = {
+            "s/s_max": h["s"].values / float(h["s_max"]),
+            "-s'/v0": -h["sdot"].values / v0,
+            "F/F_max": h["F"].values / float(h["f_max"]),
+        }
+        for (name, y), color in zip(curves.items(), ["C0", "C1", "C2"]):
+            if i == 0:  # first run: solid line
+                ax.plot(t[~ghost], y[~ghost], "-", color=color, label=f"{name} {run}")
+            else:  # further runs: open markers on top, so that overlaid solutions stay visible
+                every = max(1, int((~ghost).sum()) // 25)
+                ax.plot(t[~ghost][i::every], y[~ghost][i::every], ["o", "s", "^"][(i - 1) % 3], mfc="none",
+                        color=color, ms=4, label=f"{name} {run}")
+            ax.plot(t[ghost], y[ghost], "--", color=color, alpha=0.6)
+        t0 = float(h["t0"]) * 1e3
+        ax.axvline(t0, color="k", lw=0.8)
+        ax.annotate(f"{run}: t0={t0:.4g} ms, COR={float(h['cor']):.4f},\nresidual s/s_max={float(h['s_residual'] / h['s_max']):.4f}",
+                    (t0, 0.9 - 0.15 * i), fontsize=7, xytext=(5, 0), textcoords="offset points")
+    ax.axhline(0, color="grey", lw=0.5)
+    ax.set_xlabel("t [ms]")
+    ax.set_ylabel("normalised response [-]")
+    ax.set_title(title + "\n(dashed: ghost solution after separation)", fontsize=10)
+    ax.legend(fontsize=6, ncol=2, loc="lower left")
+    return fig
+
+
+def runs(hist, opts, default_materials):
+    if "runs" in opts:
+        return list(opts["runs"])
+    return [str(r) for r in hist["run"].values if str(r).split("/")[0] in default_materials]
+
+
+def fig2(hist, opts):
+    """SLS responses, direct and IVE overlaid."""
+    return responses(hist, runs(hist, opts, ["sls"]), "Fig. 2: SLS responses, direct and IVE")
+
+
+def fig3(hist, opts):
+    """Hysteresis loops F(s) up to separation with W_h."""
+    fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+    for i, run in enumerate(runs(hist, opts, ["sls", "butyl-fc"])):
+        h = hist.sel(run=run)
+        if int(h["status"]) != 0:
+            ax.text(0.02, 0.95 - 0.05 * i, f"{run}: {status_name(h['status'])} ({h['message'].values})",
+                    color="red", transform=ax.transAxes, fontsize=7)
+            continue
+        ghost = h["ghost"].values.astype(bool)
+        ax.plot(h["s"].values[~ghost] * 1e3, h["F"].values[~ghost],
+                label=f"{run}: F_max={float(h['f_max']):.1f} N, s_max={float(h['s_max']) * 1e3:.3g} mm, "
+                      f"W_h={float(h['w_h']):.3f} J")
+    ax.set_xlabel("s [mm]")
+    ax.set_ylabel("F [N]")
+    ax.set_title("Fig. 3: hysteresis loops")
+    ax.legend(fontsize=7)
+    return fig
+
+
+def fig4(sweep, opts):
+    """COR vs v0 with the SLS decay rate beta as a parameter."""
+    fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+    mat = opts.get("material", str(sweep["material"].values[0]))
+    ds = sweep.sel(material=mat)
+    nbad = 0
+    for b in ds["beta"].values:
+        nbad += cor_line(ax, ds.sel(beta=b), f"β = {b:g} 1/s")
+    ax.set_title("Fig. 4: COR vs impact speed, SLS, α/β fixed" + (f" ({nbad} points not ok)" if nbad else ""))
+    ax.legend(fontsize=7)
+    return fig
+
+
+def fig5(sweep, moduli, opts):
+    """Butyl B252 moduli: fractional law, CERF and Prony sets."""
+    ref = opts.get("reference", "butyl-fc")
+    mats = [str(m) for m in moduli["material"].values]
+    p = point(sweep, ref, opts.get("v0", 10.0))
+    fig = plt.figure(figsize=(11, 4.5), layout="constrained")
+    moduli_axes(fig, moduli, mats, [(float(p["t0"]), float(p["omega_min"]), ref)], inset_tmax=4e-4)
+    fig.suptitle("Fig. 5: Butyl B252 moduli (inset: t <= 0.4 ms)")
+    return fig
+
+
+def fig6(hist, opts):
+    return responses(hist, runs(hist, opts, ["butyl-fc", "butyl-cerf"]), "Fig. 6: Butyl, fractional law and CERF")
+
+
+def fig7(hist, opts):
+    return responses(hist, runs(hist, opts, ["butyl-prony3"]), "Fig. 7: Butyl, 3-term Prony, direct and IVE")
+
+
+def fig8(sweep, opts):
+    """COR vs v0 for the Butyl models."""
+    fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+    nbad = 0
+    for m in sweep["material"].values:
+        nbad += cor_line(ax, v0_line(sweep, m), str(m))
+    ax.set_title("Fig. 8: COR vs impact speed, Butyl B252 models" + (f" ({nbad} not ok)" if nbad else ""))
+    ax.legend(fontsize=8)
+    return fig
+
+
+def fig9(sweep, opts):
+    """t0, omega_min, s_max, F_max and W_h vs v0 for one material (default: the fractional law)."""
+    mat = opts.get("material", "butyl-fc")
+    d = v0_line(sweep, mat)
+    ok = d["status"].values == 0
+    fig, axes = plt.subplots(1, 5, figsize=(16, 3.5), layout="constrained")
+    specs = [("t0", 1e3, "t0 [ms]"), ("omega_min", 1.0, "ω_min [rad/s]"), ("s_max", 1e3, "s_max [mm]"),
+             ("f_max", 1.0, "F_max [N]"), ("w_h", 1.0, "W_h [J]")]
+    for ax, (var, scale, lab) in zip(axes, specs):
+        ax.plot(d["v0"].values[ok], d[var].values[ok] * scale, "o-", ms=3)
+        mark_failed(ax, d["v0"].values, ok)
+        ax.set_xlabel("v0 [m/s]")
+        ax.set_ylabel(lab)
+    fig.suptitle(f"Fig. 9: effect of impact speed, {mat}")
+    return fig
+
+
+def prony_terms(sweep, opts):
+    """COR at v0 (default 10 m/s) against the number of Prony terms N, beside the reference law;
+    right: COR(v0) for the reference, a few N, the paper's 3-term set and the automatic fit."""
+    import re
+
+    ref = opts.get("reference", "butyl-fc")
+    v0 = float(opts.get("v0", 10.0))
+    pat = re.compile("^" + re.escape(opts.get("pattern", "butyl-prony-n{n}")).replace(r"\{n\}", r"(\d+)") + "$")
+    mats = [str(m) for m in sweep["material"].values]
+    ns = sorted((int(pat.match(m).group(1)), m) for m in mats if pat.match(m))
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")
+    c_ref = float(point(sweep, ref, v0)["cor"])
+    cors = [float(point(sweep, m, v0)["cor"]) for _, m in ns]
+    ax.plot([n for n, _ in ns], cors, "o-", label="Prony fit with N terms")
+    ax.axhline(c_ref, color="k", label=f"{ref} (solved directly): {c_ref:.4f}")
+    for other, style in (("butyl-prony3", "s"), ("butyl-prony-fit", "D")):
+        if other in mats:
+            n_other = len(json_materials(sweep)[other]["material"]["E"])
+            ax.plot([n_other], [float(point(sweep, other, v0)["cor"])], style, ms=8, label=f"{other} (N = {n_other})")
+    for other, style in (("butyl-cerf", "--"), ("butyl-cerf-fit", ":")):
+        if other in mats:
+            ax.axhline(float(point(sweep, other, v0)["cor"]), ls=style, color="grey", label=other)
+    ax.set_xlabel("number of Prony terms N")
+    ax.set_ylabel(f"COR at v0 = {v0:g} m/s [-]")
+    ax.legend(fontsize=7, loc="lower right")
+    ax_in = ax.inset_axes([0.33, 0.6, 0.3, 0.32])
+    ax_in.semilogy([n for n, _ in ns], np.abs(np.array(cors) / c_ref - 1), "o-")
+    ax_in.set_title("|COR/COR_ref - 1|", fontsize=7)
+    ax_in.tick_params(labelsize=6)
+    show = [ref] + [m for m in ("butyl-prony3", "butyl-prony-fit") if m in mats] + [m for n, m in ns if n in (3, 12)]
+    for m in show:
+        cor_line(ax2, v0_line(sweep, m), m)
+    ax2.legend(fontsize=7)
+    fig.suptitle("Prony class or 3-term fit? COR against the number of Prony terms")
+    return fig
+

@@ -1,0 +1,102 @@
+"""Temperature: COR against T, COR against v0 at several T, and measured-data master curves."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from .common import fixed_axes, mark_failed, plt
+
+__all__ = ["cor_temperature", "cor_v0_temperature", "master_curve"]
+
+
+def cor_temperature(sweep, opts):
+    """Issue 12: COR against temperature T (deg C), one line per material and impact speed v0; any other
+    axis at the value the options name (e.g. ``nu: 0.5``) or its first; points not ok as red crosses."""
+    if "T" not in sweep.dims:
+        raise ValueError("figure cor_temperature needs a sweep with a temperature axis T (deg C)")
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
+    nbad = 0
+    sel, fixed = fixed_axes(sweep, opts, ("material", "T", "v0"))
+    v0s = opts.get("v0s", list(sweep["v0"].values))
+    for m in sweep["material"].values:
+        for v0 in v0s:
+            d = sweep.sel(material=m, v0=v0, **sel)
+            ok = d["status"].values == 0
+            ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
+            nbad += mark_failed(ax, d["T"].values, ok)
+    ax.set_xlabel("T [deg C]")
+    ax.set_ylabel("COR")
+    ax.set_title("COR against temperature" + fixed + (f", {nbad} not ok" if nbad else ""), fontsize=9)
+    ax.legend(fontsize=7)
+    return fig
+
+
+def cor_v0_temperature(sweep, opts):
+    """Issue 12: COR against v0 (m/s), one line per temperature (option ``T``: a list of values on the
+    sweep's T axis; default: five spread over it), one panel per material; other axes as in
+    :func:`cor_temperature`."""
+    if "T" not in sweep.dims:
+        raise ValueError("figure cor_v0_temperature needs a sweep with a temperature axis T (deg C)")
+    temps = sweep["T"].values
+    chosen = opts.get("T", list(temps[np.unique(np.linspace(0, temps.size - 1, min(5, temps.size)).round().astype(int))]))
+    missing = [t for t in chosen if t not in temps]
+    if missing:
+        raise ValueError(f"figure option T: {missing} not on the sweep's T axis {list(temps)}")
+    sel, fixed = fixed_axes(sweep, {k: v for k, v in opts.items() if k != "T"}, ("material", "T", "v0"))
+    mats = sweep["material"].values
+    fig, axes = plt.subplots(1, len(mats), figsize=(5.0 * len(mats), 4.2), layout="constrained", squeeze=False)
+    colors = plt.cm.coolwarm(np.linspace(0, 1, len(chosen)))
+    for ax, m in zip(axes[0], mats):
+        nbad = 0
+        for c, t in zip(colors, chosen):
+            d = sweep.sel(material=m, T=t, **sel)
+            ok = d["status"].values == 0
+            ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, color=c, label=f"T = {t:g} deg C")
+            nbad += mark_failed(ax, d["v0"].values, ok)
+        ax.set_xscale("log")
+        ax.set_xlabel("v0 [m/s]")
+        ax.set_ylabel("COR")
+        ax.set_title(f"{m}" + (f" ({nbad} not ok)" if nbad else ""), fontsize=9)
+        ax.legend(fontsize=7)
+    fig.suptitle("COR against impact speed at several temperatures" + fixed, fontsize=10)
+    return fig
+
+
+def master_curve(fits, opts):
+    """Issue 12: measured-data fits' master curves at T_ref, a column per fit: the shifted data (E', E''
+    coloured by the temperature of their set) and the Prony fit, and tan delta, against reduced
+    frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta."""
+    fig, axes = plt.subplots(2, len(fits), figsize=(5.5 * len(fits), 7.0), layout="constrained", sharex="col",
+                             squeeze=False)
+    for (ax1, ax2), fit in zip(axes.T, fits):
+        f = fit["omega"].values / (2 * np.pi)
+        shift = json.loads(fit.attrs.get("shift", "{}"))
+        c = fit["T_set"].values if "T_set" in fit else np.zeros(f.size)
+        for var, marker, sym, style in (("storage", "o", "E'", "k-"), ("loss", "s", "E''", "k--")):
+            sc = ax1.scatter(f, fit[f"{var}_data"].values, c=c, cmap="coolwarm", s=5, marker=marker,
+                             label=f"{sym} data")
+            ax1.plot(f, fit[f"{var}_fit"].values, style, lw=1, label=f"{sym} Prony fit")
+        if "T_set" in fit:
+            fig.colorbar(sc, ax=ax1, label="T of the set [deg C]")
+        ax1.set_xscale("log")
+        ax1.set_yscale("log")
+        ax1.set_ylabel("modulus [Pa]")
+        ax1.legend(fontsize=7)
+        ax2.scatter(f, fit["loss_data"].values / fit["storage_data"].values, c=c, cmap="coolwarm", s=5,
+                    label="tan delta data")
+        ax2.plot(f, fit["loss_fit"].values / fit["storage_fit"].values, "k-", lw=1, label="tan delta fit")
+        ax2.set_yscale("log")
+        ax2.set_xlabel("reduced frequency f a_T [Hz]")
+        ax2.set_ylabel("tan delta")
+        ax2.legend(fontsize=7)
+        met = json.loads(fit.attrs.get("metrics", "{}"))
+        name = json.loads(fit.attrs.get("fit_spec", "{}")).get("data", {}).get("shift_file", "shifts from the data")
+        title = f"{fit.attrs.get('data', '')}\nT_ref = {shift.get('T_ref', '?')} deg C; {name}"
+        title += "\nrms relative error: " + ", ".join(
+            f"{lab} {100 * met[k]:.1f} %" for lab, k in (("E'", "storage_rms"), ("E''", "loss_rms"),
+                                                        ("tan delta", "tan_delta_rms")) if k in met)
+        ax1.set_title(title, fontsize=8)
+    return fig
+
