@@ -18,29 +18,26 @@ import sys
 import tempfile
 import time
 
-METHODS = ({}, {"method": "adaptive"}, {"method": "adaptive", "richardson": False}, {"method": "soe"},
-           {"method": "ive-numba"}, {"method": "adaptive", "history": True}, {"history": True},
-           {"form": "b"}, {"method": "paper"}, {"volterra": True})
+METHODS = ({"method": "direct"}, {}, {"richardson": False}, {"method": "soe"}, {"method": "ive-numba"},
+           {"history": True}, {"method": "direct", "history": True}, {"method": "direct", "form": "b"},
+           {"method": "paper"}, {"method": "direct", "volterra": True})
 MATERIALS = ("butyl-prony3", "butyl-fc", "butyl-cerf", "kelvin-voigt", "sls", "elastic")
 
 
 def workload():
     """Every method on every preset kind, and the thin-plate (general adaptive) path; then print the
     kernels with more than one type signature."""
-    import numba
-
-    from vcor.solvers import _kernels as kernels
     from vcor.solvers import simulate
+    from vcor.solvers.backend import compiled_signatures
 
     for material in MATERIALS:
         for kw in METHODS:
             with contextlib.suppress(ValueError):  # a method that does not apply to this material
                 simulate(material, 10.0, **kw)
-    simulate("sls", 10.0, h=0.001, method="adaptive")
-    for name in dir(kernels):
-        d = getattr(kernels, name)
-        if isinstance(d, numba.core.registry.CPUDispatcher) and len(d.signatures) > 1:
-            print(name, d.signatures)
+    simulate("sls", 10.0, h=0.001)
+    for name, signatures in compiled_signatures().items():
+        if len(signatures) > 1:
+            print(name, signatures)
 
 
 def cold_run():

@@ -1,6 +1,6 @@
-"""The ``adaptive`` method (issue 11): the direct scheme on a variable grid with an exponential-sum
-history. README, "The adaptive method"."""
+"""The ``adaptive`` method: the direct scheme on a variable grid with an exponential-sum history."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -47,9 +47,9 @@ def test_two_grid_extrapolation_leaves_order_two_and_a_half(name):
 
 @pytest.mark.parametrize("name", PRESETS)
 def test_one_call_path_equals_the_general_path(name, monkeypatch):
-    """run_adaptive's one-numba-call path (_one_call) gives exactly the numbers of the general path
-    (Python-driven marches), with and without extrapolation, on standard and thin plates and a rigid
-    target."""
+    """run_adaptive's one-numba-call path (``adaptive.one_call``) gives exactly the numbers of the general
+    path (Python-driven marches, ``one_call_path=False``), with and without extrapolation, on standard
+    and thin plates and a rigid target."""
     cases = [(v0, geo, ex) for v0 in (0.001, 10.0, 300.0) for geo in ({}, {"h": 3.16e-3}, {"rigid": True})
              for ex in (True, False)]
     fast = []
@@ -57,10 +57,10 @@ def test_one_call_path_equals_the_general_path(name, monkeypatch):
         imp = make_impact(name, v0, geo)
         fast.append(adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6,
                                           extrapolate=ex))
-    monkeypatch.setattr(adaptive, "_one_call", lambda *a, **k: None)
     for (v0, geo, ex), a in zip(cases, fast, strict=True):
         imp = make_impact(name, v0, geo)
-        b = adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6, extrapolate=ex)
+        b = adaptive.run_adaptive(imp, imp.contact_time_estimate(), step_tol=3e-4, max_steps=10**6, extrapolate=ex,
+                                  one_call_path=False)
         assert (a.status, a.message, a.steps, a.dt) == (b.status, b.message, b.steps, b.dt), (v0, geo, ex)
         for k in (*adaptive.EXTRAPOLATED, "omega_min"):
             assert getattr(a, k) == getattr(b, k), (v0, geo, ex, k)
@@ -68,7 +68,7 @@ def test_one_call_path_equals_the_general_path(name, monkeypatch):
 
 @pytest.mark.parametrize("name", ["butyl-fc", "butyl-cerf", "sls"])
 def test_skipping_decayed_modes_changes_nothing_but_rounding(name, monkeypatch):
-    """The march skips, per level, the modes that decay below _kernels.DECAYED over one step (their
+    """The march skips, per level, the modes that decay below ``_records.DECAYED`` over one step (their
     value kept implicitly, written back before a march returns). Against the same runs touching
     every mode (live = all): equal to 1e-12 relative (the COR also to 1e-15 absolute, the rounding
     floor of a velocity ratio), on standard plates at 10 and 0.001 m/s, a thin plate (horizon
@@ -83,8 +83,9 @@ def test_skipping_decayed_modes_changes_nothing_but_rounding(name, monkeypatch):
     6e-9 (``test_fractional_thin_plate_separates_after_hours``)."""
     imp = make_impact(name, 10.0, {})
     tab = adaptive.level_tables(imp.material, float(imp.kappa), 1e-9, 30, 1.0, 1e-10)
+    live, n_modes = tab.levels.live_modes, tab.levels.mode_decay.shape[1]
     if name != "sls":  # levels 2^29 apart: the coarsest skips 40 % of the ~100 modes, the finest a few
-        assert tab["live"][-1] <= 0.6 * tab["GA"].shape[1] and tab["live"][0] > tab["live"][-1], tab["live"]
+        assert live[-1] <= 0.6 * n_modes and live[0] > live[-1], live
     cases = [(size, geo, v0) for size in (adaptive.INITIAL_SIZE, 16)
              for geo, v0 in (({}, 10.0), ({}, 0.001), ({"h": 1e-3 if name == "sls" else 10e-3}, 10.0),
                              ({"rigid": True}, 1.0))]
@@ -102,9 +103,9 @@ def test_skipping_decayed_modes_changes_nothing_but_rounding(name, monkeypatch):
     tables = adaptive.level_tables
 
     def every_mode(*args):
-        t = dict(tables(*args))
-        t["live"] = np.full_like(t["live"], t["GA"].shape[1])
-        return t
+        t = tables(*args)
+        levels = t.levels._replace(live_modes=np.full_like(t.levels.live_modes, t.levels.mode_decay.shape[1]))
+        return dataclasses.replace(t, levels=levels)
 
     monkeypatch.setattr(adaptive, "level_tables", every_mode)
     for case, a, b in zip(cases, skipping, run(), strict=True):
@@ -118,11 +119,9 @@ def test_one_call_path_falls_back_beyond_the_first_horizon():
     """The 1 mm fractional plate outlives the first time horizon: the one-call path declines and the
     general path (horizon extension) solves it."""
     imp = make_impact("butyl-fc", 10.0, {"h": 1e-3})
-    top = 2.0 ** math.floor(math.log2(imp.contact_time_estimate()))
-    h_base = top * 2.0**-adaptive.FLOOR_BITS
     for n_grids in (1, 3):
-        assert adaptive._one_call(imp, imp.contact_time_estimate(), h_base, n_grids, step_tol=3e-4, max_steps=10**6,
-                                  rule="force", tol=1e-10, kind=adaptive._plate_kind(imp), t_start=0.0) is None
+        assert adaptive.one_call(imp, imp.contact_time_estimate(), n_grids, step_tol=3e-4, max_steps=10**6,
+                                 rule="force", tol=1e-10) is None
     assert vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3).ok
 
 
@@ -135,12 +134,12 @@ def test_fractional_plate_in_closed_form_equals_its_exponential_sum(monkeypatch)
     imp = make_impact("butyl-fc", 10.0, {})
     tab = adaptive.level_tables(imp.material, float(imp.kappa), 1e-9, 30, 1.0, 1e-10)
     sls = make_impact("sls", 10.0, {})
-    assert adaptive._plate_kind(imp) == 2 and adaptive._plate_kind(sls) == 1
-    assert adaptive._plate(imp, tab, 2)[0] == 2 and adaptive._plate(sls, tab, 1)[0] == 1
+    assert adaptive.plate_kind(imp) == 2 and adaptive.plate_kind(sls) == 1
+    assert adaptive.plate_record(imp, tab, 2).kind == 2 and adaptive.plate_record(sls, tab, 1).kind == 1
     cases = [(v0, h) for v0 in (1.0, 10.0) for h in (None, 10e-3)]
     closed = [vcor.simulate("butyl-fc", v0, method="adaptive", h=h) for v0, h in cases]
     monkeypatch.setattr(vcor.materials.FractionalPower, "sqrt_law", lambda self: None)
-    assert adaptive._plate_kind(imp) == 1
+    assert adaptive.plate_kind(imp) == 1
     summed = [vcor.simulate("butyl-fc", v0, method="adaptive", h=h) for v0, h in cases]
     for case, a, b in zip(cases, closed, summed, strict=True):
         assert a.ok and b.ok, (case, a.message, b.message)
@@ -223,23 +222,22 @@ def test_extrapolation_never_stores_a_negative_cor():
     COR_FLOOR (1e-9 absolute) and pass the guard, but the weights (0.07, -0.69, 1.62) can take the
     extrapolated COR below zero. The finest grid's values are kept then, with a message; an ordinary
     impact is extrapolated as before."""
-    from vcor.solvers.common import Result
-
     def runs(cors):
         return [[{"t0": 0.5, "cor": c}.get(k, 1.0) for k in adaptive.EXTRAPOLATED] for c in cors]
 
-    creeping = runs([1e-11, 2e-10, 5e-11])
-    fine = adaptive._extrapolated(Result(cor=5e-11, t0=0.5, message=""), creeping)
-    assert fine.cor == 5e-11 and "extrapolated COR" in fine.message and "negative" in fine.message
-    ordinary = runs([0.4320, 0.43198, 0.431987])
-    fine = adaptive._extrapolated(Result(cor=0.431987, t0=0.5, message=""), ordinary)
+    cor = adaptive.EXTRAPOLATED.index("cor")
+    values, message = adaptive.richardson_outcome(runs([1e-11, 2e-10, 5e-11]))  # creeping
+    assert values[cor] == 5e-11 and "extrapolated COR" in message and "negative" in message
+    values, message = adaptive.richardson_outcome(runs([0.4320, 0.43198, 0.431987]))  # ordinary
     w = adaptive.RICHARDSON_WEIGHTS
-    assert fine.message == "" and fine.cor == pytest.approx(w[0] * 0.4320 + w[1] * 0.43198 + w[2] * 0.431987)
+    assert message == "" and values[cor] == pytest.approx(w[0] * 0.4320 + w[1] * 0.43198 + w[2] * 0.431987)
+    assert sum(w) == pytest.approx(1.0, abs=1e-15)  # a constant is extrapolated to itself
 
 
 def test_step_budget_is_reported_not_a_verdict():
     res = vcor.simulate("sls", 10.0, method="adaptive", h=1e-3, max_adaptive_steps=200)
-    assert res.status == "step-budget" and "max_steps = 200" in res.message
+    assert res.status == "step-budget" and "max_adaptive_steps = 200" in res.message
+    assert "raise max_adaptive_steps" in res.message  # the message says what to change
     assert math.isnan(res.cor)
 
 
@@ -265,23 +263,38 @@ def test_options_are_checked():
 def test_each_kernel_is_compiled_once():
     """Every numba kernel gets one type signature over all methods and paths (one-call and general
     adaptive, histories, thin plate, every preset kind): a literal argument in a call from another
-    kernel (e.g. a constant 0 or True) would make numba compile a second copy (march_adaptive: ~1 s
-    of compile per process). A fresh process, so that only these calls count; the workload is the
-    compile benchmark's (benchmarks/bench_compile.py), which prints every kernel with more than one
-    signature."""
+    kernel (e.g. a constant 0 or True), or a named tuple in one call and a plain tuple in another, would
+    make numba compile a second copy (march_adaptive: ~1 s of compile per process). A fresh process,
+    so that only these calls count, with an empty numba cache (a kernel loaded from the cache records no
+    signatures for the kernels it calls) (``vcor.solvers.backend.compiled_signatures``)."""
+    import os
     import subprocess
     import sys
-    from pathlib import Path
+    import tempfile
 
-    bench = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_compile.py"
-    out = subprocess.run([sys.executable, str(bench), "--workload"], capture_output=True, text=True,
-                         check=True)
-    assert out.stdout == "", out.stdout
+    code = ("import contextlib, vcor\n"
+            "from vcor.solvers.backend import compiled_signatures\n"
+            "methods = [{'method': 'direct'}, {}, {'richardson': False}, {'method': 'soe'}, {'method': 'ive-numba'},\n"
+            "           {'history': True}, {'method': 'direct', 'history': True}, {'method': 'direct', 'form': 'b'},\n"
+            "           {'method': 'paper'}, {'method': 'direct', 'volterra': True}]\n"
+            "for m in ('butyl-prony3', 'butyl-fc', 'butyl-cerf', 'kelvin-voigt', 'sls', 'elastic'):\n"
+            "    for kw in methods:\n"
+            "        with contextlib.suppress(ValueError):\n"
+            "            vcor.simulate(m, 10.0, **kw)\n"
+            "vcor.simulate('sls', 10.0, h=0.001)\n"
+            "sigs = compiled_signatures()\n"
+            "used = [k for k in sigs if not k.endswith(('_inline', '_sqrt_law_mobility'))]  # inlined: no own copy\n"
+            "assert len(used) >= 12 and all(sigs[k] for k in used), {k: len(v) for k, v in sigs.items()}\n"
+            "print({k: len(v) for k, v in sigs.items() if len(v) > 1})\n")
+    with tempfile.TemporaryDirectory() as cache:
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                             env=dict(os.environ, NUMBA_CACHE_DIR=cache))
+    assert out.stdout.strip() == "{}", out.stdout
 
 
 def test_reassociated_sums_are_safe():
     """The adaptive march's two sums over many modes are compiled with fastmath reassociation
-    (``_kernels._JIT_SUM``): the same impacts run as plain Python (NUMBA_DISABLE_JIT=1: every sum in
+    (``vcor.solvers._jit.jit_sum``): the same impacts run as plain Python (NUMBA_DISABLE_JIT=1: every sum in
     order, no vectorisation) agree to 1e-12 relative."""
     import json
     import os

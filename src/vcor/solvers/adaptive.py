@@ -2,11 +2,11 @@
 
 Every kernel is split into its newest step (exact product integration, which holds the t^-1/2
 singularity of the fractional law) and older history carried by the exponential sum of
-:func:`vcor.soe.soe` (exact for Prony, SLS, elastic and Kelvin-Voigt; relative error <= ``soe_tol``
+:func:`vcor.materials.expsums.soe` (exact for Prony, SLS, elastic and Kelvin-Voigt; relative error <= ``soe_tol``
 for the fractional and CERF laws on [smallest step, horizon]). One variable per exponential is
 updated in O(1) per step for any step size, so the cost is O(N K) and steps can grow by orders of
 magnitude in long, slow contacts (thin plates) and shrink near t = 0 and at separation. A mode
-that decays below 1e-18 over one step (``_kernels.DECAYED``) is not touched on that step's level
+that decays below 1e-18 over one step (``_records.DECAYED``) is not touched on that step's level
 (its value is the last step's contribution, kept implicitly), so the fast modes of the fractional
 and CERF sums cost nothing on coarse steps.
 
@@ -14,10 +14,10 @@ Step sizes are powers of two times h_base = 2^(floor(log2 t_c) - FLOOR_BITS) (t_
 estimate), so every table (local weights, mode factors) is computed once per level and shared by the
 points of a sweep (cached); t_n are sums of powers of two and exact in floating point.
 
-Error control (``_kernels.march_adaptive``): the trapezoidal rule's local error h^3 g''/12, with
+Error control (``_adaptive_kernels.march_adaptive``): the trapezoidal rule's local error h^3 g''/12, with
 g'' from the last three nodes, per unit step against ``step_tol`` * min(v0, |s'| + s / t_c): relative
 to the motion's own scale, so that long contacts whose motion has slowed by orders of magnitude keep
-their separation time (with v0 as the scale, t0 of the 1 mm SLS plate was 6-12 % off). Steps are not
+their separation time (with v0 as the scale, t0 of the 1 mm SLS plate is 6-12 % off). Steps are not
 refined below h_base (t_c / 65536 .. t_c / 131072), where the test is waived: near t = 0 the exact
 solution's u = s^3/2 makes g'' ~ t^-1/2 and the local errors there are O(h^2.5), far below the
 global error. A separation is located on a step <= t / SEP_STEPS;
@@ -35,15 +35,33 @@ from __future__ import annotations
 import functools
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..materials.expsums import soe
-from . import _kernels as K
+from ._adaptive_kernels import adaptive_grids, march_adaptive
+from ._records import (
+    DECAYED,
+    LAST,
+    SEPARATION,
+    STATUS,
+    STATUS_DIVERGED,
+    STATUS_END,
+    STATUS_FULL,
+    STATUS_RUNNING,
+    AdaptiveControl,
+    LevelTables,
+    Modes,
+    Nodes,
+    Plate,
+    Stop,
+)
 from .common import OUTCOME, Result, separation_scalars
-from .march import N_EXTRA, Arrays, finish
+from .march import N_EXTRA, Arrays, March, finish
 
-__all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "SEP_STEPS", "level_tables", "run_adaptive", "solve"]
+__all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "RICHARDSON_WEIGHTS", "SEP_STEPS", "Tables", "grid_outcomes",
+           "level_tables", "one_call", "plate_kind", "plate_record", "richardson_outcome", "run_adaptive", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -58,6 +76,10 @@ MAX_HORIZON = 2.0**30
 INITIAL_SIZE = 2048
 #: the largest step is this fraction of the horizon
 MAX_STEP_FRACTION = 1.0 / 16.0
+#: the grid halved and quartered of the Richardson extrapolation: their tables are the coarse grid's
+#: levels shifted by one and two, so one table with SPLIT_LEVELS extra levels (and its exponential
+#: sum from h_base / 4) serves the three marches
+SPLIT_LEVELS = 2
 
 
 def solve(impact, options, tc, history):
@@ -67,15 +89,34 @@ def solve(impact, options, tc, history):
                         extrapolate=options.richardson)
 
 
+@dataclass(frozen=True)
+class Tables:
+    """Level tables of one (material, step range, horizon): ``levels`` (the kernel record,
+    :class:`~._records.LevelTables`), the plate modulus's constant ``e_inf`` (Pa), its modes'
+    ``moduli`` (Pa) and ``rate_moduli`` (moduli times rates, Pa/s), the exponential sum's number of
+    terms and its checked relative error."""
+
+    levels: LevelTables
+    e_inf: float
+    moduli: np.ndarray
+    rate_moduli: np.ndarray
+    n_terms: int
+    soe_error: float
+
+    @functools.cached_property
+    def plain_levels(self) -> tuple:
+        """``levels`` as the plain tuple the kernels take (``_records``)."""
+        return tuple(self.levels)
+
+
 @functools.lru_cache(maxsize=64)
-def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: float, tol: float):
-    """(Cached: a sweep's points share them.) Per level l (step h_l = h_base 2^l): exact local weights
-    I0 = int_0^h k, M = int_0^h k(x) (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per exponential mode
-    k of the kernel's sum on [h_base, t_max] (column 0: the constant E(inf) + slow modes, rate 0) the step weights
-    GA = kappa E_k int_0^h e^{-b x} dx, GB = kappa E_k int_0^h e^{-b x} (h/2 - x) dx and the decay
-    R = e^{-b h}, and live[l]: the march touches modes 0..live[l]-1 on level l (every later mode has
-    R < ``_kernels.DECAYED``). Returns a dict of arrays, plus 1/hl (ih, 1/s) and, for the plate, the modes'
-    moduli (pe, Pa) and moduli times rates (pbe, Pa/s)."""
+def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: float, tol: float) -> Tables:
+    """(Cached: a sweep's points share them.) Per level l (step h_l = h_base 2^l): the newest step's
+    exact weights int_0^h k and int_0^h k(x) (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per
+    exponential mode k of the kernel's sum on [h_base, t_max] (column 0: the constant E(inf) plus the
+    slow modes, rate 0) the step weights kappa E_k int_0^h e^{-b x} dx, kappa E_k int_0^h e^{-b x}
+    (h/2 - x) dx and the decay e^{-b h}, and the number of modes alive on the level (every later mode
+    decays below ``DECAYED`` within one step). ``kappa``: k(t) = kappa E(t), m^0.5."""
     mat = material
     rep = soe(mat, h_base, t_max, tol)
     pr = rep.material
@@ -90,21 +131,13 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     GA[:, 1:] = kappa * ti
     GB[:, 1:] = -kappa * tm
     R[:, 1:] = np.exp(-np.multiply.outer(hl, b))
-    # per level: modes from the last one with R >= DECAYED on are skipped by the march (K.march_adaptive)
-    alive = R >= K.DECAYED
+    alive = R >= DECAYED
     live = nk - np.argmax(alive[:, ::-1], axis=1)
     # the newest step: the material's own kernel (for Prony kinds the same terms as the sum)
     i0, m0 = mat.first_step(hl)
-    I0, M = kappa * i0, -kappa * m0
-    pe = np.concatenate(([0.0], e))
-    pbe = np.concatenate(([0.0], b * e))
-    return {"hl": hl, "I0": I0, "M": M, "GA": GA, "GB": GB, "R": R, "live": live, "pe_inf": float(e_inf), "pe": pe,
-            "pbe": pbe, "ih": 1.0 / hl, "n_terms": rep.n_terms, "soe_error": rep.checked_error}
-
-
-def _march_tables(tab):
-    """The level tables' arrays in the order of the march's arguments (hl, 1/hl, I0, M, GA, GB, R, live)."""
-    return tab["hl"], tab["ih"], tab["I0"], tab["M"], tab["GA"], tab["GB"], tab["R"], tab["live"]
+    levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live)
+    return Tables(levels, float(e_inf), np.concatenate(([0.0], e)), np.concatenate(([0.0], b * e)), rep.n_terms,
+                  rep.checked_error)
 
 
 def _grown(a, n):
@@ -113,94 +146,114 @@ def _grown(a, n):
     return out
 
 
-def _plate_kind(impact) -> int:
-    """0: rigid target or constant mobility; 1: the plate's modulus on the kernel's exponential sum;
-    2: in closed form (the fractional law, ``Material.sqrt_law``). Raises for a plate whose modulus
-    is not the contact kernel's (checked before any table is built)."""
+def plate_kind(impact) -> int:
+    """How the march evaluates the plate's mobility: 0, a rigid target or a constant mobility; 1, the
+    plate's modulus on the kernel's exponential sum; 2, in closed form (the fractional law,
+    ``Material.sqrt_law``). ValueError for a plate whose modulus is not the contact kernel's (checked
+    before any table is built), naming the method that solves it."""
     g = impact.geometry
     if g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
         return 0
     if g.plate_material is not None:
         raise ValueError("method 'adaptive' carries the plate modulus on the contact kernel's exponentials; "
-                         "with a deformable sphere on a viscoelastic plate (vcor.bodies, Eq. 1) the plate's "
-                         "modulus differs from the contact modulus: use method 'direct'")
+                         "with a deformable sphere on a viscoelastic plate (Eq. 1, vcor.contact.bodies) the "
+                         "plate's modulus differs from the contact modulus: use method 'direct'")
     return 2 if impact.material.sqrt_law() is not None else 1
 
 
-def _plate(impact, tab, kind):
-    """The march's plate arguments (``_kernels.march_adaptive``): (``kind`` = ``_plate_kind(impact)``,
-    mobility scale, modulus factor, constant of E_b in Pa, coefficient of t^-1/2 in Pa s^0.5, constant
-    alpha) for the level tables ``tab``."""
+def plate_record(impact, tables: Tables, kind: int) -> Plate:
+    """The march's :class:`~._records.Plate` for ``kind`` (:func:`plate_kind`) and ``tables``."""
     if kind == 0:
-        return 0, 0.0, 0.0, 0.0, 0.0, (0.0 if impact.geometry.rigid else float(impact.alpha(0.0)))
-    pc = 1.0 / (1.0 - impact.geometry.nu**2)
+        const = 0.0 if impact.geometry.rigid else float(impact.alpha(0.0))
+        return Plate(0, 0.0, 0.0, 0.0, 0.0, const, tables.moduli, tables.rate_moduli)
+    factor = 1.0 / (1.0 - impact.geometry.nu**2)
     if kind == 2:
         e0, c = impact.material.sqrt_law()
-        return 2, impact.mobility_scale, pc, float(e0), float(c), 0.0
-    return 1, impact.mobility_scale, pc, tab["pe_inf"], 0.0, 0.0
+        return Plate(2, impact.mobility_scale, factor, float(e0), float(c), 0.0, tables.moduli, tables.rate_moduli)
+    return Plate(1, impact.mobility_scale, factor, tables.e_inf, 0.0, 0.0, tables.moduli, tables.rate_moduli)
 
 
-#: the grid halved and quartered of the Richardson extrapolation: their tables are the coarse grid's
-#: levels shifted by one and two, so one table with SPLIT_LEVELS extra levels (and its exponential
-#: sum from h_base / 4) serves the three marches
-SPLIT_LEVELS = 2
+def _body(impact) -> tuple:
+    """The impact's :class:`~._records.Body` as a plain tuple (the kernels' boundary: ``_records``)."""
+    return (float(impact.kappa * impact.material.viscosity), float(impact.m), float(impact.v0))
 
 
-def _march(impact, tc, h_base, factor, *, step_tol, max_steps, rule, history, ghost, tol, kind, fixed_level=None,
-           plan=None, split=0):
-    """One adaptive march on steps h_base 2^(level - split) (split 0, 1, 2: the grid, halved,
-    quartered), or the replay of a level ``plan``, with the horizon extension (``kind``: ``_plate_kind``).
-    Returns (t, arrays, state, n_done, levels, horizon, factor)."""
-    mat = impact.material
-    eta = impact.kappa * mat.viscosity
+#: the separation rules' :class:`~._records.Stop` records, as plain tuples
+_STOPS = {"force": tuple(Stop(0, N_EXTRA)), "overlap": tuple(Stop(1, N_EXTRA))}
+
+
+@dataclass(frozen=True)
+class _Grid:
+    """One march's grid: h_base (s), the contact-time estimate tc (s), split (0, 1, 2: the grid,
+    halved, quartered), an optional fixed level and a replayed level plan."""
+
+    h_base: float
+    tc: float
+    split: int = 0
+    fixed_level: int | None = None
+    plan: np.ndarray | None = None
+
+
+def _tables_for(impact, h_base, factor, tol):
+    """(horizon (s), number of levels, tables) for the horizon ``factor`` contact-time estimates."""
     top = h_base * 2.0**FLOOR_BITS
-    plan = _NO_PLAN if plan is None else plan
-    off = SPLIT_LEVELS - split
+    horizon = factor * 2.0 * top  # a power of two >= factor t_c: the tables of a sweep's points are shared
+    n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
+    tables = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
+                          2.0 * horizon, tol)
+    return horizon, n_levels, tables
+
+
+def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind):
+    """One adaptive march on ``grid`` with the horizon extension (``kind``: :func:`plate_kind`).
+    Returns (March, levels, horizon, factor)."""
+    plan = _NO_PLAN if grid.plan is None else grid.plan
     while True:
-        # horizon: a power of two >= factor t_c, so that the tables of a sweep's points are shared
-        horizon = factor * 2.0 * top
-        n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
-        tab = level_tables(mat, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
-                           2.0 * horizon, tol)
-        nk = tab["GA"].shape[1]
-        plate = _plate(impact, tab, kind)
-        P, X = np.zeros(nk), np.ones(nk)
-        first = START_LEVEL if fixed_level is None else int(fixed_level)
-        lo, hi = (0, n_levels - 1) if fixed_level is None else (first, first)
-        state = np.array([0, -1, 0, K.STATUS_RUNNING, 0, 0, first, 0], dtype=np.int64)
+        horizon, n_levels, tables = _tables_for(impact, grid.h_base, factor, tol)
+        nk = tables.levels.mode_decay.shape[1]
+        modes = tuple(Modes(np.zeros(nk), np.ones(nk)))
+        first = START_LEVEL if grid.fixed_level is None else int(grid.fixed_level)
+        lo, hi = (0, n_levels - 1) if grid.fixed_level is None else (first, first)
+        control = tuple(AdaptiveControl(step_tol, 1.0 / grid.tc, lo, hi, horizon, 1.0 / SEP_STEPS, ghost))
+        state = np.array([0, -1, 0, STATUS_RUNNING, 0, 0, first, 0], dtype=np.int64)
         size = INITIAL_SIZE if plan.size == 0 else plan.size + 2 * N_EXTRA + 8
         arr = Arrays(min(size, max_steps))
         t, lev = np.zeros(arr.n + 1), np.zeros(arr.n + 1, dtype=np.int64)
         arr.g[0] = impact.v0
+        plate = tuple(plate_record(impact, tables, kind))
         while True:
-            K.march_adaptive(t, arr.s, arr.g, arr.F, arr.J, arr.u, lev, *_march_tables(tab), eta, *plate, tab["pe"],
-                             tab["pbe"], impact.m, impact.v0, step_tol, 1.0 / tc, lo, hi, horizon, 1.0 / SEP_STEPS,
-                             0 if rule == "force" else 1, N_EXTRA, ghost if history else 0.0, P, X, state, plan, off)
-            if state[3] != K.STATUS_FULL or (state[1] < 0 and arr.n >= max_steps):
+            march_adaptive(tuple(Nodes(t, arr.s, arr.g, arr.F, arr.J, arr.u)), lev, tuple(tables.levels), plate,
+                           _body(impact), control, _STOPS[rule], modes, state, plan, SPLIT_LEVELS - grid.split)
+            if state[STATUS] != STATUS_FULL or (state[SEPARATION] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
-            arr.grow(2 * arr.n if state[1] >= 0 else min(2 * arr.n, max_steps))
+            arr.grow(2 * arr.n if state[SEPARATION] >= 0 else min(2 * arr.n, max_steps))
             t, lev = _grown(t, arr.n), _grown(lev, arr.n)
-        n_done = int(state[2])
-        if not (state[3] == K.STATUS_END and state[1] < 0 and t[n_done] >= horizon and factor < MAX_HORIZON):
-            return t, arr, state, n_done, lev, horizon, factor
+        n_done = int(state[LAST])
+        if not (state[STATUS] == STATUS_END and state[SEPARATION] < 0 and t[n_done] >= horizon
+                and factor < MAX_HORIZON):
+            step = float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan
+            march = March(arr, state, n_done, step, t=t, note=_ghost_note(state, t, n_done),
+                          budget=_budget_text(t, n_done, horizon, factor, max_steps))
+            return march, lev, horizon, factor
         factor *= 32.0
 
 
 _NO_PLAN = np.zeros(0, dtype=np.int64)
 
 
-def _result(impact, t, arr, state, n_done, horizon, factor, *, max_steps, rule, history, wall):
-    note = ""
-    if state[3] == K.STATUS_DIVERGED and state[1] >= 0 and n_done >= state[1] + N_EXTRA:
-        note = f"ghost continuation stopped at t = {t[n_done]:.6g} s: the march diverged"
-    budget = ""
-    if state[3] in (K.STATUS_END, K.STATUS_FULL):
-        reason = (f"the time horizon {horizon:.6g} s (>= {factor:g} contact-time estimates)" if t[n_done] >= horizon
-                  else f"the step budget max_steps = {max_steps}")
-        budget = (f"stopped by {reason} before a verdict: the contact force had not returned to zero at "
-                  f"t = {t[n_done]:.6g} s ({n_done} adaptive steps); s_max and f_max are over that window")
-    return finish(impact, float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan, arr, state, n_done,
-                  rule, history, wall, "adaptive", max_steps, note, t=t, budget=budget)
+def _ghost_note(state, t, n_done):
+    if state[STATUS] == STATUS_DIVERGED and state[SEPARATION] >= 0 and n_done >= state[SEPARATION] + N_EXTRA:
+        return f"ghost continuation stopped at t = {t[n_done]:.6g} s: the march diverged"
+    return ""
+
+
+def _budget_text(t, n_done, horizon, factor, max_steps):
+    reason = (f"the time horizon {horizon:.6g} s (>= {factor:g} contact-time estimates)" if t[n_done] >= horizon
+              else f"the step budget max_adaptive_steps = {max_steps}")
+    return (f"stopped by {reason} before a verdict: the contact force had not returned to zero at "
+            f"t = {t[n_done]:.6g} s ({n_done} adaptive steps); s_max and f_max are over that window. To reach a "
+            f"verdict raise max_adaptive_steps; a contact longer than the largest horizon ({MAX_HORIZON:g} "
+            f"contact-time estimates) does not separate in any practical sense")
 
 
 #: Richardson extrapolation from three nested grids (the accepted grid, every step halved, every step
@@ -208,10 +261,10 @@ def _result(impact, t, arr, state, n_done, horizon, factor, *, max_steps, rule, 
 #: s ~ t at impact and ~ (t0 - t) at separation, and from the t^-1/2 kernels; measured on uniform
 #: grids: the two-grid extrapolation leaves order 2.5 for every preset), both terms are eliminated
 RICHARDSON_EXPONENTS = (2.0, 2.5)
-#: weights of the three grids' values (coarse, halved, quartered): first row of the inverse of
-#: [[1, 2^(-p j) for p in the exponents] for j = 0, 1, 2]
-RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.inv(
-    np.array([[1.0] + [2.0 ** (-p * j) for p in RICHARDSON_EXPONENTS] for j in range(3)]))[0])
+#: weights of the three grids' values (coarse, halved, quartered): w with sum_j w_j 2^(-p j) = 0 for
+#: both exponents p and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
+RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
+    np.array([[1.0] + [2.0 ** (-p * j) for p in RICHARDSON_EXPONENTS] for j in range(3)]).T, np.array([1.0, 0.0, 0.0])))
 #: ... only where t0 and the COR each show that the grids are in the asymptotic range: either the
 #: coarse and the quartered grid agree to RICHARDSON_GAP (t0 relative; COR relative plus COR_FLOOR
 #: absolute), or the ratio of successive differences (x_h - x_h/2) / (x_h/2 - x_h/4) is in
@@ -229,7 +282,7 @@ _COR, _T0 = OUTCOME.index("cor"), OUTCOME.index("t0")
 
 
 def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10,
-                 fixed_level=None, extrapolate=False):
+                 fixed_level=None, extrapolate=False, one_call_path=True):
     """Adaptive march (see the module docstring). ``tc``: contact-time estimate, s.
 
     ``extrapolate``: march again on the accepted grid with every step halved and with every step
@@ -237,32 +290,33 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     Richardson-extrapolate the scalars with ``RICHARDSON_WEIGHTS`` (eliminates the h^2 and h^2.5
     error terms); histories are those of the quartered grid.
     ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
-    a uniform grid on which the march is the direct scheme with an exponential-sum history."""
-    kind = _plate_kind(impact)  # a plate the method cannot carry: the error before any work
-    top = 2.0 ** math.floor(math.log2(tc))
-    h_base = top * 2.0**-FLOOR_BITS
+    a uniform grid on which the march is the direct scheme with an exponential-sum history.
+    ``one_call_path`` (tests): False runs the general path also where :func:`one_call` would do."""
+    kind = plate_kind(impact)  # a plate the method cannot carry: the error before any work
+    h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
     t_start = time.perf_counter()
-    if not history and fixed_level is None:
-        res = _one_call(impact, tc, h_base, 3 if extrapolate else 1, step_tol=step_tol, max_steps=max_steps,
-                        rule=rule, tol=tol, kind=kind, t_start=t_start)
+    if one_call_path and not history and fixed_level is None:
+        res = _one_call(impact, tc, kind, h_base, 3 if extrapolate else 1, step_tol, max_steps, rule, tol)
         if res is not None:
+            res.wall_time = time.perf_counter() - t_start
             return res
     kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol, "kind": kind}
-    t, arr, state, n_done, lev, horizon, factor = _march(impact, tc, h_base, HORIZON_START, history=history and
-                                                         not extrapolate, ghost=ghost, fixed_level=fixed_level, **kw)
-    coarse = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=max_steps, rule=rule,
-                     history=history and not extrapolate, wall=time.perf_counter() - t_start)
+    last_history = history and not extrapolate
+    march, lev, _, factor = _march(impact, _Grid(h_base, tc, fixed_level=fixed_level), HORIZON_START,
+                                   ghost=ghost if last_history else 0.0, **kw)
+    march.wall = time.perf_counter() - t_start
+    coarse = finish(impact, march, rule=rule, history=last_history, method="adaptive")
     if not (extrapolate and coarse.ok):
         return coarse
-    n_plan = min(n_done, int(state[1]) + N_EXTRA)
+    n_plan = min(march.n_done, int(march.state[SEPARATION]) + N_EXTRA)
     runs = [coarse]
     for shift in (1, 2):
-        last = shift == SPLIT_LEVELS
-        t, arr, state, n_done, _, horizon, factor = _march(
-            impact, tc, h_base, factor, history=history and last, ghost=ghost,
-            plan=np.repeat(lev[1: n_plan + 1], 2**shift), split=shift, **kw)
-        run = _result(impact, t, arr, state, n_done, horizon, factor, max_steps=2**shift * max_steps, rule=rule,
-                      history=history and last, wall=time.perf_counter() - t_start)
+        last = history and shift == SPLIT_LEVELS
+        grid = _Grid(h_base, tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
+        march, _, _, factor = _march(impact, grid, factor, ghost=ghost if last else 0.0,
+                                     **{**kw, "max_steps": 2**shift * max_steps})
+        march.wall = time.perf_counter() - t_start
+        run = finish(impact, march, rule=rule, history=last, method="adaptive")
         if not run.ok:
             run.message = (f"the replay on the grid divided by {2**shift} of an ok adaptive run failed: "
                            f"{run.message}")
@@ -270,45 +324,52 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         runs.append(run)
     fine = runs[-1]
     fine.steps = sum(r.steps for r in runs)
-    return _extrapolated(fine, [[getattr(r, k) for k in OUTCOME] for r in runs])
-
-
-def _one_call(impact, tc, h_base, n_grids, *, step_tol, max_steps, rule, tol, kind, t_start):
-    """The usual case of ``run_adaptive`` (no histories; n_grids 3 with ``extrapolate``, else 1) in one
-    numba call (``_kernels.adaptive_grids``): the same marches and separations as the general path,
-    without its Python between them. None when a grid did not simply separate within the first time
-    horizon and 2048 steps (the general path then runs and reports it)."""
-    horizon = HORIZON_START * 2.0 * h_base * 2.0**FLOOR_BITS
-    n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
-    tab = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
-                       2.0 * horizon, tol)
-    plate = _plate(impact, tab, kind)
-    out = np.empty((3, 11))
-    m, v0 = impact.m, impact.v0
-    if not K.adaptive_grids(n_grids, *_march_tables(tab), n_levels, impact.kappa * impact.material.viscosity, *plate,
-                            tab["pe"], tab["pbe"], m, v0, step_tol, 1.0 / tc, horizon, 1.0 / SEP_STEPS,
-                            0 if rule == "force" else 1, N_EXTRA, max_steps, START_LEVEL, INITIAL_SIZE, out):
-        return None
-    rows = out[:n_grids].tolist()
-    values, message = _richardson(rows) if n_grids == 3 else (rows[-1], "")
-    res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
-                 method="adaptive")
-    res.message = message
-    res.wall_time = time.perf_counter() - t_start
-    return res
-
-
-def _extrapolated(fine, runs):
-    """``fine`` (the quartered grid's Result) with the scalars of ``_richardson(runs)``, its message
-    appended to fine's."""
-    values, message = _richardson(runs)
-    before = fine.message
+    values, message = richardson_outcome([[getattr(r, k) for k in OUTCOME] for r in runs])
     fine.__dict__.update(separation_scalars(values))
-    fine.message = "; ".join(m for m in (before, message) if m)
+    fine.message = "; ".join(m for m in (fine.message, message) if m)
     return fine
 
 
-def _richardson(runs):
+def one_call(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
+    """The usual case of :func:`run_adaptive` (no histories; ``n_grids`` 3 with extrapolation, else 1)
+    in one numba call (``_adaptive_kernels.adaptive_grids``): the same marches and separations as the
+    general path, without its Python between them. None when a grid did not simply separate within
+    the first time horizon and 2048 steps (the general path then runs and reports it)."""
+    h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
+    return _one_call(impact, tc, plate_kind(impact), h_base, n_grids, step_tol, max_steps, rule, tol)
+
+
+def grid_outcomes(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
+    """The rows :func:`one_call` extrapolates (tests): per grid (coarse, halved, quartered) the
+    OUTCOME values, the separation index and the largest step (s), as a (n_grids, 11) array; None
+    where :func:`one_call` declines."""
+    h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
+    rows = _grid_rows(impact, tc, plate_kind(impact), h_base, n_grids, step_tol, max_steps, rule, tol)
+    return None if rows is None else np.array(rows)
+
+
+def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
+    horizon, n_levels, tables = _tables_for(impact, h_base, HORIZON_START, tol)
+    control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / SEP_STEPS, 0.0)  # an AdaptiveControl
+    out = np.empty((3, 11))
+    if not adaptive_grids(n_grids, tables.plain_levels, tuple(plate_record(impact, tables, kind)), _body(impact),
+                          control, _STOPS[rule], max_steps, START_LEVEL, INITIAL_SIZE, out):
+        return None
+    return out[:n_grids].tolist()
+
+
+def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
+    rows = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
+    if rows is None:
+        return None
+    values, message = richardson_outcome(rows) if n_grids == 3 else (rows[-1], "")
+    res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
+                 method="adaptive")
+    res.message = message
+    return res
+
+
+def richardson_outcome(runs):
     """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (per grid, coarse
     to fine, its OUTCOME values in that order; further values ignored) and "", or, where the grids are
     not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR is

@@ -8,10 +8,10 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 from scipy.optimize import minimize_scalar
 
-from ..status import STATUS_CODES
-from . import _kernels as K
+from ._records import Body, Nodes
+from ._separation import locate_separation, parabola_peak
 
-__all__ = ["LONG_NAMES", "OUTCOME", "STATUS_CODES", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
+__all__ = ["LONG_NAMES", "OUTCOME", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
 
 UNITS = {
     "cor": "1",
@@ -120,7 +120,7 @@ def peak(t, y, f=None):
         lo, hi = t[i - 1], t[i + 1]
         r = minimize_scalar(lambda x: -f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * hi})
         return float(max(-r.fun, y[i]))
-    return float(K.parabola_peak(np.asarray(t, dtype=float), np.asarray(y, dtype=float), y.size - 1))
+    return float(parabola_peak(np.asarray(t, dtype=float), np.asarray(y, dtype=float), y.size - 1))
 
 
 def separation(t, s, g, F, J, n_sep, rule, m, v0):
@@ -135,7 +135,8 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     """
     n = int(n_sep)
     out = np.empty(9)
-    if not K.locate_separation(t, s, g, F, J, n, len(t), rule == "overlap", float(m), float(v0), out):
+    nodes = tuple(Nodes(*(np.ascontiguousarray(a, dtype=float) for a in (t, s, g, F, J, J))))
+    if not locate_separation(nodes, n, len(t), rule == "overlap", tuple(Body(0.0, float(m), float(v0))), out):
         # cannot happen for a march's separation step (the interpolant equals the nodes, and the
         # target was > 0 at step n - 1 and <= 0 at step n); loud rather than a silent guess
         by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
@@ -145,12 +146,12 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     return separation_scalars(out)
 
 
-#: the outcome of a separation as ``_kernels.separation_point`` returns it, in this order (UNITS)
+#: the outcome of a separation as ``_separation.separation_point`` returns it, in this order (UNITS)
 OUTCOME = ("cor", "t0", "s_residual", "w_h", "w_plate", "sphere_velocity", "energy_residual", "s_max", "f_max")
 
 
 def separation_scalars(values) -> dict:
-    """The Result fields from ``_kernels.separation_point``'s values (a list or an array in the order
+    """The Result fields from ``_separation.separation_point``'s values (a list or an array in the order
     of OUTCOME; any further values ignored), with ``omega_min`` and ``message`` (empty)."""
     out = dict(zip(OUTCOME, values.tolist() if isinstance(values, np.ndarray) else values))
     out["omega_min"] = 2 * math.pi / out["t0"]

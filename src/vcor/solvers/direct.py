@@ -12,8 +12,9 @@ import time
 
 import numpy as np
 
-from . import _kernels as K
-from .march import Arrays, drive, finish, step_plan
+from ._fixed_kernels import march_direct, march_paper
+from ._records import LAST, STATUS, STATUS_END, Body, PlateArrays, Stop, Volterra, fixed_state
+from .march import Arrays, March, drive, finish, step_plan
 
 __all__ = ["folded_weights", "kernel_weights", "run_direct", "run_paper", "solve", "solve_paper", "volterra_weights"]
 
@@ -27,11 +28,9 @@ def solve(impact, options, tc, history):
 
 
 def solve_paper(impact, options, tc, history):
-    """Runner of method ``paper``, the explicit baseline (no histories)."""
-    if history:
-        raise ValueError("method 'paper' (benchmark baseline) has no history option")
+    """Runner of method ``paper``, the explicit baseline (histories end at the separation: no ghost)."""
     plan = step_plan(impact, options, tc, linear=False)
-    return run_paper(impact, plan.dt, plan.n_steps, max_steps=plan.max_steps, rule=options.rule)
+    return run_paper(impact, plan.dt, plan.n_steps, max_steps=plan.max_steps, rule=options.rule, history=history)
 
 
 def kernel_weights(impact, dt, n):
@@ -71,8 +70,9 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
         if volterra:
             raise ValueError("volterra=True is implemented for form 'a' (h2 = c2 k(t1 + t2)) only")
     cache = {}
+    body = tuple(Body(float(eta), float(impact.m), float(impact.v0)))
 
-    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
+    def step_fn(n0, n1, arr, plate, state, n_extra):
         if cache.get("n") != arr.n:
             cache["n"] = arr.n
             cache["w"], cache["v"] = (_form_b_weights if form == "b" else kernel_weights)(impact, dt, arr.n)
@@ -84,15 +84,15 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
                 cache["Q2"], cache["S2"] = q2, s2
             else:
                 cache["Q2"] = cache["S2"] = np.zeros(1)
-        K.march_direct(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, arr.du, cache["w"], cache["v"], eta, alpha, alphad,
-                       impact.m, impact.v0, dt, bool(volterra), float(c2), cache["Q2"], cache["S2"],
-                       0 if rule == "force" else 1, n_extra, state)
+        march_direct(n0, n1, arr.nodes(), (cache["w"], cache["v"]),
+                     tuple(Volterra(bool(volterra), float(c2), cache["Q2"], cache["S2"])), plate, body, dt,
+                     tuple(Stop(0 if rule == "force" else 1, n_extra)), state)
 
     t_start = time.perf_counter()
-    arr, state, n_done, note = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
-    wall = time.perf_counter() - t_start
+    march = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
+    march.wall = time.perf_counter() - t_start
     name = f"direct-{form}" + ("+volterra" if volterra else "")
-    return finish(impact, dt, arr, state, n_done, rule, history, wall, name, max_steps, note)
+    return finish(impact, march, rule=rule, history=history, method=name)
 
 
 def _form_b_weights(impact, dt, n):
@@ -122,21 +122,24 @@ def _form_b_weights(impact, dt, n):
     return np.cumsum(a)[:n], np.zeros(n)
 
 
-def run_paper(impact, dt, n_steps, *, max_steps, rule="force"):
-    """The paper-like explicit baseline (see ``_kernels.march_paper``); for benchmarks only."""
+def run_paper(impact, dt, n_steps, *, max_steps, rule="force", history=False):
+    """The paper-like explicit baseline (see ``_fixed_kernels.march_paper``); for benchmarks only."""
+    if impact.material.viscosity > 0:
+        raise ValueError("method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'")
     t_start = time.perf_counter()
+    body = tuple(Body(0.0, float(impact.m), float(impact.v0)))
     n = n_steps
     while True:
         t = dt * np.arange(n + 1)
         kc = impact.kernel(np.maximum(t, dt))  # clamped kernel, k(max(sigma, dt))
-        if impact.material.viscosity > 0:
-            raise ValueError("method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'")
         arr = Arrays(n)
-        state = K.empty_state()
-        K.march_paper(n, arr.s, arr.g, arr.J, arr.F, kc, impact.alpha(t), impact.alpha_rate(t), impact.m, impact.v0, dt,
-                      0 if rule == "force" else 1, 2, state)
-        if state[3] != K.STATUS_END or n >= max_steps:
+        state = fixed_state()
+        march_paper(n, arr.nodes(), kc, tuple(PlateArrays(impact.alpha(t), impact.alpha_rate(t))), body, dt,
+                    tuple(Stop(0 if rule == "force" else 1, 2)), state)
+        if state[STATUS] != STATUS_END or n >= max_steps:
             break
         n = min(2 * n, max_steps)
-    wall = time.perf_counter() - t_start
-    return finish(impact, dt, arr, state, int(state[2]), rule, False, wall, "paper-explicit", max_steps)
+    march = March(arr, state, int(state[LAST]), dt, wall=time.perf_counter() - t_start,
+                  budget=f"stopped by the step budget before a verdict ({n} steps of dt = {dt:.3g} s, max_steps "
+                         f"{max_steps}); method paper is a benchmark baseline: use method adaptive")
+    return finish(impact, march, rule=rule, history=history, method="paper-explicit")

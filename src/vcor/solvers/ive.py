@@ -15,7 +15,8 @@ import time
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from . import _kernels as K
+from ._fixed_kernels import march_prony
+from ._records import Body, Internal, Stop
 from .common import Histories, Result, peak
 from .march import LINEAR_MAX_T_FACTOR, T_MAX_START, drive, finish, step_plan
 
@@ -54,17 +55,17 @@ def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False
     decay = np.exp(-bdt)
     frac = np.where(b > 0, -np.expm1(-bdt) / np.where(bdt > 0, bdt, 1.0), 1.0)
     weight = kap * e * frac
-    Q = np.zeros(e.size)
-    eta = kap * impact.material.viscosity
+    internal = tuple(Internal(np.zeros(e.size), float(kap * g_inf), kap * e, decay, weight))
+    body = tuple(Body(float(kap * impact.material.viscosity), float(impact.m), float(impact.v0)))
 
-    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
-        K.march_prony(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, Q, kap * g_inf, kap * e, decay, weight, eta,
-                      alpha, alphad, impact.m, impact.v0, dt, 0 if rule == "force" else 1, n_extra, state)
+    def step_fn(n0, n1, arr, plate, state, n_extra):
+        march_prony(n0, n1, arr.nodes(), internal, plate, body, dt, tuple(Stop(0 if rule == "force" else 1, n_extra)),
+                    state)
 
     t_start = time.perf_counter()
-    arr, state, n_done, note = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
-    wall = time.perf_counter() - t_start
-    return finish(impact, dt, arr, state, n_done, rule, history, wall, "ive-numba", max_steps, note)
+    march = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
+    march.wall = time.perf_counter() - t_start
+    return finish(impact, march, rule=rule, history=history, method="ive-numba")
 
 
 def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",

@@ -19,11 +19,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _kernels as K
+from ._records import (
+    LAST,
+    SEPARATION,
+    STATUS,
+    STATUS_DIVERGED,
+    STATUS_END,
+    STATUS_SEPARATED,
+    FixedNodes,
+    PlateArrays,
+    fixed_state,
+)
 from .common import Histories, Result, separation
 
-__all__ = ["LINEAR_MAX_T_FACTOR", "MAX_T_FACTOR", "N_EXTRA", "T_MAX_START", "Arrays", "StepPlan", "default_dt", "drive",
-           "finish", "step_plan"]
+__all__ = ["LINEAR_MAX_T_FACTOR", "MAX_T_FACTOR", "N_EXTRA", "T_MAX_START", "Arrays", "March", "StepPlan", "default_dt",
+           "drive", "finish", "step_plan"]
 
 #: steps marched past the separation step (the cubic separation interpolant needs two)
 N_EXTRA = 2
@@ -79,6 +89,10 @@ class Arrays:
             setattr(self, k, np.zeros(n + 1))
         self.n = n
 
+    def nodes(self) -> tuple:
+        """The arrays as the kernels take them (a :class:`~._records.FixedNodes` as a plain tuple)."""
+        return tuple(FixedNodes(self.s, self.g, self.F, self.J, self.u, self.du))
+
     def grow(self, n):
         for k in self.names:
             old = getattr(self, k)
@@ -89,22 +103,23 @@ class Arrays:
 
 
 def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
-    """Run ``step_fn(n0, n1, arrays, alpha, alphad, state, n_extra)`` with T_max extension.
+    """Run ``step_fn(n0, n1, arrays, plate, state, n_extra)`` with T_max extension (``plate``: a
+    :class:`~._records.PlateArrays` on the grid dt n, as a plain tuple).
 
-    Returns (arrays, state, n_done, ghost_note); ``state`` as in ``_kernels`` (status SEPARATED,
-    DIVERGED or END = budget reached)."""
+    Returns a :class:`March` (its status SEPARATED, DIVERGED, or END: the budget reached) with the
+    budget text of the fixed-step methods."""
     arr = Arrays(n_steps)
     arr.g[0] = impact.v0
-    state = K.empty_state()
+    state = fixed_state()
     n_done = 0
     n_cap = n_steps
     while True:
         t = dt * np.arange(n_cap + 1)
-        step_fn(n_done + 1, n_cap, arr, impact.alpha(t), impact.alpha_rate(t), state, N_EXTRA)
-        n_done = int(state[2])
-        if state[3] != K.STATUS_END:
+        step_fn(n_done + 1, n_cap, arr, tuple(PlateArrays(impact.alpha(t), impact.alpha_rate(t))), state, N_EXTRA)
+        n_done = int(state[LAST])
+        if state[STATUS] != STATUS_END:
             break
-        if state[1] >= 0:  # separated within the last N_EXTRA steps: finish the interpolation steps
+        if state[SEPARATION] >= 0:  # separated within the last N_EXTRA steps: finish the interpolation steps
             n_cap = n_done + N_EXTRA
         elif n_cap >= max_steps:
             break
@@ -112,8 +127,8 @@ def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
             n_cap = min(2 * n_cap, max_steps)
         arr.grow(n_cap)
     note = ""
-    if state[3] == K.STATUS_SEPARATED and ghost > 0:
-        n_sep = int(state[1])
+    if state[STATUS] == STATUS_SEPARATED and ghost > 0:
+        n_sep = int(state[SEPARATION])
         n_ghost = max(math.ceil(n_sep * (1.0 + ghost)), n_done)
         if n_ghost > n_cap:
             arr.grow(n_ghost)
@@ -121,48 +136,65 @@ def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
         if n_ghost > n_done:
             t = dt * np.arange(n_cap + 1)
             st = state.copy()
-            step_fn(n_done + 1, n_ghost, arr, impact.alpha(t), impact.alpha_rate(t), st, n_ghost)
-            reached = int(st[2])
-            if st[3] == K.STATUS_DIVERGED:
+            step_fn(n_done + 1, n_ghost, arr, tuple(PlateArrays(impact.alpha(t), impact.alpha_rate(t))), st, n_ghost)
+            reached = int(st[LAST])
+            if st[STATUS] == STATUS_DIVERGED:
                 note = (f"ghost continuation stopped at t = {reached * dt:.6g} s ({reached - n_sep} of "
                         f"{n_ghost - n_sep} steps past separation): the march diverged")
                 reached -= 1
             n_done = reached
-    return arr, state, n_done, note
+    budget = (f"stopped by the step budget before a verdict: the contact force had not returned to zero at "
+              f"T_max = {n_done * dt:.6g} s ({n_done} steps of dt = {dt:.3g} s; budget {max_steps} steps, the "
+              f"smaller of max_steps and the method's horizon: {MAX_T_FACTOR:g} contact-time estimates for direct "
+              f"and paper, {LINEAR_MAX_T_FACTOR:g} for soe, ive-numba and ive); s_max and f_max are over that "
+              f"window. To reach a verdict use method adaptive (it solves long contacts such as thin plates), or "
+              f"raise max_steps")
+    return March(arr, state, n_done, dt, note=note, budget=budget)
 
 
-def finish(impact, dt, arr, state, n_done, rule, history, wall, method, max_steps, note="", t=None, budget=""):
-    """Result of a march (separation post-processing, or the status and its message). ``t`` is the
-    time grid (default: uniform, dt * n); ``budget`` replaces the fixed-step budget text."""
+@dataclass
+class March:
+    """What a march leaves for :func:`finish`: the node ``arrays``, the ``state`` (``_records``), the
+    last node ``n_done``, the step ``dt`` (s; the largest step on a variable grid), the time grid ``t``
+    (None: uniform, dt n), a ``note`` for the message, the ``budget`` text of a step-budget verdict and
+    the solver's ``wall`` time (s)."""
+
+    arrays: Arrays
+    state: np.ndarray
+    n_done: int
+    dt: float
+    t: np.ndarray | None = None
+    note: str = ""
+    budget: str = ""
+    wall: float = 0.0
+
+
+def finish(impact, march: March, *, rule, history, method):
+    """Result of a march: the separation's outcome, or the status and a message that says what to do."""
     m, v0 = impact.m, impact.v0
-    t = dt * np.arange(n_done + 1) if t is None else t[: n_done + 1]
+    arr, state, n_done, dt = march.arrays, march.state, march.n_done, march.dt
+    t = dt * np.arange(n_done + 1) if march.t is None else march.t[: n_done + 1]
     s, g, F, J = arr.s[: n_done + 1], arr.g[: n_done + 1], arr.F[: n_done + 1], arr.J[: n_done + 1]
-    res = Result(steps=n_done, wall_time=wall, dt=dt, method=method)
-    status = int(state[3])
-    if status == K.STATUS_SEPARATED or (state[1] >= 0 and n_done >= state[1] + N_EXTRA):
-        out = separation(t, s, g, F, J, int(state[1]), rule, m, v0)
+    res = Result(steps=n_done, wall_time=march.wall, dt=dt, method=method)
+    status = int(state[STATUS])
+    if status == STATUS_SEPARATED or (state[SEPARATION] >= 0 and n_done >= state[SEPARATION] + N_EXTRA):
+        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0)
         res.message = out.pop("message")
         res.__dict__.update(out)
-        res.steps = int(state[1])
-    elif status == K.STATUS_DIVERGED:
+        res.steps = int(state[SEPARATION])
+    elif status == STATUS_DIVERGED:
         res.status = "diverged"
         res.message = (
             f"Newton iteration failed or a non-finite value appeared at step {n_done} "
-            f"(t = {t[-1]:.6g} s, dt = {dt:.3g} s); try a smaller dt"
+            f"(t = {t[-1]:.6g} s, step {dt:.3g} s); try method adaptive, or a smaller step (dt or step_tol)"
         )
     else:
         res.status = "step-budget"
-        res.message = budget or (
-            f"stopped by the step budget before a verdict: the contact force had not returned to zero at "
-            f"T_max = {t[-1]:.6g} s ({n_done} steps of dt = {dt:.3g} s; budget {max_steps} steps, the smaller "
-            f"of max_steps and the method's horizon: 32 contact-time estimates for direct and paper, 2048 for "
-            f"soe and ive-numba); "
-            f"s_max and f_max are over that window"
-        )
+        res.message = march.budget
         res.s_max = float(np.max(s))
         res.f_max = float(np.max(F))
-    if note:
-        res.message = (res.message + "; " if res.message else "") + note
+    if march.note:
+        res.message = (res.message + "; " if res.message else "") + march.note
     if history:
         zd = v0 - J / m
         h = Histories(t=t.copy(), s=s.copy(), sdot=g.copy(), F=F.copy(), J=J.copy(), zdot=zd, U=impact.alpha(t) * J)

@@ -16,7 +16,8 @@ import time
 import numpy as np
 
 from ..materials.expsums import soe
-from . import _kernels as K
+from ._fixed_kernels import march_soe
+from ._records import Body, ExponentialModes, Stop
 from .direct import folded_weights
 from .march import drive, finish, step_plan
 
@@ -56,13 +57,13 @@ def run_soe(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghos
     wt, v = folded_weights(mat, impact.kappa, dt, N_LOCAL + 1)
     horizon = (max_steps + 8) * dt * (1.0 + max(ghost, 0.0) if history else 1.0)
     c, vc, r = mode_weights(mat, impact.kappa, dt, tol, horizon)
-    S = np.zeros(c.size)
-    P = np.zeros(c.size)
+    modes = tuple(ExponentialModes(c, vc, r, np.zeros(c.size), np.zeros(c.size)))
+    body = tuple(Body(float(eta), float(impact.m), float(impact.v0)))
 
-    def step_fn(n0, n1, arr, alpha, alphad, state, n_extra):
-        K.march_soe(n0, n1, arr.s, arr.g, arr.F, arr.J, arr.u, arr.du, wt, v, N_LOCAL, c, vc, r, S, P, eta,
-                    alpha, alphad, impact.m, impact.v0, dt, 0 if rule == "force" else 1, n_extra, state)
+    def step_fn(n0, n1, arr, plate, state, n_extra):
+        march_soe(n0, n1, arr.nodes(), (wt, v, N_LOCAL), modes, plate, body, dt,
+                  tuple(Stop(0 if rule == "force" else 1, n_extra)), state)
 
-    arr, state, n_done, note = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
-    wall = time.perf_counter() - t_start
-    return finish(impact, dt, arr, state, n_done, rule, history, wall, "soe", max_steps, note)
+    march = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
+    march.wall = time.perf_counter() - t_start
+    return finish(impact, march, rule=rule, history=history, method="soe")

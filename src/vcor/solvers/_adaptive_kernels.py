@@ -1,0 +1,414 @@
+"""The adaptive march in numba: variable power-of-two steps, the history as exponential modes, local
+error control; and :func:`adaptive_grids`, the march and its two Richardson replays in one call. A
+plain NumPy reference is :func:`vcor.solvers.reference.adaptive_reference`.
+
+Step n spans [t_{n-1}, t_n] with size h_n = h_base 2^l (level l, one row of the level tables per
+level); on it u' = d_n + c_n (tau - mid), d_n = (u_n - u_{n-1}) / h_n and
+c_n = 2 (d_n - d_{n-1}) / (h_n + h_{n-1}) (c_1 = 0): the direct scheme's quadratic product
+integration on an arbitrary grid. The newest step uses the exact kernel (its weights
+int_0^h k and int_0^h k(x) (h/2 - x) dx); older steps live in one variable per exponential mode,
+
+.. math:: P_k(t_{n-1}) = \\sum_{j<n} e^{-\\beta_k (t_{n-1} - t_j)} (d_j G^A_{l_j,k} + c_j G^B_{l_j,k}),
+
+decayed by R_{l,k} = e^{-beta_k h_l} to the new node. A trial step changes nothing until it is
+accepted, so a rejection needs no roll-back.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._jit import jit, jit_inline, jit_sum
+from ._records import (
+    DECAYED,
+    FROZEN,
+    LAST,
+    LEVEL,
+    LOADED,
+    REJECTED,
+    SEPARATION,
+    STATUS,
+    STATUS_END,
+    STATUS_FULL,
+    STATUS_RUNNING,
+    STATUS_SEPARATED,
+    WAIVED,
+    AdaptiveControl,
+    Body,
+    LevelTables,
+    Modes,
+    Plate,
+    Stop,
+)
+from ._separation import locate_separation
+from ._step import advance, implicit_step_inline, separated
+
+__all__ = ["FEW_MODES", "adaptive_grids", "march_adaptive"]
+
+#: sums over more modes than this go through the helpers below, whose additions may be reassociated
+#: (``_jit.jit_sum``: numba then vectorises them); shorter sums stay in the march (a call costs more
+#: than it saves)
+FEW_MODES = 8
+_NO_VOLTERRA = (0.0, 0.0, 0.0)
+
+
+@jit
+def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, state, plan, row_offset):
+    """Variable-step march with an exponential-sum history (module docstring); resumable.
+
+    The records (nodes, tables, plate, body, control, stop, modes) arrive as plain tuples (``_records``).
+
+    Parameters
+    ----------
+    nodes : Nodes
+        t, s, g, F, J, u, filled in place from node state[LAST] + 1 (node 0: t = s = F = J = u = 0, g = v0).
+    levels : int64 array
+        The level of each accepted step (levels[n] for step n).
+    tables : LevelTables
+        Per level: steps, weights of the newest step and of each mode, decays, live modes.
+    plate : Plate
+        The plate's mobility: kind 0, constant; 1, E_b(t) on the kernel's modes; 2, in closed form.
+    body : Body
+    control : AdaptiveControl
+    stop : Stop
+    modes : Modes
+        history P_k (N) and plate X_k = exp(-b_k t), whole on entry and on return.
+    state : int64 array
+        [loaded, separation, last, status, rejected, waived, level, frozen] (``_records``); set the
+        level to the first step's before the first call.
+    plan : int64 array
+        Levels of the first len(plan) steps (a replay of a grid: no error control, no separation
+        refinement); after the plan the march goes on with error control from the plan's last level.
+    row_offset : int
+        Level l uses table row l + row_offset (the tables of the Richardson grids are shifted copies).
+
+    Notes
+    -----
+    Decayed modes: on level l only the first live_modes[l] modes have a decay >= DECAYED over one step,
+    so a step touches only those. A mode k >= live_modes[l] after an accepted step on level l holds that
+    step's contribution alone: P_k = d G^A + c G^B, kept implicit (the last step's d, c and level) and
+    written into P when a finer step needs the mode again, and for every mode before returning. Plate
+    factors X_k below DECAYED are zero from then on (t only grows).
+
+    Plate mobility (kind 1): alpha = scale / sqrt(E_b), E_b(t) = factor (e_inf + sum moduli_k X_k),
+    X_k = exp(-b_k t) carried with the same decays (rate_moduli = b_k moduli_k); kind 2:
+    E_b(t) = factor (e_inf + sqrt_coef t^-1/2) (the fractional law); kind 0: alpha = const.
+
+    Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
+    the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against
+    tol = step_tol min(v0, |g_n| + s_n inv_tc), the motion's own scale (in a long contact the motion
+    falls by orders of magnitude below v0, where an error relative to v0 would move the separation
+    time). Reject: down 1..4 levels, one per factor 4 of est/tol (not below level_floor, where the
+    test is waived). Accept: up one level when est < tol/8, two when est < tol/32 (not above
+    level_top). A separation found with h_n > sep_fraction t_n is rejected and re-stepped finer; after
+    it the level is frozen for the stop.n_extra steps and the ghost continuation to (1 + ghost) t_sep.
+    Returns STATUS_FULL with the state intact when the arrays are full.
+    """
+    tables, plate, body = LevelTables(*tables), Plate(*plate), Body(*body)
+    control, stop, modes = AdaptiveControl(*control), Stop(*stop), Modes(*modes)
+    t, s, g, F, J, u = nodes
+    step, inv_step = tables.step, tables.inv_step
+    newest_integral, newest_moment = tables.newest_integral, tables.newest_moment
+    mode_integral, mode_moment, mode_decay, live_modes = (tables.mode_integral, tables.mode_moment,
+                                                          tables.mode_decay, tables.live_modes)
+    P, X = modes.history, modes.plate
+    pe, pbe = plate.moduli, plate.rate_moduli
+    pscale, pc, pe_inf = plate.scale, plate.factor, plate.e_inf
+    eta, m, v0 = body.eta, body.m, body.v0
+    step_tol, inv_tc, sep_frac, ghost = control.step_tol, control.inv_tc, control.sep_fraction, control.ghost
+    lev_floor, lev_max, t_horizon = control.level_floor, control.level_top, control.horizon
+    inv_m = 1.0 / m
+    nk = mode_decay.shape[1]
+    nmax = t.shape[0] - 1
+    inv_pscale2 = 1.0 / (pscale * pscale) if pscale > 0.0 else 0.0
+    trial_history = np.empty(nk)
+    trial_plate = np.empty(nk)
+    # P is whole on entry; modes n_explicit.. are implicit after the first accepted step (see Notes)
+    n_explicit = nk
+    last_d = 0.0
+    last_c = 0.0
+    last_row = np.int64(0)  # (not a literal 0: numba would compile _fill a second time for it)
+    n_plate = nk
+    while n_plate > 1 and X[n_plate - 1] == 0.0:
+        n_plate -= 1
+    lev = state[LEVEL]
+    n = state[LAST] + 1
+    # slopes of u and g over the last step (of g also over the one before), 2 / (the two steps' sum)
+    last_dg = 0.0
+    prev_dg = 0.0
+    last_r2 = 0.0
+    if n >= 2:
+        last_d = (u[n - 1] - u[n - 2]) / (t[n - 1] - t[n - 2])
+        last_dg = (g[n - 1] - g[n - 2]) / (t[n - 1] - t[n - 2])
+    if n >= 3:
+        prev_dg = (g[n - 2] - g[n - 3]) / (t[n - 2] - t[n - 3])
+        last_r2 = 2.0 / (t[n - 1] - t[n - 3])
+    frozen = state[FROZEN] == 1
+    state[STATUS] = STATUS_RUNNING
+    tol_abs = step_tol * v0
+    n_plan = plan.shape[0]
+    ahead_t = -1.0
+    ahead_alpha = 0.0
+    ahead_rate = 0.0
+    while n <= nmax:
+        planned = n - 1 < n_plan
+        if planned:
+            lev = plan[n - 1]
+        row = lev + row_offset
+        h = step[row]
+        tn = t[n - 1] + h
+        # history of all steps before this one
+        n_live = live_modes[row]
+        if n_live > n_explicit:
+            _fill(P, n_explicit, n_live, last_d, last_c, mode_integral, mode_moment, last_row)
+            n_explicit = n_live
+        if n_live > FEW_MODES:
+            Hh = _decay_sum(mode_decay, row, P, trial_history, n_live)
+        else:
+            Hh = 0.0
+            for k in range(n_live):
+                v = mode_decay[row, k] * P[k]
+                trial_history[k] = v
+                Hh += v
+        hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
+        inv_h = inv_step[row]
+        if n >= 2:
+            r2 = 2.0 / (h + hp)
+            w0 = (newest_integral[row] + r2 * newest_moment[row]) * inv_h
+            dprev = last_d
+            H = Hh - w0 * u[n - 1] - r2 * newest_moment[row] * dprev
+        else:
+            r2 = 0.0
+            w0 = newest_integral[row] * inv_h
+            H = Hh - w0 * u[n - 1]
+        if plate.kind == 1:
+            if n_plate > FEW_MODES:
+                eb, ebd = _plate_sums(mode_decay, row, X, trial_plate, pe, pbe, n_plate)
+                eb = pc * (pe_inf + eb)
+                ebd = -pc * ebd
+            else:
+                eb = pe_inf
+                ebd = 0.0
+                for k in range(n_plate):
+                    x = mode_decay[row, k] * X[k]
+                    trial_plate[k] = x
+                    eb += pe[k] * x
+                    ebd -= pbe[k] * x
+                eb *= pc
+                ebd *= pc
+            a_n = pscale / math.sqrt(eb)
+            ad_n = -0.5 * a_n * a_n * a_n * ebd * inv_pscale2  # 1 / eb = alpha^2 / pscale^2
+        elif plate.kind == 2:
+            # the roots and the division are a long chain: computed one step ahead, for the step on the
+            # same level (or the plan's next one), while this step's Newton iteration runs
+            if tn == ahead_t:
+                a_n = ahead_alpha
+                ad_n = ahead_rate
+            else:
+                a_n, ad_n = _sqrt_law_mobility(tn, plate)
+            ahead_t = tn + step[(plan[n] if n < n_plan else lev) + row_offset]
+            ahead_alpha, ahead_rate = _sqrt_law_mobility(ahead_t, plate)
+        else:
+            a_n = plate.const
+            ad_n = 0.0
+        # predictor: g extrapolated by the parabola through the last three nodes (a line through two);
+        # the slopes of g over the last two steps and 2 / (their sum) are carried from their acceptance
+        # (divisions are the march's bottleneck)
+        g_guess = g[n - 1]
+        if n >= 2:
+            g_guess += h * last_dg
+            if n >= 3:
+                g_guess += 0.5 * h * (h + hp) * (last_dg - prev_dg) * last_r2
+        sn, gn, Fn, un, Jn, ok = implicit_step_inline((s[n - 1], g[n - 1], u[n - 1], F[n - 1], J[n - 1]), H, w0,
+                                                      body, _NO_VOLTERRA, (a_n, ad_n), inv_m, h, v0 * h, g_guess)
+        # local error estimate and step control
+        est = -1.0
+        if not frozen and not planned and ok and n >= 2 and math.isfinite(gn):
+            tol_abs = step_tol * min(v0, abs(gn) + abs(sn) * inv_tc)
+            dd = ((gn - g[n - 1]) * inv_h - last_dg) * r2
+            est = h * h * abs(dd) * (1.0 / 12.0)
+            if est > tol_abs and lev > lev_floor:
+                drop = 1
+                ratio = est / tol_abs
+                while drop < 4 and ratio > 4.0 ** drop and lev - drop > lev_floor:
+                    drop += 1
+                lev -= drop
+                state[LEVEL] = lev
+                state[REJECTED] += 1
+                continue
+            if est > tol_abs:
+                state[WAIVED] += 1
+        elif not frozen and not planned and not ok and lev > lev_floor:
+            lev -= 1
+            state[LEVEL] = lev
+            state[REJECTED] += 1
+            continue
+        # separation found on a coarse step: re-step finer
+        if (not frozen and not planned and state[SEPARATION] < 0 and state[LOADED] == 1
+                and separated(stop.rule, state[LOADED] == 1, Fn, sn) and h > sep_frac * tn and lev > lev_floor):
+            lev -= 1
+            state[LEVEL] = lev
+            state[REJECTED] += 1
+            continue
+        # accept
+        t[n] = tn
+        s[n] = sn
+        g[n] = gn
+        F[n] = Fn
+        u[n] = un
+        J[n] = Jn
+        levels[n] = lev
+        d = (un - u[n - 1]) * inv_h
+        c = (d - dprev) * r2 if n >= 2 else 0.0
+        prev_dg = last_dg
+        last_dg = (gn - g[n - 1]) * inv_h
+        last_r2 = r2
+        for k in range(n_live):
+            P[k] = trial_history[k] + d * mode_integral[row, k] + c * mode_moment[row, k]
+        n_explicit = n_live
+        last_d = d
+        last_c = c
+        last_row = row
+        if plate.kind == 1:
+            for k in range(n_plate):
+                X[k] = trial_plate[k]
+            while n_plate > 1 and X[n_plate - 1] < DECAYED:
+                X[n_plate - 1] = 0.0
+                n_plate -= 1
+        if advance(state, n, ok, sn, gn, Fn, stop):
+            if state[STATUS] != STATUS_SEPARATED or tn >= t[state[SEPARATION]] * (1.0 + ghost):
+                _fill(P, n_explicit, nk, last_d, last_c, mode_integral, mode_moment, last_row)
+                return
+            state[STATUS] = STATUS_RUNNING
+        if state[SEPARATION] >= 0:
+            frozen = True
+            state[FROZEN] = 1
+        elif est >= 0.0:
+            # grow, from the estimate of this accepted step
+            up = 0
+            while up < 2 and est * 4.0 ** (up + 1) < 0.5 * tol_abs and lev + up + 1 <= lev_max:
+                up += 1
+            lev += up
+            state[LEVEL] = lev
+        if tn >= t_horizon:
+            state[STATUS] = STATUS_END
+            _fill(P, n_explicit, nk, last_d, last_c, mode_integral, mode_moment, last_row)
+            return
+        n += 1
+    state[STATUS] = STATUS_FULL
+    _fill(P, n_explicit, nk, last_d, last_c, mode_integral, mode_moment, last_row)
+
+
+@jit_inline
+def _sqrt_law_mobility(t, plate):
+    """(alpha, alpha') at t of a plate of the fractional law, E_b = factor (e_inf + sqrt_coef t^-1/2):
+    with D = E_b t^1/2 and y = 1 / (D t), alpha = scale (t^1/2 / D)^1/2 = scale (t^1/2 y t)^1/2 and
+    alpha' = alpha factor sqrt_coef / (4 D t) (one division, two roots)."""
+    rt = math.sqrt(t)
+    y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.sqrt_coef) * t)
+    a = plate.scale * math.sqrt(rt * y * t)
+    return a, 0.25 * a * plate.factor * plate.sqrt_coef * y
+
+
+@jit_sum
+def _decay_sum(R, row, P, trial, n_live):
+    """trial[:n_live] = R[row] P (the modes decayed over a trial step) and their sum, in any order (rows
+    indexed, not sliced: a row view costs two reference-count calls)."""
+    acc = 0.0
+    for k in range(n_live):
+        v = R[row, k] * P[k]
+        trial[k] = v
+        acc += v
+    return acc
+
+
+@jit_sum
+def _plate_sums(R, row, X, trial, pe, pbe, n_plate):
+    """trial[:n_plate] = R[row] X (the plate's exp(-beta t) at the trial node) and the sums of pe trial
+    and pbe trial (transient of E_b and minus its rate, before the factor), in any order."""
+    eb = 0.0
+    ebd = 0.0
+    for k in range(n_plate):
+        x = R[row, k] * X[k]
+        trial[k] = x
+        eb += pe[k] * x
+        ebd += pbe[k] * x
+    return eb, ebd
+
+
+@jit
+def _fill(P, k0, k1, d, c, GA, GB, row):
+    """P[k0:k1] = the last accepted step's own contribution (modes that had decayed on its level; its
+    table row ``row``)."""
+    for k in range(k0, k1):
+        P[k] = d * GA[row, k] + c * GB[row, k]
+
+
+@jit
+def _node_arrays(n):
+    """Six uninitialised node arrays (t, s, s', F, J, u) of length n."""
+    return np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+
+
+@jit
+def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start_level, size0, out):
+    """The adaptive march (:func:`march_adaptive`), then (n_grids = 3) its replays with every step
+    halved and quartered, and the separation of each, in one call (no histories).
+
+    The records arrive as plain tuples (``_records``) and are passed on so. The tables have
+    level_top + 3 rows from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k.
+    Fills out[k] = [the 9 outcome values of ``separation_point``, separation index, largest step (s)]
+    and returns True when every grid separated, the first within ``size0`` steps; False (out undefined)
+    for anything else (more steps, divergence, time horizon, step budget), which the caller then runs
+    through the general path.
+    """
+    nk = LevelTables(*tables).mode_decay.shape[1]
+    n_extra, rule, v0 = Stop(*stop).n_extra, Stop(*stop).rule, Body(*body).v0
+    n_plan = 0
+    # the march writes node n before anything reads it, and reads nothing beyond the last node: the
+    # arrays need only their first node set; the replays reuse the first grid's node arrays when they
+    # fit (their levels go to ``lev``: the first grid's, ``base``, are the plan)
+    base = np.empty(size0 + 1, dtype=np.int64)
+    t, s, g, F, J, u = _node_arrays(size0 + 1)
+    lev = base
+    P = np.empty(nk)
+    X = np.empty(nk)
+    state = np.empty(8, dtype=np.int64)
+    for k in range(n_grids):
+        rep = 2**k
+        plan = np.empty(n_plan * rep, dtype=np.int64)
+        for j in range(n_plan * rep):
+            plan[j] = base[1 + j // rep]
+        size = min(size0 if k == 0 else plan.shape[0] + 2 * n_extra + 8, max_steps)
+        if k > 0:
+            if size > t.shape[0] - 1:
+                t, s, g, F, J, u = _node_arrays(size + 1)
+            if k == 1 or size > lev.shape[0] - 1:
+                lev = np.empty(t.shape[0], dtype=np.int64)
+        t[0] = s[0] = F[0] = J[0] = u[0] = 0.0
+        lev[0] = start_level
+        g[0] = v0
+        P[:] = 0.0
+        X[:] = 1.0
+        state[:] = 0
+        state[SEPARATION] = -1
+        state[LEVEL] = start_level
+        e = size + 1  # the march fills at most ``size`` steps (views: no copies)
+        march_adaptive((t[:e], s[:e], g[:e], F[:e], J[:e], u[:e]), lev[:e], tables, plate, body, control, stop,
+                       (P, X), state, plan, 2 - k)
+        if state[STATUS] != STATUS_SEPARATED:
+            return False
+        n_sep = state[SEPARATION]
+        n_done = state[LAST]
+        if k == 0:
+            n_plan = min(n_done, n_sep + n_extra)
+        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, out[k]):
+            return False
+        out[k, 9] = n_sep
+        big = 0.0
+        for j in range(1, n_done + 1):
+            big = max(big, t[j] - t[j - 1])
+        out[k, 10] = big
+    return True

@@ -1,0 +1,271 @@
+"""The plain NumPy/SciPy references (``vcor.solvers.reference``) against the numba kernels, at small N.
+
+Every march is compared on the presets it takes, at v0 = 1 and 10 m/s, on the paper's plate and a
+rigid target, at STEPS_PER_CONTACT steps per contact-time estimate (the adaptive method: its own grid
+at the default step_tol): separation scalars to RTOL relative (each against its own scale, SCALES), node
+arrays s, s', F, J to RTOL relative to their largest value, the adaptive level sequence exactly.
+``pytest -s`` prints the largest differences found per method and quantity.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections import defaultdict
+
+import numpy as np
+import pytest
+
+import vcor
+from vcor.contact.impact import make_impact
+from vcor.solvers import adaptive, direct, ive
+from vcor.solvers import reference as R
+from vcor.solvers import soe as soe_method
+from vcor.solvers.common import separation
+
+PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "kelvin-voigt", "elastic"]
+PRONY = [p for p in PRESETS if vcor.materials.get(p).is_prony]
+FINITE_K0 = [p for p in PRESETS if math.isfinite(vcor.materials.get(p).glassy)]
+NO_DIRAC = [p for p in PRESETS if vcor.materials.get(p).viscosity == 0]
+TARGETS = {"plate": {}, "rigid": {"rigid": True}}
+SPEEDS = (1.0, 10.0)
+STEPS_PER_CONTACT = 150
+#: the fixed-step budget in contact times (march.MAX_T_FACTOR); the soe horizon follows from it
+MAX_T_FACTOR = 32
+RTOL = 1e-12
+STEP_TOL = 3e-4
+
+
+def cases(presets):
+    return [pytest.param(p, v0, t, id=f"{p}-{v0:g}-{t}") for p in presets for v0 in SPEEDS for t in TARGETS]
+
+
+#: largest difference seen, per (method, quantity)
+WORST = defaultdict(float)
+
+
+@pytest.fixture(scope="module", autouse=True)
+def print_worst():
+    yield
+    print(f"\nlargest differences, reference - numba (vcor from {vcor.__file__}):")
+    for method in sorted({m for m, _ in WORST}):
+        row = {q: d for (m, q), d in WORST.items() if m == method}
+        print(f"  {method:24s}" + " ".join(f"{q}={d:.1e}" for q, d in row.items()))
+
+
+#: the COR's scale is at least this: 1e-15 absolute, the rounding floor of a velocity ratio (it matters
+#: for the tiny COR of a creeping contact, 2.6e-4 for SLS on the plate with the overlap rule)
+COR_FLOOR = 1e-3
+
+
+def scales(impact, numba):
+    """Scale of each separation scalar: the value itself for cor (at least COR_FLOOR), t0, s_max,
+    f_max; s_max for the residual interference; m v0^2/2 for the works; v0 for the sphere velocity;
+    1 for the (already relative) energy residual."""
+    e_in = 0.5 * impact.m * impact.v0**2
+    return {"cor": max(numba["cor"], COR_FLOOR), "t0": numba["t0"], "s_residual": numba["s_max"], "w_h": e_in,
+            "w_plate": e_in, "sphere_velocity": impact.v0, "energy_residual": 1.0, "s_max": numba["s_max"],
+            "f_max": numba["f_max"]}
+
+
+def check_scalars(method, impact, ref, numba):
+    """numba: a Result or a dict with the names of R.OUTCOME."""
+    numba = {k: (numba[k] if isinstance(numba, dict) else getattr(numba, k)) for k in R.OUTCOME}
+    for key, scale in scales(impact, numba).items():
+        diff = abs(ref[key] - numba[key]) / abs(scale)
+        WORST[method, key] = max(WORST[method, key], diff)
+        assert diff <= RTOL, (method, key, ref[key], numba[key])
+
+
+def check_nodes(method, ref, history):
+    """Node arrays s, s', F, J (and t) of the reference against a march's ``Histories``."""
+    assert ref["t"].size == history.t.size, (method, ref["t"].size, history.t.size)
+    assert np.array_equal(ref["t"], history.t), method  # n dt, or sums of powers of two: exact
+    for key, numba in (("s", history.s), ("g", history.sdot), ("F", history.F), ("J", history.J)):
+        diff = np.max(np.abs(ref[key] - numba)) / np.max(np.abs(numba))
+        WORST[method, key] = max(WORST[method, key], diff)
+        assert diff <= RTOL, (method, key, diff)
+
+
+def fixed_step_case(name, v0, target):
+    """(impact, dt, n_steps, max_steps) as ``simulate`` chooses them for STEPS_PER_CONTACT."""
+    impact = make_impact(name, v0, TARGETS[target])
+    tc = impact.contact_time_estimate()
+    dt = tc / STEPS_PER_CONTACT
+    return impact, dt, max(math.ceil(1.5 * tc / dt), 16), MAX_T_FACTOR * STEPS_PER_CONTACT
+
+
+# ------------------------------------------------------------------------------------------------
+# fixed-step marches
+# ------------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+def test_direct(name, v0, target):
+    impact, dt, n, budget = fixed_step_case(name, v0, target)
+    ref = R.direct_reference(impact, dt, budget)
+    res = direct.run_direct(impact, dt, n, max_steps=budget, history=True, ghost=0.0)
+    assert res.ok and res.steps == ref["n_sep"]
+    check_scalars("direct-a", impact, ref, res)
+    check_nodes("direct-a", ref, res.history)
+
+
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+def test_direct_volterra(name, v0, target):
+    impact, dt, n, budget = fixed_step_case(name, v0, target)
+    ref = R.direct_reference(impact, dt, budget, volterra=True, c2=1.0)
+    res = direct.run_direct(impact, dt, n, max_steps=budget, volterra=True, c2=1.0, history=True, ghost=0.0)
+    assert res.ok and res.steps == ref["n_sep"]
+    check_scalars("direct-a+volterra", impact, ref, res)
+    check_nodes("direct-a+volterra", ref, res.history)
+
+
+@pytest.mark.parametrize("name, v0, target", cases(FINITE_K0))
+def test_direct_form_b(name, v0, target):
+    impact, dt, n, budget = fixed_step_case(name, v0, target)
+    ref = R.direct_reference(impact, dt, budget, form="b")
+    res = direct.run_direct(impact, dt, n, max_steps=budget, form="b", history=True, ghost=0.0)
+    assert res.ok and res.steps == ref["n_sep"]
+    check_scalars("direct-b", impact, ref, res)
+    check_nodes("direct-b", ref, res.history)
+
+
+@pytest.mark.parametrize("name, v0, target", cases(PRONY))
+def test_prony(name, v0, target):
+    impact, dt, n, budget = fixed_step_case(name, v0, target)
+    ref = R.prony_reference(impact, dt, budget)
+    res = ive.run_ive_fixed(impact, dt, n, max_steps=budget, history=True, ghost=0.0)
+    assert res.ok and res.steps == ref["n_sep"]
+    check_scalars("ive-numba", impact, ref, res)
+    check_nodes("ive-numba", ref, res.history)
+
+
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+def test_soe(name, v0, target):
+    impact, dt, n, budget = fixed_step_case(name, v0, target)
+    ref = R.soe_reference(impact, dt, budget, t_max=(budget + 8) * dt)  # run_soe's horizon, ghost 0
+    res = soe_method.run_soe(impact, dt, n, max_steps=budget, history=True, ghost=0.0)
+    assert res.ok and res.steps == ref["n_sep"]
+    check_scalars("soe", impact, ref, res)
+    check_nodes("soe", ref, res.history)
+
+
+@pytest.mark.parametrize("name, v0, target", cases(NO_DIRAC))
+def test_paper(name, v0, target):
+    impact, dt, n, budget = fixed_step_case(name, v0, target)
+    ref = R.paper_reference(impact, dt, budget)
+    res = direct.run_paper(impact, dt, n, max_steps=budget, history=True)
+    assert res.ok and res.steps == ref["n_sep"]
+    check_scalars("paper", impact, ref, res)
+    check_nodes("paper", ref, res.history)
+
+
+# ------------------------------------------------------------------------------------------------
+# adaptive march
+# ------------------------------------------------------------------------------------------------
+def levels_of(t, h_base, split=0):
+    """Levels of the steps of a grid t (steps h_base 2^(level - split), exact powers of two)."""
+    return np.rint(np.log2(np.diff(t) / h_base)).astype(int) + split
+
+
+def numba_grids(impact, tc):
+    """The outcome rows of the three Richardson grids as the one-call path computes them
+    (``adaptive.grid_outcomes``): per grid the 9 values of R.OUTCOME, separation index, largest step."""
+    out = adaptive.grid_outcomes(impact, tc, 3, step_tol=STEP_TOL, max_steps=10**6, rule="force", tol=1e-10)
+    assert out is not None
+    return out
+
+
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+def test_adaptive_grid(name, v0, target):
+    """The controlled grid: the same levels step by step (the reference's own error control), then
+    the same nodes and scalars. Should rounding ever flip a decision, the reference replays the
+    kernel's levels instead (and the test says so)."""
+    impact = make_impact(name, v0, TARGETS[target])
+    tc = impact.contact_time_estimate()
+    res = adaptive.run_adaptive(impact, tc, step_tol=STEP_TOL, max_steps=10**6, history=True, ghost=0.0)
+    assert res.ok
+    numba_levels = levels_of(res.history.t, R.AdaptiveGrid.of(impact, tc).h_base)
+    ref = R.adaptive_reference(impact, tc, STEP_TOL)
+    WORST["adaptive", "level changes"] = max(WORST["adaptive", "level changes"],
+                                             float(not np.array_equal(ref["levels"], numba_levels)))
+    if not np.array_equal(ref["levels"], numba_levels):
+        warnings.warn(f"{name} {v0} {target}: the reference's error control chose other levels than the kernel "
+                      "(a decision flipped by rounding?); comparing the replay of the kernel's levels instead")
+        ref = R.adaptive_reference(impact, tc, STEP_TOL, plan=numba_levels)
+    assert res.steps == ref["n_sep"]
+    check_scalars("adaptive grid", impact, ref, res)
+    check_nodes("adaptive grid", ref, res.history)
+
+
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+def test_adaptive_richardson(name, v0, target):
+    """The three grids (controlled, halved, quartered replays) one by one against the kernel's
+    ``adaptive_grids``, the quartered grid's nodes against the general path's history, and the
+    extrapolated scalars against ``simulate(method="adaptive")`` (its default)."""
+    impact = make_impact(name, v0, TARGETS[target])
+    tc = impact.contact_time_estimate()
+    ref = R.adaptive_richardson_reference(impact, tc, STEP_TOL)
+    for k, (grid, row) in enumerate(zip(ref["grids"], numba_grids(impact, tc), strict=True)):
+        assert grid["n_sep"] == int(row[9])
+        check_scalars(f"adaptive grid/{2**k}", impact, grid, dict(zip(R.OUTCOME, row)))
+    fine = adaptive.run_adaptive(impact, tc, step_tol=STEP_TOL, max_steps=10**6, history=True, ghost=0.0,
+                                 extrapolate=True)
+    check_nodes("adaptive grid/4", ref["grids"][2], fine.history)
+    res = vcor.simulate(name, v0, method="adaptive", **TARGETS[target])
+    assert res.ok and res.message == ""  # extrapolated (the method's guards let it)
+    check_scalars("adaptive extrapolated", impact, ref, res)
+
+
+# ------------------------------------------------------------------------------------------------
+# the overlap rule, the separation alone, and the references among themselves
+# ------------------------------------------------------------------------------------------------
+#: impacts that separate by the overlap rule within the fixed-step budget (the Butyl laws' and the 3-term
+#: Prony's s creeps back to zero far later); SLS on the plate: 2 392 steps (T_max doubled four times)
+OVERLAP_CASES = [("sls", "plate"), ("sls", "rigid"), ("kelvin-voigt", "plate"), ("elastic", "plate")]
+
+
+@pytest.mark.parametrize("name, target", OVERLAP_CASES)
+def test_overlap_rule(name, target):
+    impact, dt, n, budget = fixed_step_case(name, 10.0, target)
+    ref = R.direct_reference(impact, dt, budget, rule="overlap")
+    res = direct.run_direct(impact, dt, n, max_steps=budget, rule="overlap", history=True, ghost=0.0)
+    check_scalars("direct-a overlap", impact, ref, res)
+    check_nodes("direct-a overlap", ref, res.history)
+    tc = impact.contact_time_estimate()
+    ref = R.adaptive_reference(impact, tc, STEP_TOL, rule="overlap")
+    res = adaptive.run_adaptive(impact, tc, step_tol=STEP_TOL, max_steps=10**6, rule="overlap", history=True,
+                                ghost=0.0)
+    assert np.array_equal(ref["levels"], levels_of(res.history.t, R.AdaptiveGrid.of(impact, tc).h_base))
+    check_scalars("adaptive overlap", impact, ref, res)
+
+
+@pytest.mark.parametrize("rule", ["force", "overlap"])
+def test_separation_alone(rule):
+    """``separation_reference`` against ``_separation.locate_separation`` (via ``common.separation``)
+    on smooth random histories on a random grid, the target's root inside step n."""
+    m, v0 = 0.03, 10.0
+    rng = np.random.default_rng(20261121)
+    for _ in range(20):
+        t = np.cumsum(rng.uniform(0.5, 1.5, 40)) * 1e-5
+        t -= t[0]
+        n = int(rng.integers(10, 37))
+        root = t[n - 1] + rng.uniform(0.05, 0.95) * (t[n] - t[n - 1])
+        s = 1e-3 * np.sin(math.pi * t / root) + (0.0 if rule == "overlap" else 1e-3)
+        F = 500.0 * np.sin(math.pi * t / root) * (1.0 + 0.3 * t / root)
+        g, J = np.gradient(s, t), np.cumsum(F) * 1e-5
+        ref = R.separation_reference(t, s, g, F, J, n, rule, m, v0)
+        numba = separation(t, s, g, F, J, n, rule, m, v0)
+        for key in R.OUTCOME:
+            scale = np.max(np.abs(s)) if key == "s_residual" else abs(numba[key])
+            WORST["separation", key] = max(WORST["separation", key], abs(ref[key] - numba[key]) / scale)
+            assert abs(ref[key] - numba[key]) <= RTOL * scale, key
+
+
+@pytest.mark.parametrize("name", PRONY)
+def test_references_among_themselves(name):
+    """Independent formulations of one scheme: internal variables = form b (both the linear product
+    integration), and the soe weights = the direct ones for Prony kernels (exact sums)."""
+    impact, dt, _, budget = fixed_step_case(name, 10.0, "plate")
+    prony, form_b = R.prony_reference(impact, dt, budget), R.direct_reference(impact, dt, budget, form="b")
+    soe, form_a = R.soe_reference(impact, dt, budget, (budget + 8) * dt), R.direct_reference(impact, dt, budget)
+    for a, b in ((prony, form_b), (soe, form_a)):
+        assert a["cor"] == pytest.approx(b["cor"], rel=RTOL) and a["t0"] == pytest.approx(b["t0"], rel=RTOL)
