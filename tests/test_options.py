@@ -69,16 +69,16 @@ def test_cli_flags_are_the_options():
             continue
         flag = "--" + name.replace("_", "-")
         extra = [flag] if name in BOOLEAN_OPTIONS else [flag, CLI_VALUES[name]]
-        args = parser.parse_args(["impact", "--v0", "1", *extra])
+        args = parser.parse_args(["impact", "--material", "sls", "--v0", "1", *extra])
         got = getattr(args, name)
         assert got is True if name in BOOLEAN_OPTIONS else str(got) == CLI_VALUES[name] or got == float(CLI_VALUES[name])
         if SolverOptions.allowed_of(name) is not None:
             with pytest.raises(SystemExit):
-                parser.parse_args(["impact", "--v0", "1", flag, "no-such-value"])
+                parser.parse_args(["impact", "--material", "sls", "--v0", "1", flag, "no-such-value"])
 
 
 def test_cli_reports_an_ignored_option_by_name(capsys):
-    assert cli.main(["impact", "--v0", "1", "--method", "ive", "--dt", "1e-7"]) == 2
+    assert cli.main(["impact", "--material", "sls", "--v0", "1", "--method", "ive", "--dt", "1e-7"]) == 2
     assert "solver option dt is not used by method 'ive'" in capsys.readouterr().err
 
 

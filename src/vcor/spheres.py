@@ -25,10 +25,10 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.special import gamma
 
-from .materials import models as _materials
 from .checks import positive
-from .solvers.simulate import simulate
+from .materials import models as _materials
 from .solvers.common import richardson
+from .solvers.simulate import simulate
 
 __all__ = [
     "A_COEFFS",

@@ -1,10 +1,10 @@
 # Figures (PNG for the report, PDF for print) and the per-scene manifest.
 #
-# One job per scene draws all of that scene's figures: each figure job used to be its own process,
-# and importing xarray and matplotlib (~1 s) cost more than drawing most figures. A rule per scene
-# (named figures_<scene>) lists the scene's figures as outputs, so `snakemake
-# results/<scene>/figures/fig1.png` still works (it draws the scene's figures), each PNG has its own
-# caption in the report, and a change to one figure's options re-draws the scene's figures (seconds).
+# One job per scene draws all of that scene's figures (starting a process and importing xarray and
+# matplotlib costs more than drawing most figures). A rule per scene (named figures_<scene>) lists
+# the scene's figures as outputs, so `snakemake results/<scene>/figures/fig1.png` works (it draws the
+# scene's figures), each PNG has its own caption in the report, and a change to one figure's options
+# re-draws the scene's figures (seconds).
 
 for _scene, _cfg in SCENES.items():
     _figs = list(_cfg.get("figures", {}))

@@ -11,7 +11,7 @@ spec = snakemake.params.spec  # noqa: F821
 result, data, attrs = fits.run_fit(spec)
 print(f"fit {snakemake.wildcards.material}: {result.fit_time:.3f} s, {result.settings}", file=sys.stderr)  # noqa: F821
 ds = fits.result_dataset(result, data, spec)
-ds.attrs.update(attrs)
+ds.attrs.update(attrs, material_name=snakemake.wildcards.material)  # noqa: F821
 netcdf.write_dataset(ds, snakemake.output.nc, title=f"vcor fitted material {snakemake.wildcards.material}",  # noqa: F821
                  command="vcor.fit (deterministic: no time stamp)", timestamp=False)
 with open(snakemake.output.table, "w") as fh:  # noqa: F821

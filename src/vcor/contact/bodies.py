@@ -1,4 +1,4 @@
-"""Bodies instead of a case number (issue 12, part 2): a sphere and a plate, each with its own
+"""Bodies instead of a case number: a sphere and a plate, each with its own
 material, size, density and Poisson ratio, combined as Green 2026 Eq. 1 says.
 
 * ``sphere: {material, r, rho, nu}``, ``plate: {material, h, rho, nu}``; ``material`` is a
@@ -23,7 +23,7 @@ What :func:`impact_inputs` returns is an ordinary (material, geometry) pair for 
   solves it; ``adaptive`` and ``ive`` need exponential sums and refuse it with a message, unless both
   bodies are elastic (then E' is a constant).
 
-:func:`series_modulus` is the alternative the issue asks to compare: the compliances of the two
+:func:`series_modulus` is the alternative for comparison: the compliances of the two
 bodies added in the Laplace domain (the correspondence principle applied to 1/E' = 1/E'_a + 1/E'_b),
 exact for Prony bodies (the result is again a Prony series).
 """
@@ -39,8 +39,8 @@ import numpy as np
 
 from ..materials import models as _materials
 from ..materials.presets import PRESETS, get
-from .impact import DENSITIES, GEOMETRY_DEFAULTS
 from ..materials.specs import from_spec
+from .impact import DENSITIES, GEOMETRY_DEFAULTS
 
 __all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "scene_bodies", "series_modulus"]
 

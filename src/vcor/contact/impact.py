@@ -16,8 +16,7 @@ Cases (which body is viscoelastic, Eq. 1):
    plate's own modulus ``E_plate`` and ``nu_plate`` (defaults: steel, 200 GPa, 0.3).
 
 Densities not given follow the case (``DENSITIES``): the viscoelastic body is the paper's polymer,
-1100 kg/m^3, a stiff elastic one steel, 7800 kg/m^3 (before, cases 2 and 4 silently used case 3's
-steel sphere and polymer plate).
+1100 kg/m^3, a stiff elastic one steel, 7800 kg/m^3.
 """
 
 from __future__ import annotations

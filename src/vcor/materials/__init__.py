@@ -7,7 +7,17 @@ see :mod:`vcor.materials.models`.
 
 from .catalogue import Catalogue
 from .files import from_file
-from .models import SLS, Cerf, Elastic, EqOne, FractionalPower, KelvinVoigt, Material, Prony, from_dict
+from .models import (
+           SLS,
+           Cerf,
+           Elastic,
+           EqOne,
+           FractionalPower,
+           KelvinVoigt,
+           Material,
+           Prony,
+           from_dict,
+)
 from .presets import PRESETS, get
 
 __all__ = ["PRESETS", "SLS", "Catalogue", "Cerf", "Elastic", "EqOne", "FractionalPower", "KelvinVoigt", "Material",

@@ -38,8 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erfc, erfcx
 
-from . import models as _materials
 from ..checks import number
+from . import models as _materials
 
 __all__ = ["SOE", "fractional_bound", "soe"]
 

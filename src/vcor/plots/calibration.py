@@ -10,7 +10,7 @@ __all__ = ["calibration"]
 
 
 def calibration(cal):
-    """Issue 13: a calibration's data (error bars: cor_std), the calibrated model with its 95 % band,
+    """A calibration's data (error bars: cor_std), the calibrated model with its 95 % band,
     and the residuals; the title gives the estimates, their standard errors and identifiability."""
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.5, 6.0), layout="constrained", sharex=True,
                                    gridspec_kw={"height_ratios": [3, 1]})

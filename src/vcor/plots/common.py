@@ -7,7 +7,44 @@ import json
 
 import numpy as np
 
-__all__ = ["cor_line", "fixed_axes", "json_materials", "mark_failed", "plt", "point", "save", "status_name", "v0_line"]
+__all__ = ["axis_label", "cor_line", "fixed_axes", "json_materials", "mark_failed", "plt", "point", "run_label", "save",
+           "solver_label", "status_name", "unit_label", "v0_line"]
+
+#: UDUNITS strings of the datasets -> the one unit style of the figures
+_UNIT_LABELS = {"m s-1": "m/s", "kg m-3": "kg/m³", "s-1": "1/s", "rad s-1": "rad/s", "degC": "°C", "s-1/2": "1/√s",
+                "m-1.5": "m⁻¹·⁵", "1": "", "cm s-1": "cm/s"}
+#: method tags of the datasets -> words
+_SOLVER_LABELS = {"direct-a": "direct", "direct-b": "direct, form b", "direct-a+volterra": "direct + Volterra term",
+                  "ive-Radau": "internal variables (Radau)", "ive-BDF": "internal variables (BDF)",
+                  "ive": "internal variables (solve_ivp)", "ive-numba": "internal variables, fixed step",
+                  "soe": "exponential-sum history, fixed step", "adaptive": "adaptive (extrapolated)",
+                  "adaptive-plain": "adaptive (not extrapolated)", "paper-explicit": "explicit baseline (paper's scheme)",
+                  "paper": "explicit baseline (paper's scheme)"}
+
+
+def unit_label(units: str) -> str:
+    """A UDUNITS string as the figures write units (m/s, kg/m³, 1/s, °C; "" for dimensionless)."""
+    return _UNIT_LABELS.get(units, units)
+
+
+def axis_label(ds, name: str) -> str:
+    """"long name, symbol [unit]" of a coordinate or variable of ``ds``."""
+    attrs = ds[name].attrs
+    unit = unit_label(attrs.get("units", ""))
+    long = attrs.get("long_name", "")
+    text = f"{long}, {name}" if long and long != name else name
+    return f"{text} [{unit}]" if unit else text
+
+
+def solver_label(tag: str) -> str:
+    """A dataset's method tag (``direct-a``, ``ive-Radau``, ...) in words."""
+    return _SOLVER_LABELS.get(tag, tag)
+
+
+def run_label(run: str) -> str:
+    """A histories run ``material/method`` as ``material (method in words)``."""
+    material, _, method = run.partition("/")
+    return f"{material} ({solver_label(method)})" if method else material
 
 
 class _Pyplot:
@@ -84,10 +121,9 @@ def fixed_axes(sweep, opts, free):
             sel[d] = opts[d]
         else:
             sel[d] = sweep[d].values[0]
-    units = {d: sweep[d].attrs.get("units", "") for d in sel}
-    text = ", ".join(f"{d} = {v:g} {units[d] if units[d] != '1' else ''}".rstrip() for d, v in sel.items())
+    units = {d: unit_label(sweep[d].attrs.get("units", "")) for d in sel}
+    text = ", ".join(f"{d} = {v:g} {units[d]}".rstrip() for d, v in sel.items())
     return sel, (f" ({text})" if text else "")
-
 
 
 def json_materials(ds) -> dict:

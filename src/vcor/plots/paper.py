@@ -7,7 +7,16 @@ import math
 
 import numpy as np
 
-from .common import cor_line, json_materials, mark_failed, plt, point, status_name, v0_line
+from .common import (
+    cor_line,
+    json_materials,
+    run_label,
+    mark_failed,
+    plt,
+    point,
+    status_name,
+    v0_line,
+)
 
 __all__ = ["fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fig9", "prony_terms"]
 
@@ -58,43 +67,54 @@ def fig1(sweep, moduli, opts):
     p = point(sweep, mat, opts.get("v0", 10.0), beta=opts.get("beta", 1200.0))
     fig = plt.figure(figsize=(10, 4), layout="constrained")
     moduli_axes(fig, moduli, [mat], [(float(p["t0"]), float(p["omega_min"]), f"v0={float(p['v0']):g} m/s")])
-    fig.suptitle(f"Fig. 1: {mat} relaxation and dynamic moduli")
+    fig.suptitle(f"Fig. 1: relaxation and dynamic moduli of {mat}")
     return fig
 
 
 def responses(hist, runs, title):
-    fig, ax = plt.subplots(figsize=(7, 4.5), layout="constrained")
+    """Normalised s/s_max, -s'/v0 and F/F_max against time for ``runs`` (first solid, further runs as open
+    markers on top, so that overlaid solutions stay visible; dashed: the ghost part after t0). The
+    legend and each run's t0, COR and residual interference sit below the axes, off the curves."""
+    fig, (ax, below) = plt.subplots(2, 1, figsize=(7.5, 5.8), height_ratios=[4, 1.15], layout="constrained")
+    below.axis("off")
+    notes, failed = [], False
+    v0 = hist.attrs["v0"]
     for i, run in enumerate(runs):
         h = hist.sel(run=run)
+        name = run_label(run)
         if int(h["status"]) != 0:
-            ax.text(0.02, 0.02 + 0.05 * i, f"{run}: {status_name(h['status'])} ({h['message'].values})", color="red",
-                    transform=ax.transAxes, fontsize=7)
+            notes.append(f"{name}: {status_name(h['status'])}: {h['message'].values}")
+            failed = True
             continue
         t = h["t"].values * 1e3
         ghost = h["ghost"].values.astype(bool)
-        v0 = hist.attrs["v0"]
         curves = {
             "s/s_max": h["s"].values / float(h["s_max"]),
             "-s'/v0": -h["sdot"].values / v0,
             "F/F_max": h["F"].values / float(h["f_max"]),
         }
-        for (name, y), color in zip(curves.items(), ["C0", "C1", "C2"]):
+        for (label, y), color in zip(curves.items(), ["C0", "C1", "C2"]):
             if i == 0:  # first run: solid line
-                ax.plot(t[~ghost], y[~ghost], "-", color=color, label=f"{name} {run}")
-            else:  # further runs: open markers on top, so that overlaid solutions stay visible
+                ax.plot(t[~ghost], y[~ghost], "-", color=color, label=f"{label}, {name}")
+            else:
                 every = max(1, int((~ghost).sum()) // 25)
                 ax.plot(t[~ghost][i::every], y[~ghost][i::every], ["o", "s", "^"][(i - 1) % 3], mfc="none",
-                        color=color, ms=4, label=f"{name} {run}")
+                        color=color, ms=4, label=f"{label}, {name}")
             ax.plot(t[ghost], y[ghost], "--", color=color, alpha=0.6)
         t0 = float(h["t0"]) * 1e3
-        ax.axvline(t0, color="k", lw=0.8)
-        ax.annotate(f"{run}: t0={t0:.4g} ms, COR={float(h['cor']):.4f},\nresidual s/s_max={float(h['s_residual'] / h['s_max']):.4f}",
-                    (t0, 0.9 - 0.15 * i), fontsize=7, xytext=(5, 0), textcoords="offset points")
+        ax.axvline(t0, color="k", lw=0.8, ls="-" if i == 0 else ":")
+        notes.append(f"{name}: t0 = {t0:.4g} ms, COR = {float(h['cor']):.4f}, residual interference "
+                     f"s/s_max = {float(h['s_residual'] / h['s_max']):.4f}")
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("t [ms]")
-    ax.set_ylabel("normalised response [-]")
-    ax.set_title(title + "\n(dashed: ghost solution after separation)", fontsize=10)
-    ax.legend(fontsize=6, ncol=2, loc="lower left")
+    ax.set_ylabel("normalised response")
+    ax.set_title(f"{title} at v0 = {v0:g} m/s\n(vertical lines: separation t0; dashed: solution after separation)",
+                 fontsize=10)
+    handles, labels = ax.get_legend_handles_labels()
+    if handles:
+        below.legend(handles, labels, loc="upper left", fontsize=7, ncol=2, frameon=False)
+    below.text(0.0, 0.0, "\n".join(notes), transform=below.transAxes, fontsize=7, va="bottom",
+               color="red" if failed else "black")
     return fig
 
 
@@ -105,8 +125,9 @@ def runs(hist, opts, default_materials):
 
 
 def fig2(hist, opts):
-    """SLS responses, direct and IVE overlaid."""
-    return responses(hist, runs(hist, opts, ["sls"]), "Fig. 2: SLS responses, direct and IVE")
+    """Responses of the SLS, two solvers overlaid."""
+    chosen = runs(hist, opts, ["sls"])
+    return responses(hist, chosen, "Fig. 2: responses, " + ", ".join(run_label(r) for r in chosen))
 
 
 def fig3(hist, opts):
@@ -115,16 +136,16 @@ def fig3(hist, opts):
     for i, run in enumerate(runs(hist, opts, ["sls", "butyl-fc"])):
         h = hist.sel(run=run)
         if int(h["status"]) != 0:
-            ax.text(0.02, 0.95 - 0.05 * i, f"{run}: {status_name(h['status'])} ({h['message'].values})",
+            ax.text(0.02, 0.95 - 0.05 * i, f"{run_label(run)}: {status_name(h['status'])} ({h['message'].values})",
                     color="red", transform=ax.transAxes, fontsize=7)
             continue
         ghost = h["ghost"].values.astype(bool)
         ax.plot(h["s"].values[~ghost] * 1e3, h["F"].values[~ghost],
-                label=f"{run}: F_max={float(h['f_max']):.1f} N, s_max={float(h['s_max']) * 1e3:.3g} mm, "
-                      f"W_h={float(h['w_h']):.3f} J")
+                label=f"{run_label(run)}: F_max = {float(h['f_max']):.1f} N, s_max = {float(h['s_max']) * 1e3:.3g} mm, "
+                      f"W_h = {float(h['w_h']):.3f} J")
     ax.set_xlabel("s [mm]")
     ax.set_ylabel("F [N]")
-    ax.set_title("Fig. 3: hysteresis loops")
+    ax.set_title(f"Fig. 3: hysteresis loops up to separation, v0 = {hist.attrs['v0']:g} m/s")
     ax.legend(fontsize=7)
     return fig
 
@@ -137,7 +158,8 @@ def fig4(sweep, opts):
     nbad = 0
     for b in ds["beta"].values:
         nbad += cor_line(ax, ds.sel(beta=b), f"β = {b:g} 1/s")
-    ax.set_title("Fig. 4: COR vs impact speed, SLS, α/β fixed" + (f" ({nbad} points not ok)" if nbad else ""))
+    ax.set_title(f"Fig. 4: COR against impact speed, {mat}, a line per decay rate β"
+                 + (f" ({nbad} points not ok)" if nbad else ""), fontsize=10)
     ax.legend(fontsize=7)
     return fig
 
@@ -148,17 +170,22 @@ def fig5(sweep, moduli, opts):
     mats = [str(m) for m in moduli["material"].values]
     p = point(sweep, ref, opts.get("v0", 10.0))
     fig = plt.figure(figsize=(11, 4.5), layout="constrained")
-    moduli_axes(fig, moduli, mats, [(float(p["t0"]), float(p["omega_min"]), ref)], inset_tmax=4e-4)
-    fig.suptitle("Fig. 5: Butyl B252 moduli (inset: t <= 0.4 ms)")
+    inset = 4e-4
+    moduli_axes(fig, moduli, mats, [(float(p["t0"]), float(p["omega_min"]), ref)], inset_tmax=inset)
+    fig.suptitle(f"Fig. 5: moduli of {', '.join(mats)} (inset: t <= {inset * 1e3:g} ms)")
     return fig
 
 
 def fig6(hist, opts):
-    return responses(hist, runs(hist, opts, ["butyl-fc", "butyl-cerf"]), "Fig. 6: Butyl, fractional law and CERF")
+    """Responses of the fractional law and the CERF set (the runs the options name)."""
+    chosen = runs(hist, opts, ["butyl-fc", "butyl-cerf"])
+    return responses(hist, chosen, "Fig. 6: responses, " + ", ".join(run_label(r) for r in chosen))
 
 
 def fig7(hist, opts):
-    return responses(hist, runs(hist, opts, ["butyl-prony3"]), "Fig. 7: Butyl, 3-term Prony, direct and IVE")
+    """Responses of the 3-term Prony set, two solvers overlaid."""
+    chosen = runs(hist, opts, ["butyl-prony3"])
+    return responses(hist, chosen, "Fig. 7: responses, " + ", ".join(run_label(r) for r in chosen))
 
 
 def fig8(sweep, opts):
@@ -167,7 +194,9 @@ def fig8(sweep, opts):
     nbad = 0
     for m in sweep["material"].values:
         nbad += cor_line(ax, v0_line(sweep, m), str(m))
-    ax.set_title("Fig. 8: COR vs impact speed, Butyl B252 models" + (f" ({nbad} not ok)" if nbad else ""))
+    mats = [str(m) for m in sweep["material"].values]
+    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + (f" ({nbad} not ok)" if nbad else ""),
+                 fontsize=10)
     ax.legend(fontsize=8)
     return fig
 
@@ -185,7 +214,7 @@ def fig9(sweep, opts):
         mark_failed(ax, d["v0"].values, ok)
         ax.set_xlabel("v0 [m/s]")
         ax.set_ylabel(lab)
-    fig.suptitle(f"Fig. 9: effect of impact speed, {mat}")
+    fig.suptitle(f"Fig. 9: effect of the impact speed, {mat}")
     return fig
 
 

@@ -39,8 +39,10 @@ def spheres_eps(sph, opts):
 def spheres_ice(sph, opts):
     """Ramirez Fig. 1: ice, experimental fit eps = 0.32 g^-0.234 (g in cm/s, Bridges et al. 1984),
     the Pade with g* = 0.32 cm/s and the numerical curve with the same g*; with the dataset's ice fits
-    (issue 13) the curves with g* fitted to the law (numerical eps per rule, and the Pade)."""
-    from .. import spheres as S  # the series coefficients (imported here: figure jobs need no solver)
+    the curves with g* fitted to the law (numerical eps per rule, and the Pade)."""
+    from .. import (
+        spheres as S,  # the series coefficients (imported here: figure jobs need no solver)
+    )
 
     gs = float(opts.get("g_star_cm_s", 0.32))
     g = np.linspace(float(opts.get("g_min_cm_s", 0.05)), float(opts.get("g_max_cm_s", 5.0)), 200)

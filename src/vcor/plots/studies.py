@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import plt
+from .common import axis_label, plt, solver_label
 
 __all__ = ["stability_map", "work_precision"]
 
@@ -24,15 +24,17 @@ def work_precision(conv, opts):
                 ok = (ds["status"].values == 0) & (ds["err_cor"].values > 0)
                 if ok.any():
                     ax.loglog(ds["wall_time"].values[ok], ds["err_cor"].values[ok], marker=markers[k % 8], ms=4,
-                              color=f"C{k}", label=str(s))
+                              color=f"C{k}", label=solver_label(str(s)))
             ax.axhline(1e-6, color="grey", lw=0.5, ls=":")
             ax.set_title(f"{m}, v0 = {v:g} m/s", fontsize=9)
             ax.set_xlabel("solver wall time [s]")
-            ax.set_ylabel("|COR - reference|")
+            ax.set_ylabel("COR error |COR - reference|")
             # decades only: the minor ticks of twelve log-log panels made up half of the drawing time
             ax.minorticks_off()
-    axes[0, 0].legend(fontsize=6)
-    fig.suptitle("Work-precision: COR error against run time (reference: Richardson-extrapolated direct)")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=min(len(labels), 5), fontsize=7)
+    fig.suptitle("Work-precision: COR error against run time (reference: Richardson-extrapolated direct; "
+                 "dotted: 1e-6)")
     return fig
 
 
@@ -48,12 +50,12 @@ def stability_map(sweep, opts):
         if len(axes_names) == 1:
             x = d[axes_names[0]].values
             ok = d["status"].values == 0
-            ax.loglog(x[ok], np.maximum(err.values[ok], 1e-17), "o-", label="cor_err (ok points)")
+            ax.loglog(x[ok], np.maximum(err.values[ok], 1e-17), "o-", label="estimated COR error (ok points)")
             for xx, st in zip(x[~ok], d["status"].values[~ok]):
                 ax.annotate(codes.get(int(st), "?"), (xx, 1e-4), color="red", fontsize=7, rotation=90)
             ax.axhline(1e-4, color="red", lw=0.5, ls=":")
-            ax.set_xlabel(axes_names[0])
-            ax.set_ylabel("Richardson estimate of the COR error")
+            ax.set_xlabel(axis_label(d, axes_names[0]))
+            ax.set_ylabel("estimated COR error")
         else:
             a, b = axes_names[0], axes_names[1]
             z = np.log10(np.maximum(err.transpose(a, b).values, 1e-17))
@@ -68,9 +70,9 @@ def stability_map(sweep, opts):
                                 va="center", fontsize=6, color="red")
             ax.set_xticks(np.arange(d.sizes[b]) + 0.5, [f"{x:.3g}" for x in d[b].values], rotation=45, fontsize=7)
             ax.set_yticks(np.arange(d.sizes[a]) + 0.5, [f"{x:.3g}" for x in d[a].values], fontsize=7)
-            ax.set_xlabel(f"{b} [{d[b].attrs.get('units', '')}]")
-            ax.set_ylabel(f"{a} [{d[a].attrs.get('units', '')}]")
-            fig.colorbar(im, ax=ax, label="log10 cor_err (ok points)")
+            ax.set_xlabel(axis_label(d, b))
+            ax.set_ylabel(axis_label(d, a))
+            fig.colorbar(im, ax=ax, label="estimated COR error, log10 (ok points)")
         ax.set_title(str(m))
     fig.suptitle(opts.get("title", "Stability map: status and estimated COR error"))
     return fig

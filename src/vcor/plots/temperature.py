@@ -12,7 +12,7 @@ __all__ = ["cor_temperature", "cor_v0_temperature", "master_curve"]
 
 
 def cor_temperature(sweep, opts):
-    """Issue 12: COR against temperature T (deg C), one line per material and impact speed v0; any other
+    """COR against temperature T (deg C), one line per material and impact speed v0; any other
     axis at the value the options name (e.g. ``nu: 0.5``) or its first; points not ok as red crosses."""
     if "T" not in sweep.dims:
         raise ValueError("figure cor_temperature needs a sweep with a temperature axis T (deg C)")
@@ -26,7 +26,7 @@ def cor_temperature(sweep, opts):
             ok = d["status"].values == 0
             ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
             nbad += mark_failed(ax, d["T"].values, ok)
-    ax.set_xlabel("T [deg C]")
+    ax.set_xlabel("temperature T [°C]")
     ax.set_ylabel("COR")
     ax.set_title("COR against temperature" + fixed + (f", {nbad} not ok" if nbad else ""), fontsize=9)
     ax.legend(fontsize=7)
@@ -34,7 +34,7 @@ def cor_temperature(sweep, opts):
 
 
 def cor_v0_temperature(sweep, opts):
-    """Issue 12: COR against v0 (m/s), one line per temperature (option ``T``: a list of values on the
+    """COR against v0 (m/s), one line per temperature (option ``T``: a list of values on the
     sweep's T axis; default: five spread over it), one panel per material; other axes as in
     :func:`cor_temperature`."""
     if "T" not in sweep.dims:
@@ -53,10 +53,10 @@ def cor_v0_temperature(sweep, opts):
         for c, t in zip(colors, chosen):
             d = sweep.sel(material=m, T=t, **sel)
             ok = d["status"].values == 0
-            ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, color=c, label=f"T = {t:g} deg C")
+            ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, color=c, label=f"T = {t:g} °C")
             nbad += mark_failed(ax, d["v0"].values, ok)
         ax.set_xscale("log")
-        ax.set_xlabel("v0 [m/s]")
+        ax.set_xlabel("impact speed v0 [m/s]")
         ax.set_ylabel("COR")
         ax.set_title(f"{m}" + (f" ({nbad} not ok)" if nbad else ""), fontsize=9)
         ax.legend(fontsize=7)
@@ -65,7 +65,7 @@ def cor_v0_temperature(sweep, opts):
 
 
 def master_curve(fits, opts):
-    """Issue 12: measured-data fits' master curves at T_ref, a column per fit: the shifted data (E', E''
+    """Measured-data fits' master curves at T_ref, a column per fit: the shifted data (E', E''
     coloured by the temperature of their set) and the Prony fit, and tan delta, against reduced
     frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta."""
     fig, axes = plt.subplots(2, len(fits), figsize=(5.5 * len(fits), 7.0), layout="constrained", sharex="col",
@@ -79,7 +79,7 @@ def master_curve(fits, opts):
                              label=f"{sym} data")
             ax1.plot(f, fit[f"{var}_fit"].values, style, lw=1, label=f"{sym} Prony fit")
         if "T_set" in fit:
-            fig.colorbar(sc, ax=ax1, label="T of the set [deg C]")
+            fig.colorbar(sc, ax=ax1, label="temperature of the measured set [°C]")
         ax1.set_xscale("log")
         ax1.set_yscale("log")
         ax1.set_ylabel("modulus [Pa]")
@@ -92,8 +92,9 @@ def master_curve(fits, opts):
         ax2.set_ylabel("tan delta")
         ax2.legend(fontsize=7)
         met = json.loads(fit.attrs.get("metrics", "{}"))
-        name = json.loads(fit.attrs.get("fit_spec", "{}")).get("data", {}).get("shift_file", "shifts from the data")
-        title = f"{fit.attrs.get('data', '')}\nT_ref = {shift.get('T_ref', '?')} deg C; {name}"
+        spec = json.loads(fit.attrs.get("fit_spec", "{}")).get("data", {})
+        shifts = "shift factors given with the data" if "shift_file" in spec else "shift factors found from the data"
+        title = f"{fit.attrs.get('material_name', 'fit')}: {shifts}, T_ref = {shift.get('T_ref', '?')} °C"
         title += "\nrms relative error: " + ", ".join(
             f"{lab} {100 * met[k]:.1f} %" for lab, k in (("E'", "storage_rms"), ("E''", "loss_rms"),
                                                         ("tan delta", "tan_delta_rms")) if k in met)

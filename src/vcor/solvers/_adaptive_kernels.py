@@ -116,7 +116,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     P, X = modes.history, modes.plate
     pe, pbe = plate.moduli, plate.rate_moduli
     pscale, pc, pe_inf = plate.scale, plate.factor, plate.e_inf
-    eta, m, v0 = body.eta, body.m, body.v0
+    m, v0 = body.m, body.v0
     step_tol, inv_tc, sep_frac, ghost = control.step_tol, control.inv_tc, control.sep_fraction, control.ghost
     lev_floor, lev_max, t_horizon = control.level_floor, control.level_top, control.horizon
     inv_m = 1.0 / m

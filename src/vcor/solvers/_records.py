@@ -18,7 +18,7 @@ from collections import namedtuple
 import numpy as np
 
 __all__ = [
-    "DECAYED", "FIXED_STATE", "FROZEN", "LAST", "LEVEL", "LOADED", "REJECTED", "SEPARATION", "STATUS", "STATUS_DIVERGED",
+    "DECAYED", "FROZEN", "LAST", "LEVEL", "LOADED", "REJECTED", "SEPARATION", "STATUS", "STATUS_DIVERGED",
     "STATUS_END", "STATUS_FULL", "STATUS_RUNNING", "STATUS_SEPARATED", "WAIVED", "AdaptiveControl", "Body",
     "ExponentialModes", "FixedNodes", "Internal", "LevelTables", "Modes", "Nodes", "Plate", "PlateArrays", "Stop",
     "Volterra", "fixed_state",

@@ -15,7 +15,14 @@ from __future__ import annotations
 import math
 
 from ._jit import jit, jit_inline
-from ._records import LAST, LOADED, SEPARATION, STATUS, STATUS_DIVERGED, STATUS_SEPARATED
+from ._records import (
+    LAST,
+    LOADED,
+    SEPARATION,
+    STATUS,
+    STATUS_DIVERGED,
+    STATUS_SEPARATED,
+)
 
 __all__ = ["advance", "implicit_step", "implicit_step_inline", "separated"]
 

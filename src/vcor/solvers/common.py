@@ -39,7 +39,7 @@ LONG_NAMES = {
     "w_plate": "work done on the plate int_0^t0 F U' dt",
     "omega_min": "minimum frequency of relevance 2 pi / t0",
     "sphere_velocity": "sphere velocity z'(t0) at separation (negative: rebound)",
-    "energy_residual": "relative energy balance residual (see README)",
+    "energy_residual": "relative energy balance residual (m v0^2/2 - m z0^2/2 - int F dz) / (m v0^2/2)",
     "steps": "time steps taken",
     "wall_time": "solver wall time",
     "dt": "time step",

@@ -13,7 +13,16 @@ import time
 import numpy as np
 
 from ._fixed_kernels import march_direct, march_paper
-from ._records import LAST, STATUS, STATUS_END, Body, PlateArrays, Stop, Volterra, fixed_state
+from ._records import (
+    LAST,
+    STATUS,
+    STATUS_END,
+    Body,
+    PlateArrays,
+    Stop,
+    Volterra,
+    fixed_state,
+)
 from .march import Arrays, March, drive, finish, step_plan
 
 __all__ = ["folded_weights", "kernel_weights", "run_direct", "run_paper", "solve", "solve_paper", "volterra_weights"]

@@ -135,7 +135,7 @@ def settings_of(scene) -> dict:
 
 def _check_bodies(where, scene, axes):
     """A scene with bodies: no case geometry, no geometry axes, one body takes the swept material, and a
-    method that can solve the combination (README, "Bodies")."""
+    method that can solve the combination."""
     if not ("sphere" in scene or "plate" in scene):
         return
     if scene.get("geometry"):
