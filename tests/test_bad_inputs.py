@@ -13,8 +13,8 @@ import yaml
 import vcor
 from vcor.fitting import fits
 from vcor.fitting import prony as fit
-from vcor.materials import Catalogue
 from vcor.study import scene
+from vcor.study.config import load_project
 from vcor import materials as M
 from vcor import spheres as S
 
@@ -27,14 +27,23 @@ def _config_with(mutate):
     return cfg
 
 
-def _validate(cfg):
-    """What the workflow does before any job: JSON schema, then the semantic scene checks."""
+def _validate(cfg, base=ROOT):
+    """What the workflow does before any job: JSON schema, then vcor's config checks."""
     from snakemake.utils import validate
 
     validate(cfg, str(ROOT / "workflow/schemas/config.schema.yaml"))
-    for name, sc in cfg["scenes"].items():
-        if "grid" in sc:
-            scene.validate_scene(name, sc, Catalogue(fits=dict(cfg.get("fits", {}))))
+    load_project(cfg, base)
+
+
+def _scene(name, **changes):
+    """The config with scene ``name`` changed (keys set, or removed when the value is None)."""
+    def mutate(cfg):
+        for k, v in changes.items():
+            if v is None:
+                cfg["scenes"][name].pop(k, None)
+            else:
+                cfg["scenes"][name][k] = v
+    return _config_with(mutate)
 
 
 _BT = fit.bagley_torvik_data()
@@ -43,21 +52,30 @@ _FREQ_ONLY = fit.FitData(omega=_BT.omega, E_star=_BT.E_star)
 ROWS = [
     # (what a user tries, callable, words the error must contain)
     # --- numbers: type and range -------------------------------------------------------------
-    ("r = True", lambda: vcor.simulate("sls", 10.0, r=True), ["r must be in (0, inf) m", "True"]),
-    ("r = 'abc'", lambda: vcor.simulate("sls", 10.0, r="abc"), ["r must be in (0, inf) m", "'abc'"]),
-    ("r negative", lambda: vcor.simulate("sls", 10.0, r=-0.01), ["r must be in (0, inf)"]),
+    ("r = True", lambda: vcor.simulate("sls", 10.0, r=True), ["r must be in [1e-09, 1000] m", "True"]),
+    ("r = 'abc'", lambda: vcor.simulate("sls", 10.0, r="abc"), ["r must be in [1e-09, 1000] m", "'abc'"]),
+    ("r negative", lambda: vcor.simulate("sls", 10.0, r=-0.01), ["r must be in [1e-09, 1000] m", "-0.01"]),
     ("r NaN", lambda: vcor.simulate("sls", 10.0, r=math.nan), ["r must"]),
-    ("rho_a = 0", lambda: vcor.simulate("sls", 10.0, rho_a=0.0), ["rho_a", "(0, inf)"]),
-    ("rho_b negative", lambda: vcor.simulate("sls", 10.0, rho_b=-1.0), ["rho_b", "(0, inf)"]),
+    ("rho_a = 0", lambda: vcor.simulate("sls", 10.0, rho_a=0.0), ["rho_a must be in [0.001, 1e+06] kg/m^3"]),
+    ("rho_b negative", lambda: vcor.simulate("sls", 10.0, rho_b=-1.0), ["rho_b must be in [0.001, 1e+06] kg/m^3"]),
     ("nu = 0.7", lambda: vcor.simulate("sls", 10.0, nu=0.7), ["nu", "(-1, 0.5]"]),
     ("nu = -1", lambda: vcor.simulate("sls", 10.0, nu=-1.0), ["nu", "(-1, 0.5]"]),
-    ("h = False", lambda: vcor.simulate("sls", 10.0, h=False), ["h must be in (0, inf) m"]),
+    ("h = False", lambda: vcor.simulate("sls", 10.0, h=False), ["h must be in [1e-09, 1000] m"]),
     ("h = [1e-3] (unhashable: past the geometry cache)", lambda: vcor.simulate("sls", 10.0, h=[1e-3]),
-     ["h must be in (0, inf) m", "[0.001]"]),
-    ("v0 = 0", lambda: vcor.simulate("sls", 0.0), ["v0", "(0, inf) m/s"]),
-    ("v0 negative", lambda: vcor.simulate("sls", -3.0), ["v0", "(0, inf)"]),
+     ["h must be in [1e-09, 1000] m", "[0.001]"]),
+    ("v0 = 0", lambda: vcor.simulate("sls", 0.0), ["v0 must be in [1e-09, 100000] m/s"]),
+    ("v0 negative", lambda: vcor.simulate("sls", -3.0), ["v0 must be in [1e-09, 100000] m/s"]),
     ("v0 = NaN", lambda: vcor.simulate("sls", math.nan), ["v0"]),
-    ("v0 = '10'", lambda: vcor.simulate("sls", "10"), ["v0", "(0, inf)", "'10'"]),
+    ("v0 = '10'", lambda: vcor.simulate("sls", "10"), ["v0 must be in [1e-09, 100000] m/s", "'10'"]),
+    ("rho_a = 1e-300 (was ok with COR inf)", lambda: vcor.simulate("sls", 10.0, rho_a=1e-300),
+     ["rho_a must be in [0.001, 1e+06] kg/m^3"]),
+    ("v0 = 10**400", lambda: vcor.simulate("sls", 10**400), ["v0 must be in", "floating-point range", "401 characters"]),
+    ("v0 = 5e-324", lambda: vcor.simulate("sls", 5e-324), ["v0 must be in [1e-09, 100000] m/s", "5e-324"]),
+    ("case = 1.0", lambda: vcor.simulate("sls", 10.0, case=1.0), ["case must be one of 1, 2, 3, 4 (an integer)", "1.0"]),
+    ("history = 'no'", lambda: vcor.simulate("sls", 10.0, history="no"), ["history must be true or false", "'no'"]),
+    ("soe_tol = 1e-300", lambda: vcor.simulate("sls", 10.0, method="soe", soe_tol=1e-300),
+     ["soe_tol must be in [1e-15, 0.01)", "1e-300"]),
+    ("rtol = 1e-20", lambda: vcor.simulate("sls", 10.0, method="ive", rtol=1e-20), ["rtol must be in [1e-13, 1)"]),
     ("case = 5", lambda: vcor.simulate("sls", 10.0, case=5), ["case", "1, 2, 3, 4"]),
     ("case = True", lambda: vcor.simulate("sls", 10.0, case=True), ["case", "1, 2, 3, 4"]),
     ("rigid = 'yes'", lambda: vcor.simulate("sls", 10.0, rigid="yes"), ["rigid", "true or false"]),
@@ -127,6 +145,59 @@ ROWS = [
     ("config: unknown material",
      lambda: _validate(_config_with(lambda c: c["scenes"]["butyl"].update(materials=["butyl-xyz"]))),
      ["scenes.butyl.materials", "butyl-xyz"]),
+    ("config: misspelt grid axis", lambda: _validate(_scene("sls", grid={"v0": [1, 10], "bta": [600, 1200]})),
+     ["scenes.sls.grid.bta", "no parameter 'bta'", "'beta'"]),
+    ("config: grid axis of one material only",
+     lambda: _validate(_scene("butyl", grid={"v0": [1, 10], "E0": [1e6, 2e6]})),
+     ["scenes.butyl.grid.E0", "materials ['butyl-prony3'] have no parameter 'E0'"]),
+    ("config: a fit's grid axis by its model",
+     lambda: _validate(_scene("pyvisco", grid={"v0": [1], "E0": [1e6]}, figures={})), ["scenes.pyvisco.grid.E0", "E_inf"]),
+    ("config: geometry keyword that is no number",
+     lambda: _validate(_scene("sls", grid={"v0": [1], "case": [1, 2]}, tie=None)),
+     ["scenes.sls.grid.case"]),
+    ("config: tie target that is an axis",
+     lambda: _validate(_scene("sls", tie={"beta": {"to": "v0", "ratio": 1.0}})), ["scenes.sls.tie.beta", "grid axis"]),
+    ("config: NaN in a grid", lambda: _validate(_scene("sls", grid={"v0": [1, math.nan]})),
+     ["scenes.sls.grid.v0", "finite number", "nan"]),
+    ("config: inf in a grid", lambda: _validate(_scene("sls", grid={"v0": [1, math.inf]})),
+     ["scenes.sls.grid.v0", "finite number", "inf"]),
+    ("config: empty range", lambda: _validate(_scene("sls", grid={"v0": {"start": 5, "stop": 1, "step": 1}})),
+     ["scenes.sls.grid.v0", "empty"]),
+    ("config: range with step and num",
+     lambda: scene.validate_scene("s", {"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 5, "step": 1, "num": 3}}}),
+     ["scenes.s.grid.v0", "{start, stop, step}"]),
+    ("config: grid too large for its jobs",
+     lambda: _validate(_config_with(lambda c: (c.update(shard_size=10), c["scenes"]["sls"].update(
+         grid={"v0": {"start": 1, "stop": 1000, "step": 1}, "beta": {"start": 1, "stop": 1000, "step": 1}})))),
+     ["scenes.sls.grid", "1000000 points in 100000 sweep jobs", "at most", "5000 jobs"]),
+    ("config: axis too long", lambda: _validate(_scene("sls", grid={"v0": {"start": 1, "stop": 1e9, "step": 1}}, tie=None)),
+     ["scenes.sls.grid", "1000000000 points", "at most 1000000 points"]),
+    ("API: axis too long", lambda: scene.axis_values({"start": 1, "stop": 1e9, "step": 1}), ["1000000000 values", "100000"]),
+    ("config: figure needs an axis the grid lacks", lambda: _validate(_scene("sls", grid={"v0": [1, 10]}, tie=None)),
+     ["scenes.sls.figures.fig4", "grid axis beta"]),
+    ("config: figure names a material not in the scene",
+     lambda: _validate(_scene("butyl", figures={"fig9": {"material": "sls"}})),
+     ["scenes.butyl.figures.fig9.material", "'sls'", "butyl-fc"]),
+    ("config: figure's default material not in the scene",
+     lambda: _validate(_scene("butyl", materials=["butyl-cerf"], figures={"fig8": {}, "fig9": {}})),
+     ["scenes.butyl.figures.fig9.material", "'butyl-fc'"]),
+    ("config: unknown figure option", lambda: _validate(_scene("sls", figures={"fig4": {"colour": "red"}})),
+     ["scenes.sls.figures.fig4.colour", "takes no option", "material"]),
+    ("config: figure option off the grid",
+     lambda: _validate(_scene("butyl", figures={"fig5": {"reference": "butyl-fc", "v0": 10.5}})),
+     ["scenes.butyl.figures.fig5.v0", "10.5", "not on the grid axis v0"]),
+    ("config: figure runs not in the histories",
+     lambda: _validate(_scene("butyl", figures={"fig6": {"runs": ["butyl-fc/ive"]}})),
+     ["scenes.butyl.figures.fig6.runs", "butyl-fc/direct"]),
+    ("config: empty material_dir", lambda: _validate(_config_with(lambda c: c.update(material_dir=""))),
+     ["material_dir", "non-empty path inside the project"]),
+    ("config: material_dir outside", lambda: _validate(_config_with(lambda c: c.update(material_dir="../elsewhere"))),
+     ["material_dir", "inside the project"]),
+    ("config: data file outside the project",
+     lambda: _validate(_config_with(lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="/tmp/x.csv"))),
+     ["fits.pyvisco-polymer.data.file", "relative path inside the project"]),
+    ("config: DMA file missing", lambda: _validate(_config_with(
+        lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="data/pyvisco/none.csv"))), ["none.csv"]),
     ("config: option the method ignores",
      lambda: _validate(_config_with(lambda c: c["scenes"]["sls"].update(solver={"method": "ive", "dt": 1e-6}))),
      ["scenes.sls.solver", "dt", "not used by method 'ive'"]),
@@ -155,6 +226,32 @@ def test_valid_inputs_that_were_refused_or_crashed():
     ds = fits.result_dataset(res, _FREQ_ONLY, {})
     assert "t" not in ds.coords and np.all(np.isfinite(ds["tan_delta_rel_err"]))
     assert all(np.isfinite(v) for v in res.metrics.values())
+
+
+def test_valid_inputs_that_crashed():
+    """A Maxwell-like SLS (alpha = 0: the modulus relaxes to zero) and the same as a Prony series
+    (E_inf = 0) have a capped contact-time estimate (ZeroDivisionError before); a Fraction is a number."""
+    from fractions import Fraction
+
+    a = vcor.simulate(M.SLS(15e6, 0.0, 1e4), 10.0)
+    b = vcor.simulate(M.Prony(0.0, (15e6,), (1e4,)), 10.0)
+    assert a.ok and b.ok and a.cor == b.cor and 0 < a.cor < 1
+    assert vcor.simulate("sls", Fraction(10)).cor == vcor.simulate("sls", 10.0).cor
+
+
+def test_dma_file_is_checked_before_any_job(tmp_path):
+    """A DMA file without its Set column is refused when the config is loaded, naming file and line
+    (it failed inside the fit job before)."""
+    (tmp_path / "data").mkdir()
+    rows = (ROOT / "data/pyvisco/freq_user_raw.csv").read_text(encoding="utf-8-sig").splitlines()
+    (tmp_path / "data/m.csv").write_text("\n".join(",".join(r.split(",")[:4]) for r in rows) + "\n")
+    cfg = {"fits": {"m": {"model": "prony", "data": {"file": "data/m.csv", "T_ref": -5}}}}
+    with pytest.raises(ValueError, match=r"data/m.csv, line 1: a raw multi-temperature set needs both T and Set"):
+        load_project(cfg, tmp_path)
+    (tmp_path / "data/one.csv").write_text("\n".join(r for r in rows if r.split(",")[-1].strip() in ("Set", "-", "0")))
+    cfg["fits"]["m"]["data"]["file"] = "data/one.csv"
+    with pytest.raises(ValueError, match="two or more temperatures, got 1"):
+        load_project(cfg, tmp_path)
 
 
 def test_cached_geometries_and_options_keep_the_type_of_a_value():

@@ -140,7 +140,7 @@ def test_workflow_scene_with_bodies(tmp_path):
     import xarray as xr
     from test_workflow import make_project, smk
 
-    scene = {**SCENE, "solver": {"method": "direct"}, "figures": {"fig4": {}}}
+    scene = {**SCENE, "solver": {"method": "direct"}, "figures": {"fig8": {}}}
     cfg = {"shard_size": 100, "material_dir": "results/materials", "scenes": {"bodies": scene}}
     path = make_project(tmp_path, cfg)
     smk(path, "-j2", "results/bodies/sweep.nc")

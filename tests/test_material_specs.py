@@ -95,7 +95,7 @@ def test_cli_takes_a_config_material(tmp_path, capsys):
     assert cli.main(["impact", "--config", str(cfg), "--material", "mine", "--v0", "10", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["cor"]["value"] == vcor.simulate("sls", 10.0).cor
     assert cli.main(["impact", "--config", str(cfg), "--material", "other", "--v0", "10"]) == 2
-    assert "names there: ['mine']" in capsys.readouterr().err
+    assert "config materials ['mine']" in capsys.readouterr().err
 
 
 CONFIG = {

@@ -51,7 +51,7 @@ def _jobs(text, rule):
 def project(tmp_path_factory):
     """A workflow copy whose scripts import a private copy of the package (on PYTHONPATH)."""
     path = tmp_path_factory.mktemp("prov")
-    for name in ("Snakefile", "workflow"):
+    for name in ("Snakefile", "workflow", "profiles"):
         src = ROOT / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, path / name)
     (path / "config.yaml").write_text(yaml.safe_dump(CONFIG, sort_keys=False))
@@ -133,3 +133,43 @@ def test_shard_identity_covers_code_material_content_and_options():
     stiff = {**SCENE, "solver": {"method": "direct", "steps_per_contact": 4000}}
     assert set(shards.plan_shards(stiff, "/nonexistent", 1, ident)).isdisjoint(base)
     assert shards.shard_settings(SCENE)["code"] == provenance.code_fingerprint()
+
+
+def test_a_sweep_rebuilds_from_its_dataset_bit_for_bit(tmp_path):
+    """A sweep's attributes rebuild its scene (grid axes in their config order, a fit's parameters and
+    shift function, a config material's shift function) without the config or the fit's file, and
+    the rebuilt scene re-runs to the dataset's numbers bit for bit."""
+    from vcor.io import netcdf
+    from vcor.materials.files import material_dataset
+    from vcor.study.rebuild import scene_from_dataset
+
+    wlf = {"model": "wlf", "C1": 8.0, "C2": 120.0, "T_ref": 20.0}
+    fitted, attrs = material_dataset("fitted", {"model": "prony", "E_inf": 2e6, "E": [5e7, 1e7],
+                                                "beta": [3e4, 300.0], "shift": wlf})
+    netcdf.write_dataset(fitted, tmp_path / "mats/fitted.nc", title="a fitted material", extra_attrs=attrs)
+    arrhenius = {"model": "arrhenius", "E_a": 2e5, "T_ref": 25.0}
+    catalogue = Catalogue(specs={"mine": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200,
+                                          "shift": arrhenius}},
+                          fits={"fitted": {"model": "prony", "data": {"file": "dma.csv", "T_ref": 20.0}}},
+                          material_dir=str(tmp_path / "mats"))
+    sc = {"materials": ["fitted", "mine"], "grid": {"T": [40.0, 0.0], "v0": [2.0, 10.0], "nu": [0.5, 0.4]}}
+
+    def sweep(sc, catalogue):
+        ids = {m: catalogue.identity(m) for m in sc["materials"]}
+        ds = runner.run_points(shards.identified_points(sc, ids), scene.settings_of(sc), catalogue)
+        ds.attrs["code_fingerprint"] = provenance.code_fingerprint()  # what the shard file records
+        return aggregation.aggregate([ds], sc, ids, catalogue)
+
+    path = tmp_path / "sweep.nc"
+    netcdf.write_dataset(sweep(sc, catalogue), path, title="sweep",
+                         extra_attrs=aggregation.dataset_attrs("s", sc, catalogue))
+    (tmp_path / "mats/fitted.nc").unlink()  # the rebuild needs the dataset only
+    back = xr.load_dataset(path)
+    rebuilt, cat2 = scene_from_dataset(back)
+    assert list(rebuilt["grid"]) == ["T", "v0", "nu"] and list(back["cor"].dims) == ["material", "T", "v0", "nu"]
+    assert cat2.shift("fitted").to_dict() == wlf and cat2.shift("mine").to_dict() == arrhenius
+    again = sweep(rebuilt, cat2)
+    assert int((back["status"] == 0).sum()) == back["status"].size
+    assert set(again.data_vars) == set(back.data_vars)
+    for v in set(back.data_vars) - {"wall_time"}:  # wall_time: the run's clock, not a result
+        np.testing.assert_array_equal(again[v].values, back[v].values, err_msg=v)

@@ -35,6 +35,7 @@ def _project(path):
     path.mkdir(parents=True)
     shutil.copy(ROOT / "Snakefile", path / "Snakefile")
     shutil.copytree(ROOT / "workflow", path / "workflow")
+    shutil.copytree(ROOT / "profiles", path / "profiles")
     (path / "config.yaml").write_text(yaml.safe_dump(CONFIG, sort_keys=False))
     return path
 
@@ -61,7 +62,7 @@ def test_slurm_run_equals_local_run(cluster, tmp_path):
     local = _project(tmp_path / "local")
     _snakemake(local, "-j2")
     remote = _project(tmp_path / "slurm")
-    out = _snakemake(remote, "--profile", str(remote / "workflow/profiles/slurm"))
+    out = _snakemake(remote, "--workflow-profile", str(remote / "profiles/slurm"))
     text = out.stdout + out.stderr
     submitted = text.count("submitted with SLURM jobid")
     assert submitted >= 8, f"only {submitted} jobs went through SLURM:\n{text[-3000:]}"

@@ -51,7 +51,7 @@ TINY = {
 
 
 def make_project(tmp_path, config):
-    for name in ("Snakefile", "workflow", "data"):
+    for name in ("Snakefile", "workflow", "profiles", "data"):
         src = ROOT / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, tmp_path / name)
     (tmp_path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
@@ -68,7 +68,7 @@ def smk(path, *args, check=True):
 @pytest.fixture(scope="module")
 def tiny_run(tmp_path_factory):
     path = make_project(tmp_path_factory.mktemp("wf"), TINY)
-    smk(path, "-j2", "--profile", str(path / "workflow/profiles/default"))
+    smk(path, "-j2")  # profiles/default is found by Snakemake itself
     return path
 
 
@@ -232,6 +232,18 @@ def test_default_config_dry_run_and_scene_selection(tmp_path):
     assert "histories" in text and "sweep_shard" not in text and "moduli" not in text
 
 
+def test_configfile_runs_only_its_scenes(tmp_path):
+    """``--configfile my.yaml`` replaces config.yaml (it is not merged with it): only my.yaml's scenes
+    are planned (docs, "Your own scenes")."""
+    path = make_project(tmp_path, yaml.safe_load((ROOT / "config.yaml").read_text()))
+    mine = {"scenes": {"mine": {"materials": ["sls"], "grid": {"v0": [1.0, 2.0]}, "figures": {"fig8": {}}}}}
+    (path / "my.yaml").write_text(yaml.safe_dump(mine))
+    out = smk(path, "-n", "-j1", "--configfile", "my.yaml")
+    text = out.stdout + out.stderr
+    assert "results/mine/sweep.nc" in text
+    assert "results/sls/" not in text and "results/butyl/" not in text
+
+
 @pytest.mark.parametrize(
     "mutate, words",
     [
@@ -243,7 +255,7 @@ def test_default_config_dry_run_and_scene_selection(tmp_path):
         (lambda c: c["scenes"]["tiny"]["geometry"].update(nu=0.7) if "geometry" in c["scenes"]["tiny"]
          else c["scenes"]["tiny"].update(geometry={"nu": 0.7}), ["nu"]),
         (lambda c: c["scenes"]["thin"]["grid"].update(h=[0.02, -0.1]), ["scenes.thin", "h must be in"]),
-        (lambda c: c["scenes"]["tiny"].update(materials=["butyl-fc"]), ["scenes.tiny", "no scalar parameter 'beta'"]),
+        (lambda c: c["scenes"]["tiny"].update(materials=["butyl-fc"]), ["scenes.tiny.grid.beta", "no parameter 'beta'"]),
         (lambda c: c.update(shard_size=0), ["shard_size"]),
         (lambda c: c["scenes"]["thin"].update(figures={"fig2": {}}), ["scenes.thin", "histories"]),
         (lambda c: c["scenes"]["thin"].update(figures={"master_curve": {"materials": ["sls"]}}),

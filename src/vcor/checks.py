@@ -11,7 +11,7 @@ import functools
 import math
 import numbers
 
-__all__ = ["interned", "number", "positive"]
+__all__ = ["interned", "number", "positive", "shown"]
 
 
 def _interval(lo, hi, lo_open, hi_open) -> str:
@@ -23,12 +23,22 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
     """``value`` as a float if it is a real number (not a bool) in the interval, else ValueError
     naming ``name`` and the interval (with ``unit``)."""
     if type(value) is not float and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
-        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {value!r}")
-    v = float(value)
+        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {shown(value)}")
+    try:
+        v = float(value)
+    except (OverflowError, ValueError):  # an int beyond the float range, an exotic Real
+        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number within the "
+                         f"floating-point range), got {shown(value)}") from None
     inside = (v > lo if lo_open else v >= lo) and (v < hi if hi_open else v <= hi)
     if not (math.isfinite(v) and inside):
-        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)}, got {value!r}")
+        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)}, got {shown(value)}")
     return v
+
+
+def shown(value) -> str:
+    """``repr(value)``, shortened for an error message (a 400-digit integer is not read by anyone)."""
+    text = repr(value)
+    return text if len(text) <= 40 else f"{text[:20]}...{text[-8:]} ({len(text)} characters)"
 
 
 def _where(lo, hi, lo_open, hi_open, unit) -> str:

@@ -17,6 +17,7 @@ rule calibrate:
     params:
         code=CODE,
         spec=get_calibration_spec,
+        identity=get_material_identity,
         catalogue=CATALOGUE_SPEC,
     script:
         "../scripts/calibrate.py"

@@ -1,12 +1,17 @@
-# Config validation (the schema, then vcor.study.config) and every input function. No logic in rules.
+# Config validation (the schema, then vcor.study.config), the run's set-up (project lock, healing of
+# the archive: vcor.study.archive) and every input function. No logic in rules.
 import dataclasses
 import re
+import sys
 
+from snakemake.cli import get_argument_parser
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+import vcor.io.receipts as vreceipts
 import vcor.plots as vplots
 import vcor.provenance as vprovenance
+import vcor.study.archive as varchive
 import vcor.study.config as vconfig
 import vcor.study.scene as vscene
 import vcor.study.shards as vshards
@@ -17,6 +22,69 @@ try:
     PROJECT = vconfig.load_project(config, base_dir=".")
 except ValueError as exc:
     raise WorkflowError(f"config: {exc}")
+
+
+def _executes():
+    """True for a run that executes jobs in this, the main, process (not a dry run, lint, report,
+    unlock, summary or graph; not a job that parses the Snakefile again)."""
+    if not workflow.is_main_process:
+        return False
+    args = get_argument_parser().parse_known_args(sys.argv[1:])[0]
+    modes = (
+        "dryrun",
+        "lint",
+        "report",
+        "unlock",
+        "summary",
+        "detailed_summary",
+        "dag",
+        "rulegraph",
+        "filegraph",
+        "d3dag",
+        "list_rules",
+        "list_target_rules",
+        "touch",
+        "cleanup_metadata",
+        "list_changes",
+        "list_input_changes",
+        "list_params_changes",
+        "list_untracked",
+        "delete_all_output",
+        "delete_temp_output",
+        "archive",
+        "containerize",
+        "export_cwl",
+    )
+    return not any(getattr(args, m, None) for m in modes)
+
+
+EXECUTES = _executes()
+if EXECUTES:
+    # one run at a time per project; the locks a killed run left are then stale and removed
+    try:
+        PROJECT_LOCK = varchive.ProjectLock(".").acquire()
+    except ValueError as exc:
+        raise WorkflowError(str(exc))
+    for _line in varchive.remove_stale_snakemake_locks("."):
+        print(_line, file=sys.stderr)
+# outputs that are not what their writer wrote are moved aside and computed again (a dry run says so)
+for _line in varchive.heal(PROJECT, ".", apply=EXECUTES):
+    print(_line, file=sys.stderr)
+
+
+def _invalid_shard(path, reason):
+    if EXECUTES:
+        moved = vreceipts.quarantine(path)
+        print(
+            f"vcor: {path}: {reason}; moved to {moved.name}, it is computed again",
+            file=sys.stderr,
+        )
+    else:
+        print(
+            f"vcor: {path}: {reason}; a run (not a dry run) computes it again",
+            file=sys.stderr,
+        )
+
 
 SCENES = PROJECT.scenes
 CATALOGUE = PROJECT.catalogue
@@ -58,6 +126,7 @@ def shard_plan(scene):
             f"results/{scene}/shards",
             PROJECT.shard_size_of(scene),
             material_identities(scene),
+            on_invalid=_invalid_shard,
         )
     return _PLANS[scene]
 
@@ -109,6 +178,16 @@ def get_material_files(wildcards):
     """Computed material files a scene's jobs read (fits, calibrations; none for presets and config
     materials: no fit unless needed)."""
     return PROJECT.material_files_of(wildcards.scene)
+
+
+def get_material_identity(wildcards):
+    """The content identity of the material a rule writes (vcor.materials.Catalogue.identity)."""
+    name = (
+        getattr(wildcards, "material", None)
+        or getattr(wildcards, "name", None)
+        or wildcards.cal
+    )
+    return CATALOGUE.identity(name)
 
 
 def get_fit_spec(wildcards):

@@ -15,6 +15,7 @@ rule config_material:
     params:
         code=CODE,
         spec=get_material_spec,
+        identity=get_material_identity,
     script:
         "../scripts/config_material.py"
 
@@ -34,6 +35,7 @@ rule fit_material:
     params:
         code=CODE,
         spec=get_fit_spec,
+        identity=get_material_identity,
     script:
         "../scripts/fit_material.py"
 

@@ -1,19 +1,20 @@
-"""Combine a scene's shards into results/<scene>/sweep.nc (thin)."""
+"""Combine a scene's shards into results/<scene>/sweep.nc (thin: vcor.study.aggregation)."""
 
-import sys
-
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
+from pathlib import Path
 
 import xarray as xr
 
-from vcor.io import netcdf
+from vcor.io import netcdf, receipts
+from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
 from vcor.study import aggregation
 
-cfg = snakemake.params.scene  # noqa: F821
-catalogue = Catalogue(**snakemake.params.catalogue)  # noqa: F821
-shards = [xr.load_dataset(p) for p in snakemake.input.shards]  # noqa: F821
-ds = aggregation.aggregate(shards, cfg, dict(snakemake.params.identities), catalogue)  # noqa: F821
-attrs = aggregation.dataset_attrs(snakemake.wildcards.scene, cfg, catalogue)  # noqa: F821
-netcdf.write_dataset(ds, snakemake.output[0], title=f"vcor sweep, scene {snakemake.wildcards.scene}",  # noqa: F821
-                 extra_attrs=attrs, command="snakemake rule aggregate")
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    cfg, catalogue = smk.params.scene, Catalogue(**smk.params.catalogue)
+    # every shard is checked against its receipt (its bytes and its id) before it is used
+    shards = [xr.load_dataset(receipts.verified(p, Path(p).stem)) for p in smk.input.shards]
+    ds = aggregation.aggregate(shards, cfg, dict(smk.params.identities), catalogue)
+    attrs = aggregation.dataset_attrs(smk.wildcards.scene, cfg, catalogue)
+    netcdf.write_dataset(ds, smk.output[0], title=f"vcor sweep, scene {smk.wildcards.scene}", extra_attrs=attrs,
+                         command="snakemake rule aggregate")

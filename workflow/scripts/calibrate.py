@@ -3,16 +3,17 @@ calibration and the material file a scene reads by name."""
 
 import sys
 
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
-
 from vcor.fitting import calibrate
 from vcor.io import netcdf
+from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
 
-name = snakemake.wildcards.cal  # noqa: F821
-spec = snakemake.params.spec  # noqa: F821
-cal = calibrate.run_calibration(spec, catalogue=Catalogue(**snakemake.params.catalogue), where=f"calibrations.{name}")  # noqa: F821
-print(cal.report(), file=sys.stderr)
-ds = calibrate.calibration_dataset(cal, spec)
-for path in (snakemake.output.record, snakemake.output.material):  # noqa: F821
-    netcdf.write_dataset(ds, path, title=f"vcor calibration {name}", command="vcor.calibrate", timestamp=False)
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    name, spec = smk.wildcards.cal, smk.params.spec
+    cal = calibrate.run_calibration(spec, catalogue=Catalogue(**smk.params.catalogue), where=f"calibrations.{name}")
+    print(cal.report(), file=sys.stderr)
+    ds = calibrate.calibration_dataset(cal, spec)
+    for path in (smk.output.record, smk.output.material):
+        netcdf.write_dataset(ds, path, title=f"vcor calibration {name}", command="vcor.fitting.calibrate",
+                             timestamp=False, identity=smk.params.identity)

@@ -1,11 +1,12 @@
 """Draw a calibration: data, fitted curve with its 95 % band, residuals (thin: vcor.plots)."""
 
-import sys
-
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
-
 import xarray as xr
 
 from vcor import plots
+from vcor.io import receipts
+from vcor.io.joblog import job_log
 
-plots.save(plots.calibration(xr.load_dataset(snakemake.input[0])), snakemake.output.png, snakemake.output.pdf)  # noqa: F821
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    cal = xr.load_dataset(receipts.verified(smk.input[0]))
+    plots.save(plots.calibration(cal), smk.output.png, smk.output.pdf)

@@ -1,19 +1,17 @@
 """One material of the work-precision study, all impact speeds (thin)."""
 
-import sys
-
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
-
 import xarray as xr
 
 from vcor.io import netcdf
+from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
 from vcor.study import convergence
 
-name = snakemake.params.material  # noqa: F821
-v0s = [float(v) for v in snakemake.params.v0]  # noqa: F821
-catalogue = Catalogue(**snakemake.params.catalogue)  # noqa: F821
-cases = [convergence.study(name, v, catalogue=catalogue) for v in v0s]
-ds = xr.concat([c.expand_dims(v0=[v]) for c, v in zip(cases, v0s)], dim="v0")
-netcdf.write_dataset(ds, snakemake.output[0], title="vcor work-precision case", command="snakemake rule convergence_case",  # noqa: F821
-                 extra_attrs={"material": name})
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    name, v0s = smk.params.material, [float(v) for v in smk.params.v0]
+    catalogue = Catalogue(**smk.params.catalogue)
+    cases = [convergence.study(name, v, catalogue=catalogue) for v in v0s]
+    ds = xr.concat([c.expand_dims(v0=[v]) for c, v in zip(cases, v0s)], dim="v0")
+    netcdf.write_dataset(ds, smk.output[0], title="vcor work-precision case", extra_attrs={"material": name},
+                         command="snakemake rule convergence_case")

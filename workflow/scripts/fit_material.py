@@ -2,18 +2,18 @@
 
 import sys
 
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
-
 from vcor.fitting import fits
-from vcor.io import netcdf
+from vcor.io import netcdf, receipts
+from vcor.io.joblog import job_log
 
-spec = snakemake.params.spec  # noqa: F821
-result, data, attrs = fits.run_fit(spec)
-print(f"fit {snakemake.wildcards.material}: {result.fit_time:.3f} s, {result.settings}", file=sys.stderr)  # noqa: F821
-ds = fits.result_dataset(result, data, spec)
-ds.attrs.update(attrs, material_name=snakemake.wildcards.material)  # noqa: F821
-netcdf.write_dataset(ds, snakemake.output.nc, title=f"vcor fitted material {snakemake.wildcards.material}",  # noqa: F821
-                 command="vcor.fit (deterministic: no time stamp)", timestamp=False)
-with open(snakemake.output.table, "w") as fh:  # noqa: F821
-    fh.write(f"# {snakemake.wildcards.material}: {result.material.to_dict()}\n")  # noqa: F821
-    fh.write(fits.metrics_table([(snakemake.wildcards.material, result.material, result.metrics)]))  # noqa: F821
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    name, spec = smk.wildcards.material, smk.params.spec
+    result, data, attrs = fits.run_fit(spec)
+    print(f"fit {name}: {result.fit_time:.3f} s, {result.settings}", file=sys.stderr)
+    ds = fits.result_dataset(result, data, spec)
+    ds.attrs.update(attrs, material_name=name)
+    netcdf.write_dataset(ds, smk.output.nc, title=f"vcor fitted material {name}", timestamp=False,
+                         command="vcor.fitting.fits (deterministic: no time stamp)", identity=smk.params.identity)
+    table = f"# {name}: {result.material.to_dict()}\n" + fits.metrics_table([(name, result.material, result.metrics)])
+    receipts.atomic_text(smk.output.table, table)

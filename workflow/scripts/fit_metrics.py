@@ -1,10 +1,11 @@
 """Error metrics of a scene's fitted materials beside the paper's own sets (thin)."""
 
-import sys
-
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
-
 from vcor.fitting import fits
+from vcor.io import receipts
+from vcor.io.joblog import job_log
 
-with open(snakemake.output[0], "w") as fh:  # noqa: F821
-    fh.write(fits.scene_metrics_table(snakemake.params.names, snakemake.params.material_dir))  # noqa: F821
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    for path in smk.input:
+        receipts.verified(path)
+    receipts.atomic_text(smk.output[0], fits.scene_metrics_table(smk.params.names, smk.params.material_dir))

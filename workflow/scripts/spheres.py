@@ -1,14 +1,13 @@
-"""eps(b) of viscoelastic spheres: numerics, series, Pade (thin: vcor.datasets does the work)."""
-
-import sys
-
-sys.stderr = open(snakemake.log[0], "w")  # noqa: F821
+"""eps(b) of viscoelastic spheres: numerics, series, Pade (thin: vcor.study.datasets does the work)."""
 
 from vcor.io import netcdf
+from vcor.io.joblog import job_log
 from vcor.study import datasets, scene
 
-spec = snakemake.params.spec  # noqa: F821
-ds = datasets.spheres_dataset(scene.axis_values(spec["b"]), rules=spec["rules"], tau_ratios=spec["tau_ratio"],
-                              steps_per_contact=spec["steps_per_contact"], ice=spec.get("ice"))
-netcdf.write_dataset(ds, snakemake.output[0], title=f"vcor viscoelastic spheres, scene {snakemake.wildcards.scene}",  # noqa: F821
-                 extra_attrs={"spheres_config": spec}, command="snakemake rule spheres")
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    spec = smk.params.spec
+    ds = datasets.spheres_dataset(scene.axis_values(spec["b"]), rules=spec["rules"], tau_ratios=spec["tau_ratio"],
+                                  steps_per_contact=spec["steps_per_contact"], ice=spec.get("ice"))
+    netcdf.write_dataset(ds, smk.output[0], title=f"vcor viscoelastic spheres, scene {smk.wildcards.scene}",
+                         extra_attrs={"spheres_config": spec}, command="snakemake rule spheres")

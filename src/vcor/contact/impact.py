@@ -31,7 +31,7 @@ from ..checks import interned, number
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 
-__all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "Geometry", "Impact", "make_impact"]
+__all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "Geometry", "Impact", "make_impact"]
 
 #: densities (kg/m^3) used when rho_a / rho_b are not given: the viscoelastic body is the paper's polymer
 #: (1100), a stiff elastic one steel (7800). Case 1 and 3: steel sphere on a polymer plate; case 2: both
@@ -39,6 +39,15 @@ __all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "Geometry", "Impact", "make_impact"
 DENSITIES = {"polymer": 1100.0, "steel": 7800.0}
 _SPHERE_IS_POLYMER = {1: False, 2: True, 3: False, 4: True}
 _PLATE_IS_POLYMER = {1: True, 2: True, 3: True, 4: False}
+
+#: allowed ranges (closed) of the geometry's and the impact's numbers, SI units (RANGE_UNITS)
+RANGES = {"r": (1e-9, 1e3), "rho_a": (1e-3, 1e6), "rho_b": (1e-3, 1e6), "h": (1e-9, 1e3), "E_plate": (1e-3, 1e15),
+          "v0": (1e-9, 1e5)}
+RANGE_UNITS = {"r": "m", "rho_a": "kg/m^3", "rho_b": "kg/m^3", "h": "m", "E_plate": "Pa", "v0": "m/s"}
+#: for a material that relaxes towards zero (a Maxwell fluid, rubbery modulus 0) the contact-time
+#: estimate has no fixed point; it is then at most this many times the elastic contact time of the
+#: glassy modulus (solids, rubbery modulus > 0, are bounded by their rubbery contact time and not capped)
+GLASSY_TIME_CAP = 1024.0
 
 GEOMETRY_DEFAULTS = {
     "r": 0.010,  # sphere radius, m
@@ -72,25 +81,31 @@ class Geometry:
     plate_material: _materials.Material | None = None
 
     def __post_init__(self):
-        number("r", self.r, 0, math.inf, unit="m")
-        for name in ("rho_a", "rho_b"):
+        # stated ranges, wide enough for dimensionless use (the Ramirez unit problem: r = 1 m,
+        # rho_a = 0.24 kg/m^3), narrow enough that masses, stiffnesses and times stay floating-point
+        values = {"r": number("r", self.r, *RANGES["r"], lo_open=False, hi_open=False, unit="m")}
+        for name in ("rho_a", "rho_b", "h"):
             if getattr(self, name) is not None:
-                number(name, getattr(self, name), 0, math.inf, unit="kg/m^3")
-        if self.h is not None:
-            number("h", self.h, 0, math.inf, unit="m")
-        number("nu", self.nu, -1, 0.5, hi_open=False)
-        number("nu_plate", self.nu_plate, -1, 0.5, hi_open=False)
-        number("E_plate", self.E_plate, 0, math.inf, unit="Pa")
-        if self.case not in (1, 2, 3, 4) or isinstance(self.case, bool):
-            raise ValueError(f"case must be one of 1, 2, 3, 4, got {self.case!r}")
+                values[name] = number(name, getattr(self, name), *RANGES[name], lo_open=False, hi_open=False,
+                                      unit=RANGE_UNITS[name])
+        values["nu"] = number("nu", self.nu, -1, 0.5, hi_open=False)
+        values["nu_plate"] = number("nu_plate", self.nu_plate, -1, 0.5, hi_open=False)
+        values["E_plate"] = number("E_plate", self.E_plate, *RANGES["E_plate"], lo_open=False, hi_open=False,
+                                   unit="Pa")
+        if isinstance(self.case, bool) or not isinstance(self.case, (int, np.integer)) or self.case not in (1, 2, 3, 4):
+            raise ValueError(f"case must be one of 1, 2, 3, 4 (an integer), got {self.case!r}")
+        values["case"] = int(self.case)
         if not isinstance(self.rigid, (bool, np.bool_)):
             raise ValueError(f"rigid must be true or false, got {self.rigid!r}")
+        values["rigid"] = bool(self.rigid)
         if self.plate_material is not None:
             if not isinstance(self.plate_material, _materials.Material) or self.plate_material.viscosity > 0:
                 raise ValueError(f"plate_material must be a material without a Dirac (Kelvin-Voigt) term, "
                                  f"got {self.plate_material!r}")
             if self.case != 3:
-                raise ValueError(f"plate_material goes with case 3 (vcor.bodies), got case {self.case}")
+                raise ValueError(f"plate_material goes with case 3 (vcor.contact.bodies), got case {self.case}")
+        for name, value in values.items():  # stored as plain floats, ints and bools
+            object.__setattr__(self, name, value)
 
     @property
     def half_thickness(self) -> float:
@@ -129,7 +144,7 @@ class Impact:
     geometry: Geometry = field(default_factory=Geometry)
 
     def __post_init__(self):
-        number("v0", self.v0, 0, math.inf, unit="m/s")
+        object.__setattr__(self, "v0", number("v0", self.v0, *RANGES["v0"], lo_open=False, hi_open=False, unit="m/s"))
         g = self.geometry
         if g.case == 1 and not self.material.is_elastic:
             raise ValueError(f"case 1 (both bodies elastic) needs an elastic material (constant E(t), no "
@@ -212,16 +227,29 @@ class Impact:
 
     def contact_time_estimate(self) -> float:
         """Hertz contact time on a rigid target, t_c = 2.9432 s_max / v0, s_max = (5 m v0^2 / (4 k))^(2/5),
-        with k evaluated at a quarter of that time (fixed point). An estimate, not a bound: relaxation
-        and the plate's motion change the real contact time both ways (in the paper's SLS case
-        t0/t_c = 0.845; thin plates make it far longer). Used to choose dt and T_max; simulate()
-        refines dt when the real contact is much shorter."""
+        with k evaluated at a quarter of that time (fixed point), in s. An estimate, not a bound:
+        relaxation and the plate's motion change the real contact time both ways (in the paper's SLS case
+        t0/t_c = 0.845; thin plates make it far longer). A material whose modulus relaxes towards zero (a
+        Maxwell fluid, rubbery modulus 0) has no fixed point: the estimate is then capped at GLASSY_TIME_CAP
+        times the elastic contact time of its glassy modulus. Used to choose dt, the adaptive steps and T_max."""
         t = 1e-3
         kappa, modulus_at, v0 = self.kappa, self.material.modulus_at, self.v0
         energy = 5.0 * self.m * v0**2  # (the same operations as inside the loop before: the same t)
+        glassy, rubbery = self.material.glassy, self.material.rubbery
+        cap = (GLASSY_TIME_CAP * 2.9432 * (energy / (4.0 * kappa * glassy)) ** 0.4 / v0
+               if not rubbery > 0.0 and math.isfinite(glassy) and glassy > 0 else math.inf)
         for _ in range(8):
-            smax = (energy / (4.0 * (kappa * modulus_at(t / 4)))) ** 0.4
+            modulus = modulus_at(t / 4)
+            if not modulus > 0.0:  # relaxed to zero at t/4: the estimate is beyond the cap
+                return cap
+            smax = (energy / (4.0 * (kappa * modulus))) ** 0.4
             t = 2.9432 * smax / v0
+            if not t < cap:
+                return cap
+        if not (math.isfinite(t) and t > 0.0):
+            raise ValueError(f"the contact time of this impact cannot be estimated (t_c = {t!r} s): material "
+                             f"{self.material.kind} {self.material.params()}, v0 = {v0} m/s, sphere mass "
+                             f"{self.m:.3g} kg; moduli, sizes and speed must keep it within floating-point range")
         return t
 
 

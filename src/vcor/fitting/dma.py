@@ -33,7 +33,7 @@ from ..io.csvfile import cell_number, data_rows, read_rows, units_row
 from ..materials.shift import GAS_CONSTANT, wlf_log_aT
 from .prony import FitData, fit_prony
 
-__all__ = ["DMATable", "Superposition", "arrhenius_fit", "fit_master", "read_table", "superpose", "wlf_fit"]
+__all__ = ["DMATable", "Superposition", "arrhenius_fit", "check_data", "fit_master", "read_table", "superpose", "wlf_fit"]
 
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 UNITS = {"f": {"Hz": 1.0}, "t": {"s": 1.0}, "E_stor": MODULUS_UNITS, "E_loss": MODULUS_UNITS,
@@ -148,6 +148,23 @@ def _pair_shift(fa, ea, fb, eb):
     ga, gb = np.gradient(xa, grid), np.gradient(xb, grid)
     w = 1.0 / (ga**2 + gb**2 + 1e-12)
     return float(np.sum(w * (xa - xb)) / np.sum(w))
+
+
+def check_data(raw: DMATable, shifts: DMATable | None = None) -> None:
+    """What a fit needs of its files, checked before fitting: frequency-domain data; raw sets at two or
+    more temperatures; a shift-factor file (T, log_aT) covering the sets' temperatures."""
+    if raw.kind != "frequency":
+        raise ValueError(f"{raw.path}: measured-data fits take frequency-domain data (f,E_stor,E_loss)")
+    if shifts is not None and shifts.kind != "shift":
+        raise ValueError(f"{shifts.path}: not a shift-factor file (T,log_aT)")
+    if not raw.is_raw:
+        return
+    T = np.array([s[0] for s in _sets(raw)])
+    if shifts is not None:
+        ts = shifts.columns["T"]
+        if T.min() < ts.min() - 0.5 or T.max() > ts.max() + 0.5:
+            raise ValueError(f"{shifts.path}: shift factors cover {ts.min():g}..{ts.max():g} deg C, the sets "
+                             f"{T.min():g}..{T.max():g} deg C")
 
 
 def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None) -> Superposition:

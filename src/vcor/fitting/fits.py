@@ -15,13 +15,14 @@ from pathlib import Path
 
 import numpy as np
 
+from ..materials.catalogue import FIT_SCALARS
 from ..materials.files import from_file
 from ..materials.presets import get as _preset
 from ..materials.shift import ShiftFunction
 from . import dma
 from .prony import FitData, FitResult, bagley_torvik_data, fit, metrics
 
-__all__ = ["DMA_DATA_KEYS", "data_from_spec", "expand_fits", "metrics_table", "result_dataset", "run_fit",
+__all__ = ["DMA_DATA_KEYS", "FIT_MODELS", "check_fit_spec", "data_from_spec", "expand_fits", "metrics_table", "result_dataset", "run_fit",
            "scene_metrics_table"]
 
 
@@ -43,8 +44,38 @@ def expand_fits(fits: dict, where: str = "fits") -> dict:
     return out
 
 
+#: the models a fit may have (the scalar parameters of each: vcor.materials.catalogue.FIT_SCALARS)
+FIT_MODELS = tuple(FIT_SCALARS)
 #: keys of a measured-data fit's ``data`` mapping
 DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model"}
+
+
+def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
+    """What can be checked of a fit spec before fitting, naming ``<where>.<key>`` (or the data file's
+    line and column): the model, and for measured data the keys, T_ref, and the files read and checked
+    (frequency-domain data; raw sets at two or more temperatures; shift factors covering the sets)."""
+    model = spec.get("model")
+    if model not in FIT_MODELS:
+        raise ValueError(f"{where}.model: one of {list(FIT_MODELS)}, got {model!r}")
+    d = spec.get("data") or {}
+    if "file" not in d:
+        return
+    unknown = set(d) - DMA_DATA_KEYS
+    if unknown or "T_ref" not in d:
+        raise ValueError(f"{where}.data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
+    if model != "prony":
+        raise ValueError(f"{where}.model: a fit to measured data is a Prony fit (model: prony), got {model!r}")
+    if d.get("shift_model", "wlf") not in ("wlf", "arrhenius"):
+        raise ValueError(f"{where}.data.shift_model must be wlf or arrhenius, got {d['shift_model']!r}")
+    try:
+        T_ref = float(d["T_ref"])
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}.data.T_ref must be a temperature in deg C, got {d['T_ref']!r}") from None
+    if not math.isfinite(T_ref):
+        raise ValueError(f"{where}.data.T_ref must be a finite temperature in deg C, got {d['T_ref']!r}")
+    raw = dma.read_table(Path(base_dir) / d["file"])
+    shifts = dma.read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
+    dma.check_data(raw, shifts)
 
 
 def run_fit(spec: dict, base_dir="."):

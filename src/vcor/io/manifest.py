@@ -5,13 +5,15 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
+from .receipts import atomic_text
+
 __all__ = ["write_manifest"]
 
 
 def write_manifest(scene: str, paths, out) -> None:
     """List a scene's outputs with their sizes (bytes) and SHA-256 digests in ``out`` (what to archive)."""
-    with open(out, "w") as fh:
-        fh.write(f"# scene {scene}: outputs (bytes, sha256)\n")
-        for path in paths:
-            data = Path(path).read_bytes()
-            fh.write(f"{path}\t{len(data)}\t{hashlib.sha256(data).hexdigest()}\n")
+    lines = [f"# scene {scene}: outputs (bytes, sha256)"]
+    for path in paths:
+        data = Path(path).read_bytes()
+        lines.append(f"{path}\t{len(data)}\t{hashlib.sha256(data).hexdigest()}")
+    atomic_text(out, "\n".join(lines) + "\n")

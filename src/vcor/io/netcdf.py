@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import provenance as _provenance
+from .receipts import atomic, write_receipt
 
 __all__ = ["REFERENCES", "scalar_dataset_check", "write_dataset"]
 
@@ -22,13 +23,14 @@ REFERENCES = (
 
 
 def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None,
-                  timestamp: bool = True):
+                  timestamp: bool = True, identity: str | None = None):
     """Write ``ds`` as NetCDF4 (float64, zlib level 1, no lossy packing) with global attributes
     Conventions, title, history, source (vcor version, code fingerprint, git commit),
-    ``code_fingerprint``, references and ``extra_attrs`` (dicts become JSON).
-    ``timestamp=False`` leaves the time out of ``history`` so that the same inputs give the same bytes."""
+    ``code_fingerprint``, references and ``extra_attrs`` (dicts become JSON, their keys in the given
+    order: a scene's grid axes keep theirs). ``timestamp=False`` leaves the time out of ``history`` so
+    that the same inputs give the same bytes. The file is written atomically and gets a receipt
+    (:mod:`vcor.io.receipts`) for ``identity``."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     ds = ds.copy()
     now = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat()
     cmd = command or " ".join(sys.argv[:1])
@@ -41,7 +43,7 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
         "references": REFERENCES,
     }
     for k, v in (extra_attrs or {}).items():
-        attrs[k] = v if isinstance(v, (str, int, float)) else json.dumps(v, sort_keys=True, default=float)
+        attrs[k] = v if isinstance(v, (str, int, float)) else json.dumps(v, default=float)
     ds.attrs.update(attrs)
     encoding = {}
     for name, var in ds.variables.items():
@@ -51,7 +53,9 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
             encoding[name] = {"zlib": True, "complevel": 1}
         elif var.dtype.kind in "OU":
             ds[name] = var.astype(str)
-    ds.to_netcdf(path, format="NETCDF4", engine="netcdf4", encoding=encoding)
+    with atomic(path) as tmp:
+        ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
+    write_receipt(path, identity)
     return path
 
 

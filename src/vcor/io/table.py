@@ -45,7 +45,7 @@ def dataset_table(path) -> str:
                                tuple(ds.sizes[e] for e in dims)).ravel() if d in ds.coords else None for d in dims}
     for n in names:
         values = ds[n].values.ravel()
-        if "flag_meanings" in ds[n].attrs:
+        if "flag_values" in ds[n].attrs:
             lookup = _status_names(ds[n])
             values = np.array([lookup.get(int(c), str(c)) for c in values], dtype=object)
         flat[n] = values
@@ -55,7 +55,7 @@ def dataset_table(path) -> str:
     for c in columns:
         attrs = ds[c].attrs if c in ds.variables else {}
         unit = attrs.get("units")
-        header.append(f"{c} [{unit}]" if unit and "flag_meanings" not in attrs else c)
+        header.append(f"{c} [{unit}]" if unit and "flag_values" not in attrs else c)
     writer.writerow(header)
     size = int(np.prod([ds.sizes[d] for d in dims]))
     for i in range(size):

@@ -31,7 +31,7 @@ from .presets import PRESETS, get
 from .shift import ShiftFunction, at_temperature, shift_from_file
 from .specs import from_spec, shift_function
 
-__all__ = ["SOURCES", "Catalogue", "content_hash", "file_digest", "with_parameters"]
+__all__ = ["FIT_SCALARS", "SOURCES", "Catalogue", "content_hash", "file_digest", "with_parameters"]
 
 #: where a name comes from, in order of precedence
 SOURCES = ("preset", "config", "fit", "calibration")
@@ -113,6 +113,20 @@ class Catalogue:
             mat = _file_material(str(path.resolve()), path.stat().st_mtime_ns)
         return with_parameters(mat, overrides, name) if overrides else mat
 
+    def scalar_parameters(self, name: str) -> list[str]:
+        """The scalar parameters a grid may sweep for ``name`` (``Material.params()`` names), known
+        before a fit's or calibration's file exists: a fit has the scalars of its model (a Prony fit
+        E_inf; a CERF fit E0, E1, b1), a calibration those of its start material."""
+        source = self.source(name)
+        if source == "fit":
+            return list(FIT_SCALARS.get(self.fits[name].get("model", "prony"), ()))
+        if source == "calibration":
+            start = self.calibrations[name].get("material")
+            if isinstance(start, str):
+                return self.scalar_parameters(start)
+            return _scalars(from_spec(start, name=name, base_dir=self.base_dir).to_dict())
+        return _scalars(self.material(name).to_dict())
+
     def shift(self, name: str) -> ShiftFunction | None:
         """The material's shift function (config spec or material file), or None."""
         source = self.source(name)
@@ -158,6 +172,14 @@ class Catalogue:
                 "shift": shift.to_dict() if shift else None, "spec": spec, "identity": self.identity(name)}
 
 
+#: the scalar parameters of a fitted material, by fit model (vcor.fitting.fits)
+FIT_SCALARS = {"prony": ("E_inf",), "cerf": ("E0", "E1", "b1")}
+
+
+def _scalars(d: dict) -> list[str]:
+    return [k for k, v in d.items() if k != "kind" and not isinstance(v, (list, dict))]
+
+
 @functools.lru_cache(maxsize=256)
 def _config_material(spec_json: str, name: str, base_dir: str) -> Material:
     return from_spec(json.loads(spec_json), name=name, base_dir=base_dir)
@@ -169,7 +191,6 @@ def with_parameters(material: Material, overrides: dict, name: str = "material")
     d = material.to_dict()
     for key, value in overrides.items():
         if key not in d or key == "kind" or isinstance(d[key], (list, dict)):
-            scalars = [k for k, v in d.items() if k != "kind" and not isinstance(v, (list, dict))]
-            raise ValueError(f"material {name!r} has no scalar parameter {key!r}; allowed: {scalars}")
+            raise ValueError(f"material {name!r} has no scalar parameter {key!r}; allowed: {_scalars(d)}")
         d[key] = float(value)
     return from_dict(d)

@@ -135,8 +135,12 @@ def save(fig, png, pdf) -> None:
     """Write ``fig`` as PNG (130 dpi, for the report) and PDF (for print), then close it. The PDF
     reuses the layout computed for the PNG (the layout engine is switched off after the first save):
     constrained layout costs up to a second per save on the many log axes of work_precision."""
-    fig.savefig(png, dpi=130)
+    from ..io.receipts import atomic
+
+    with atomic(png) as tmp:
+        fig.savefig(tmp, dpi=130, format="png")
     fig.set_layout_engine("none")
-    fig.savefig(pdf, metadata={"CreationDate": None})
+    with atomic(pdf) as tmp:
+        fig.savefig(tmp, metadata={"CreationDate": None}, format="pdf")
     plt.close(fig)
 

@@ -63,8 +63,8 @@ def moduli_axes(fig, mod, materials, marks, inset_tmax=None):
 
 def fig1(sweep, moduli, opts):
     """SLS moduli in time and frequency with t0 and omega_min of the v0 = 10 m/s impact."""
-    mat = opts.get("material", "sls")
-    p = point(sweep, mat, opts.get("v0", 10.0), beta=opts.get("beta", 1200.0))
+    mat = opts["material"]
+    p = point(sweep, mat, opts["v0"], beta=opts["beta"])
     fig = plt.figure(figsize=(10, 4), layout="constrained")
     moduli_axes(fig, moduli, [mat], [(float(p["t0"]), float(p["omega_min"]), f"v0={float(p['v0']):g} m/s")])
     fig.suptitle(f"Fig. 1: relaxation and dynamic moduli of {mat}")
@@ -166,9 +166,9 @@ def fig4(sweep, opts):
 
 def fig5(sweep, moduli, opts):
     """Butyl B252 moduli: fractional law, CERF and Prony sets."""
-    ref = opts.get("reference", "butyl-fc")
+    ref = opts["reference"]
     mats = [str(m) for m in moduli["material"].values]
-    p = point(sweep, ref, opts.get("v0", 10.0))
+    p = point(sweep, ref, opts["v0"])
     fig = plt.figure(figsize=(11, 4.5), layout="constrained")
     inset = 4e-4
     moduli_axes(fig, moduli, mats, [(float(p["t0"]), float(p["omega_min"]), ref)], inset_tmax=inset)
@@ -203,7 +203,7 @@ def fig8(sweep, opts):
 
 def fig9(sweep, opts):
     """t0, omega_min, s_max, F_max and W_h vs v0 for one material (default: the fractional law)."""
-    mat = opts.get("material", "butyl-fc")
+    mat = opts["material"]
     d = v0_line(sweep, mat)
     ok = d["status"].values == 0
     fig, axes = plt.subplots(1, 5, figsize=(16, 3.5), layout="constrained")
@@ -223,9 +223,9 @@ def prony_terms(sweep, opts):
     right: COR(v0) for the reference, a few N, the paper's 3-term set and the automatic fit."""
     import re
 
-    ref = opts.get("reference", "butyl-fc")
-    v0 = float(opts.get("v0", 10.0))
-    pat = re.compile("^" + re.escape(opts.get("pattern", "butyl-prony-n{n}")).replace(r"\{n\}", r"(\d+)") + "$")
+    ref = opts["reference"]
+    v0 = float(opts["v0"])
+    pat = re.compile("^" + re.escape(opts["pattern"]).replace(r"\{n\}", r"(\d+)") + "$")
     mats = [str(m) for m in sweep["material"].values]
     ns = sorted((int(pat.match(m).group(1)), m) for m in mats if pat.match(m))
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")

@@ -44,8 +44,8 @@ def spheres_ice(sph, opts):
         spheres as S,  # the series coefficients (imported here: figure jobs need no solver)
     )
 
-    gs = float(opts.get("g_star_cm_s", 0.32))
-    g = np.linspace(float(opts.get("g_min_cm_s", 0.05)), float(opts.get("g_max_cm_s", 5.0)), 200)
+    gs = float(opts["g_star_cm_s"])
+    g = np.linspace(float(opts["g_min_cm_s"]), float(opts["g_max_cm_s"]), 200)
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
     ax.plot(g, np.minimum(0.32 * g**-0.234, 1.0), "k-", label="experiment fit 0.32 g^-0.234 (Bridges et al.)")
     b_of_g = (g / gs) ** 0.2 / abs(S.C[0])

@@ -74,6 +74,6 @@ def stability_map(sweep, opts):
             ax.set_ylabel(axis_label(d, a))
             fig.colorbar(im, ax=ax, label="estimated COR error, log10 (ok points)")
         ax.set_title(str(m))
-    fig.suptitle(opts.get("title", "Stability map: status and estimated COR error"))
+    fig.suptitle(opts["title"])
     return fig
 

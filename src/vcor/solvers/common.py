@@ -27,6 +27,7 @@ UNITS = {
     "steps": "1",
     "wall_time": "s",
     "dt": "s",
+    "validity": "1",
 }
 
 LONG_NAMES = {
@@ -42,7 +43,8 @@ LONG_NAMES = {
     "energy_residual": "relative energy balance residual (m v0^2/2 - m z0^2/2 - int F dz) / (m v0^2/2)",
     "steps": "time steps taken",
     "wall_time": "solver wall time",
-    "dt": "time step",
+    "dt": "time step (the largest one on a variable grid)",
+    "validity": "validity flags of an ok result (vcor.solvers.validity)",
 }
 
 
@@ -69,7 +71,9 @@ class Histories:
 
 @dataclass
 class Result:
-    """Outcome of one impact. Units: s, m, N, J, rad/s; cor and energy_residual are ratios."""
+    """Outcome of one impact. Units: s, m, N, J, rad/s; cor and energy_residual are ratios. ``validity``:
+    flags of an ok result outside the model's stated range, with ``validity_message``
+    (:mod:`vcor.solvers.validity`)."""
 
     cor: float = math.nan
     t0: float = math.nan
@@ -86,6 +90,8 @@ class Result:
     dt: float = math.nan
     status: str = "ok"
     message: str = ""
+    validity: int = 0
+    validity_message: str = ""
     method: str = ""
     history: Histories | None = field(default=None, repr=False)
 

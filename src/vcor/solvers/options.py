@@ -19,7 +19,7 @@ import math
 import numbers
 from dataclasses import dataclass
 
-from ..checks import interned
+from ..checks import interned, shown
 
 __all__ = ["BOOLEAN_OPTIONS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES", "OPTION_HELP", "OPTION_UNITS",
            "SolverOptions", "solver_options"]
@@ -95,11 +95,15 @@ OPTION_UNITS = {k: v["unit"] for k, v in _SPEC.items()}
 
 
 def _number(name, value, *, integer=False):
-    if (isinstance(value, bool) or not isinstance(value, numbers.Real)
-            or (integer and not (math.isfinite(value) and float(value).is_integer()))):
-        kind = "an integer" if integer else "a number"
-        raise ValueError(f"solver option {name} must be {kind}, got {value!r}")
-    return int(value) if integer else float(value)
+    kind = "an integer" if integer else "a number"
+    try:
+        as_float = float(value) if isinstance(value, numbers.Real) and not isinstance(value, bool) else None
+    except OverflowError:
+        raise ValueError(f"solver option {name} must be {kind} within the floating-point range, got "
+                         f"{shown(value)}") from None
+    if as_float is None or (integer and not (math.isfinite(as_float) and as_float.is_integer())):
+        raise ValueError(f"solver option {name} must be {kind}, got {shown(value)}")
+    return int(value) if integer else as_float
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -6,6 +6,7 @@ from __future__ import annotations
 from ..contact.impact import GEOMETRY_DEFAULTS, make_impact
 from . import adaptive, direct, ive, soe
 from .options import FIXED_STEP_METHODS, METHOD_NAMES, SolverOptions, solver_options
+from .validity import finalised
 
 __all__ = ["METHODS", "MIN_STEPS_FRACTION", "simulate", "split_keywords"]
 
@@ -59,7 +60,8 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
     Returns
     -------
     Result
-        COR, separation time t0 (s), peaks, work integrals (J), status and message.
+        COR, separation time t0 (s), peaks, work integrals (J), status and message, and validity flags
+        of an ok result outside the model's stated range (:mod:`vcor.solvers.validity`).
     """
     if not isinstance(history, bool):
         raise ValueError(f"history must be true or false, got {history!r}")
@@ -77,4 +79,4 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
         res = run(impact, opts.replace(dt=res.t0 / (0.8 * opts.steps_per_contact)), tc, history)
         res.wall_time += wall
         res.message = (res.message + "; " if res.message else "") + "dt refined from the measured t0"
-    return res
+    return finalised(res, impact, opts)

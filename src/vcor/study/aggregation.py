@@ -65,8 +65,8 @@ def aggregate(shards, scene, identities: dict, catalogue: Catalogue | None = Non
     for p in identified_points(scene, identities):
         pos_of[point_key(p)] = (mats.index(p["material"]),) + tuple(axes[a].index(p[a]) for a in names)
     first = shards[0]
-    text_vars = ("message", "error_message")
-    int_vars = ("status", "error_status")
+    text_vars = ("message", "error_message", "validity_message")
+    int_vars = ("status", "error_status", "validity")
     var_names = [v for v in first.data_vars if v not in text_vars + int_vars]
     out = {v: np.full(shape, np.nan) for v in var_names}
     ints = {v: np.zeros(shape, dtype=np.int8) for v in int_vars if v in first}

@@ -17,6 +17,7 @@ import numpy as np
 from .. import status as _status
 from ..materials.catalogue import Catalogue
 from ..solvers.common import LONG_NAMES, UNITS, richardson
+from ..solvers import validity as _validity
 from ..solvers.simulate import simulate
 from .scene import build_point
 
@@ -35,6 +36,7 @@ def solve_point(point, settings, catalogue: Catalogue) -> dict:
     res = simulate(material, v0, options=opts, **geometry)
     out = {k: getattr(res, k) for k in SCALARS}
     out["status"], out["message"] = res.status, res.message
+    out["validity"], out["validity_message"] = res.validity, res.validity_message
     if settings.get("error_estimate"):
         out.update(_error_estimate(res, material, v0, opts, geometry))
     return out
@@ -87,6 +89,8 @@ def _rows_to_dataset(points, rows, settings):
     data = {k: ("point", np.array([float(r.get(k, math.nan)) for r in rows])) for k in SCALARS + (ERRORS if estimate else ())}
     data["status"] = ("point", _status.codes_of(r["status"] for r in rows))
     data["message"] = ("point", np.array([r.get("message", "") for r in rows], dtype=object))
+    data["validity"] = ("point", np.array([r.get("validity", 0) for r in rows], dtype=np.int8))
+    data["validity_message"] = ("point", np.array([r.get("validity_message", "") for r in rows], dtype=object))
     if estimate:
         data["error_status"] = ("point", _status.codes_of(r["error_status"] for r in rows))
         data["error_message"] = ("point", np.array([r["error_message"] for r in rows], dtype=object))
@@ -103,6 +107,8 @@ def _rows_to_dataset(points, rows, settings):
         ds[v].attrs["long_name"] = LONG_NAMES.get(v, "") or (f"error estimate of {base}" if v.endswith("_err") else v)
     ds["status"].attrs.update(_status.cf_attrs("solver status"))
     ds["message"].attrs["long_name"] = "solver message (failure reason, or a note such as a refined dt)"
+    ds["validity"].attrs.update(_validity.cf_attrs())
+    ds["validity_message"].attrs["long_name"] = "why an ok result is outside the model's stated range"
     if estimate:
         ds["error_status"].attrs.update(_status.cf_attrs("status of the error-estimate run (dt/2, rtol/100 or "
                                                          "step_tol/16)"))

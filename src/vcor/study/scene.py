@@ -35,7 +35,13 @@ __all__ = [
     "build_point",
     "canon",
     "check_temperature_axis",
+    "GEOMETRY_AXES",
+    "MAX_AXIS_VALUES",
+    "MAX_JOBS",
+    "MAX_POINTS",
+    "axis_length",
     "material_params",
+    "point_count",
     "scene_axes",
     "scene_points",
     "settings_of",
@@ -65,42 +71,110 @@ AXIS_UNITS = {
 }
 
 
+#: geometry keywords a grid may sweep (numbers; case, rigid and plate_material are fixed per scene)
+GEOMETRY_AXES = ("r", "rho_a", "rho_b", "h", "nu", "E_plate", "nu_plate")
+
+
 def canon(v) -> float:
     """Canonical float (12 significant digits) so that 0.1 * 3 and 0.3 name the same point."""
     return float(f"{float(v):.12g}")
 
 
+#: the most values one grid axis may have, and the most points (materials x axes) and sweep jobs a
+#: scene may plan: planning builds every point's record (1e6 points take ~10 s on one core, each
+#: further job adds to Snakemake's graph); split a larger study into scenes or raise shard_size
+MAX_AXIS_VALUES = 100_000
+MAX_POINTS = 1_000_000
+MAX_JOBS = 5_000
+
+
+def axis_length(spec) -> int:
+    """The number of values of an axis spec before they are built (duplicates counted); ValueError
+    for a spec that is not a list or {start, stop, step} / {start, stop, num[, log]}."""
+    if isinstance(spec, dict):
+        unknown = set(spec) - {"start", "stop", "step", "num", "log"}
+        if unknown or not {"start", "stop"} <= set(spec) or ("step" in spec) == ("num" in spec):
+            raise ValueError(f"an axis range is {{start, stop, step}} or {{start, stop, num[, log]}}, got {spec!r}")
+        start, stop = _finite("start", spec["start"]), _finite("stop", spec["stop"])
+        if "step" in spec:
+            step = _finite("step", spec["step"])
+            if not step > 0:
+                raise ValueError(f"step must be > 0, got {step}")
+            if stop < start:
+                raise ValueError(f"the range is empty: stop {stop} < start {start}")
+            return int(math.floor((stop - start) / step + 1e-9)) + 1
+        num = spec["num"]
+        if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or num < 1:
+            raise ValueError(f"num must be an integer >= 1, got {num!r}")
+        if spec.get("log") and not (start > 0 and stop > 0):
+            raise ValueError(f"a log range needs start and stop > 0, got {start}, {stop}")
+        return int(num)
+    values = list(np.atleast_1d(spec)) if not isinstance(spec, (str, bytes)) else [spec]
+    if not values:
+        raise ValueError("the axis is empty (give at least one value)")
+    for v in values:
+        _finite("value", v)
+    return len(values)
+
+
+def _finite(what, v) -> float:
+    if isinstance(v, (bool, str, bytes)) or v is None:
+        raise ValueError(f"{what} must be a finite number, got {v!r}")
+    try:
+        x = float(v)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{what} must be a finite number, got {v!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{what} must be a finite number, got {x!r}")
+    return x
+
+
 def axis_values(spec) -> list[float]:
     """Grid axis values from a list or {start, stop, step} (stop inclusive) / {start, stop, num[, log]}.
 
-    Returns sorted unique floats; raises ValueError on NaN, infinities or an empty axis.
+    Returns sorted unique floats; raises ValueError on NaN, infinities, an empty axis or one longer
+    than MAX_AXIS_VALUES.
     """
+    n = axis_length(spec)
+    if n > MAX_AXIS_VALUES:
+        raise ValueError(f"{n} values, more than the {MAX_AXIS_VALUES} one axis may have")
     if isinstance(spec, dict):
         start, stop = float(spec["start"]), float(spec["stop"])
         if "step" in spec:
-            step = float(spec["step"])
-            if not step > 0:
-                raise ValueError(f"grid step must be > 0, got {step}")
-            n = int(math.floor((stop - start) / step + 1e-9)) + 1
-            vals = [start + i * step for i in range(max(n, 0))]
+            vals = [start + i * float(spec["step"]) for i in range(n)]
         else:
-            num = int(spec["num"])
-            vals = list(np.geomspace(start, stop, num) if spec.get("log") else np.linspace(start, stop, num))
+            vals = list(np.geomspace(start, stop, n) if spec.get("log") else np.linspace(start, stop, n))
     else:
         vals = [float(v) for v in np.atleast_1d(spec)]
     vals = sorted({canon(v) for v in vals})
-    if not vals:
-        raise ValueError("grid axis is empty")
     if any(not math.isfinite(v) for v in vals):
-        raise ValueError(f"grid axis values must be finite numbers, got {vals}")
+        raise ValueError(f"values must be finite numbers, got {vals}")
     return vals
 
 
 def scene_axes(scene) -> dict[str, list[float]]:
+    """{axis: values} of the scene's grid, in config order; ValueError naming the axis."""
     grid = scene.get("grid") or {}
     if "v0" not in grid:
-        raise ValueError("scene grid must contain 'v0' (m/s)")
-    return {k: axis_values(v) for k, v in grid.items()}
+        raise ValueError("the grid must contain 'v0' (m/s)")
+    out = {}
+    for k, v in grid.items():
+        try:
+            out[k] = axis_values(v)
+        except ValueError as exc:
+            raise ValueError(f"{k}: {exc}") from None
+    return out
+
+
+def point_count(scene) -> int:
+    """The number of grid points of a scene (materials x axes), from the axis specs alone."""
+    n = len(scene.get("materials") or [])
+    for k, v in (scene.get("grid") or {}).items():
+        try:
+            n *= axis_length(v)
+        except ValueError as exc:
+            raise ValueError(f"{k}: {exc}") from None
+    return n
 
 
 def scene_points(scene) -> list[dict]:
@@ -141,7 +215,7 @@ def _check_bodies(where, scene, axes):
     if scene.get("geometry"):
         raise ValueError(f"{where}.geometry: a scene with sphere/plate bodies takes no geometry keywords "
                          f"(they are the bodies' r, h, rho, nu), got {sorted(scene['geometry'])}")
-    geo_axes = sorted(set(axes) & set(GEOMETRY_DEFAULTS))
+    geo_axes = sorted(set(axes) & set(GEOMETRY_AXES))
     if geo_axes:
         raise ValueError(f"{where}.grid: with sphere/plate bodies, geometry axes {geo_axes} are not available "
                          f"(grid axes: v0, T and the swept material's parameters)")
@@ -149,6 +223,28 @@ def _check_bodies(where, scene, axes):
     if all("material" in sp for sp in specs):
         raise ValueError(f"{where}: both bodies name a material, so the scene's materials would not be used: "
                          f"omit material in the body that takes them")
+
+
+def _check_axis_names(where, scene, axes, catalogue):
+    """Every grid axis is v0, T, a geometry keyword (not with bodies) or a scalar parameter of every
+    material of the scene; every tie target is a scalar parameter of every material."""
+    fixed = {"v0", "T"} | (set() if "sphere" in scene or "plate" in scene else set(GEOMETRY_AXES))
+    params = {m: catalogue.scalar_parameters(m) for m in scene["materials"] if _known(catalogue, m)}
+    shared = sorted(set.intersection(*map(set, params.values()))) if params else []
+    for key, block in [(a, "grid") for a in axes if a not in fixed] + [(t, "tie") for t in scene.get("tie") or {}]:
+        lacking = sorted(m for m, names in params.items() if key not in names)
+        if lacking:
+            allowed = (sorted(fixed) if block == "grid" else []) + shared
+            raise ValueError(f"{where}.{block}.{key}: materials {lacking} have no parameter {key!r}; "
+                             f"allowed {'grid axes' if block == 'grid' else 'tie targets'}: {allowed}")
+
+
+def _known(catalogue, name) -> bool:
+    try:
+        catalogue.source(name)
+    except ValueError:
+        return False
+    return True
 
 
 def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None) -> None:
@@ -168,14 +264,18 @@ def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None) -
     try:
         axes = scene_axes(scene)
     except (ValueError, KeyError, TypeError) as exc:
-        raise ValueError(f"{where}.grid: {exc}") from None
+        raise ValueError(f"{where}.grid.{exc}" if "grid" in scene and "v0" in scene["grid"]
+                         else f"{where}.grid: {exc}") from None
     if axes["v0"][0] <= 0:
         raise ValueError(f"{where}.grid.v0: impact speeds must be > 0 m/s, got {axes['v0'][0]}")
+    _check_bodies(where, scene, axes)
+    _check_axis_names(where, scene, axes, catalogue)
     tie = scene.get("tie") or {}
     for target, spec in tie.items():
         if spec["to"] not in axes:
             raise ValueError(f"{where}.tie.{target}: 'to' must name a grid axis, got {spec['to']!r}")
-    _check_bodies(where, scene, axes)
+        if target in axes:
+            raise ValueError(f"{where}.tie.{target}: {target} is also a grid axis; tie it or sweep it, not both")
     settings = settings_of(scene)
     for mat in scene["materials"]:
         catalogue.check(mat, f"{where}.materials")

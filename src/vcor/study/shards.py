@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+from ..io import receipts
 from ..materials.catalogue import content_hash
 from ..provenance import code_fingerprint
 from .scene import scene_points, settings_of
@@ -55,27 +56,39 @@ def point_key(p: dict) -> str:
     return json.dumps(p, sort_keys=True)
 
 
-def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict) -> dict[str, list[dict]]:
-    """{shard id: points}. Existing shards with the same settings hash are reused as they are."""
+def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict, on_invalid=None) -> dict[str, list[dict]]:
+    """{shard id: points}. Existing shards with the same settings hash are reused as they are, if they
+    are what their writer wrote (:func:`vcor.io.receipts.problem`, the shard id as identity); a shard
+    that is not is passed to ``on_invalid(path, reason)`` (the workflow moves it aside) and its points
+    are planned again."""
     h = settings_hash(scene)
     wanted = identified_points(scene, identities)
     todo = {point_key(p): p for p in wanted}
     order = list(wanted[0]) if wanted else []
     plan: dict[str, list[dict]] = {}
     for idx in sorted(Path(shard_dir).glob(f"{h}-*.json")):
+        nc = idx.with_suffix(".nc")
         try:
             pts = json.loads(idx.read_text())["points"]
             # same key order as the scene's points, so Snakemake sees unchanged params
             pts = [{k: p[k] for k in order if k in p} | {k: p[k] for k in sorted(p) if k not in order} for p in pts]
-        except (OSError, ValueError, KeyError):
+        except (OSError, ValueError, KeyError, TypeError):
+            if nc.exists() and on_invalid is not None:
+                on_invalid(nc, f"its index {idx.name} cannot be read")
             continue
-        if not idx.with_suffix(".nc").exists():
+        if not nc.exists():
             continue
         keys = [point_key(p) for p in pts]
-        if any(k in todo for k in keys):
-            plan[idx.stem] = pts
-            for k in keys:
-                todo.pop(k, None)
+        if not any(k in todo for k in keys):
+            continue
+        reason = receipts.problem(nc, idx.stem)
+        if reason is not None:
+            if on_invalid is not None:
+                on_invalid(nc, reason)
+            continue
+        plan[idx.stem] = pts
+        for k in keys:
+            todo.pop(k, None)
     rest = list(todo.values())
     for i in range(0, len(rest), shard_size):
         chunk = rest[i : i + shard_size]
