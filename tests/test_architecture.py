@@ -21,6 +21,7 @@ LAYERS = (
     ("solvers",),
     ("spheres",),
     ("fitting",),
+    ("dem",),
     ("plots",),
     ("study",),
     ("cli",),

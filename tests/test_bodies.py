@@ -1,4 +1,4 @@
-"""Bodies instead of a case number (issue 12, part 2): vcor.bodies, Green 2026 Eq. 1."""
+"""Bodies instead of a case number: vcor.contact.bodies, Green 2026 Eq. 1."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Calibration from measured COR (issue 13): vcor.calibrate."""
+"""Calibration from measured COR: vcor.fitting.calibrate."""
 
 import numpy as np
 import pytest

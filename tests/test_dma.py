@@ -1,4 +1,4 @@
-"""Measured DMA data (issue 12, part 3): pyvisco's file conventions, bad data, time-temperature
+"""Measured DMA data: pyvisco's file conventions, bad data, time-temperature
 superposition, WLF. README, "Measured DMA data"."""
 
 import math
@@ -76,7 +76,7 @@ def _synthetic(path, seed):
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_synthetic_prony_wlf_material_is_recovered(tmp_path, seed):
-    """Issue 12 acceptance: five temperatures, 1 % noise: log shift factors within 0.1 of the true
+    """Five temperatures, 1 % noise: log shift factors within 0.1 of the true
     ones, and the COR at three temperatures within 1 % of the known material's."""
     sp = dma.superpose(_synthetic(tmp_path / "s.csv", seed), T_REF)
     true = tts.wlf_log_aT(sp.T, T_REF, C1, C2)

@@ -1,4 +1,4 @@
-"""Your own materials (issue 12, part 1): the config's ``materials:`` block, ``vcor.material_specs``,
+"""Your own materials: the config's ``materials:`` block, ``vcor.material_specs``,
 the CLI's ``--config`` and the workflow. README, "Your own materials"."""
 
 import json
@@ -31,7 +31,7 @@ def _forms(tmp_path):
 
 
 def test_inline_prony_gives_the_presets_cor(tmp_path):
-    """Issue 12 acceptance: an inline Prony material equal to butyl-prony3 gives its COR to 1e-12
+    """An inline Prony material equal to butyl-prony3 gives its COR to 1e-12
     (every form: rates, times, normalised, CSV)."""
     ref = vcor.simulate(PRONY3, 10.0, method="adaptive").cor
     for label, spec in _forms(tmp_path).items():
@@ -140,7 +140,7 @@ def test_workflow_refuses_a_bad_config_material(tmp_path):
 @pytest.mark.parametrize("case, sphere, plate", [(1, 7800.0, 1100.0), (2, 1100.0, 1100.0), (3, 7800.0, 1100.0),
                                                  (4, 1100.0, 7800.0)])
 def test_the_cases_are_shortcuts_with_their_densities(case, sphere, plate):
-    """Issue 12: the viscoelastic body has the polymer's density, a stiff elastic one steel's (cases 2
+    """The viscoelastic body has the polymer's density, a stiff elastic one steel's (cases 2
     and 4 used to take case 3's steel sphere and polymer plate); given densities still win."""
     from vcor.contact.impact import Geometry
 
@@ -161,7 +161,7 @@ T_CONFIG = {
 
 
 def test_temperature_axis_shifts_the_material(tmp_path):
-    """Issue 12: a material with a shift function; T (deg C) as a grid axis, E(t; T) = E(t / a_T)."""
+    """A material with a shift function; T (deg C) as a grid axis, E(t; T) = E(t / a_T)."""
     from vcor.materials import shift as tts
 
     path = make_project(tmp_path, T_CONFIG)

@@ -1,4 +1,4 @@
-"""Sums of exponentials (issue 11, part 1): every kernel as internal variables, within its bound."""
+"""Sums of exponentials: every kernel as internal variables, within its bound."""
 
 import math
 

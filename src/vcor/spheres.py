@@ -63,7 +63,7 @@ class SolverFailure(RuntimeError):
 C = (-1.153449, 0.798267, -0.483582, 0.285279)
 #: C1 in closed form (Eq. 30): sqrt(pi) Gamma(3/5) / (2^(1/5) 5^(2/5) Gamma(21/10))
 C1_CLOSED_FORM = math.sqrt(math.pi) * gamma(0.6) / (2 ** 0.2 * 5 ** 0.4 * gamma(2.1))
-#: a_k = |C_k| / C1^k, the coefficients of eps = 1 - a1 x + a2 x^2 - a3 x^3 + a4 x^4, x = (g/g*)^(1/5)
+#: ``a_k = |C_k| / C1^k``, the coefficients of eps = 1 - a1 x + a2 x^2 - a3 x^3 + a4 x^4, x = (g/g*)^(1/5)
 A_COEFFS = tuple(abs(c) / abs(C[0]) ** (k + 1) for k, c in enumerate(C))
 #: Table I of Ramirez et al. (d1..d5 of the [1/4] Pade, Eq. 35), as printed
 TABLE_I = (2.5839, 3.5839, 2.9839, 1.1487, 0.3265)

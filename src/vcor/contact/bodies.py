@@ -7,7 +7,7 @@ material, size, density and Poisson ratio, combined as Green 2026 Eq. 1 says.
   block, ``rigid``, or ``{model: elastic, E: ...}``); in a scene a body without ``material`` takes the
   scene's swept material (its ``materials`` list). A fitted material can only be the swept one. h is the plate's half-thickness (default 2 r).
 * Defaults: a rigid or elastic body is steel (rho 7800 kg/m^3, nu 0.3), a viscoelastic one the
-  paper's polymer (rho 1100 kg/m^3, nu 0.5) (``vcor.impact.DENSITIES``).
+  paper's polymer (rho 1100 kg/m^3, nu 0.5) (``vcor.contact.impact.DENSITIES``).
 * Contact modulus, Eq. 1 as written: E'(t) = E'_a E'_b / (E'_a + E'_b) pointwise in time, E'_i =
   E_i / (1 - nu_i^2); a rigid body drops out (E' = E'_other). Plate mobility (Zener): from the
   plate's own E'_b(t), rho and h; a rigid plate is an immovable target (alpha = 0).

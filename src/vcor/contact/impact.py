@@ -59,7 +59,7 @@ GEOMETRY_DEFAULTS = {
     "rigid": False,  # rigid, immovable target: alpha = 0
     "E_plate": 200e9,  # case 4 only: elastic plate modulus, Pa
     "nu_plate": 0.3,  # case 4, and the plate of plate_material
-    # the plate's own material when it differs from the contact modulus (vcor.bodies: Eq. 1 with two
+    # the plate's own material when it differs from the contact modulus (vcor.contact.bodies: Eq. 1 with two
     # deformable bodies); the plate's plane-strain modulus is then E_b(t) / (1 - nu_plate^2)
     "plate_material": None,
 }

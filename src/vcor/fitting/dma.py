@@ -238,10 +238,10 @@ def arrhenius_fit(T, log_aT, T_ref):
 
 
 def fit_master(sp: Superposition, n_terms: int | None = None):
-    """Prony fit (``vcor.fit.fit_prony``) of the master curve E*(omega = 2 pi f_reduced) at T_ref.
+    """Prony fit (``vcor.fitting.prony.fit_prony``) of the master curve E*(omega = 2 pi f_reduced) at T_ref.
     ``n_terms`` defaults to one term per decade of reduced frequency (a tolerance on the worst error
     would chase the noise of measured data). Returns the FitResult (metrics: worst and RMS relative
-    errors of |E*| and tan delta)."""
+    errors of ``|E*|`` and tan delta)."""
     data = FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name="master curve",
                         measured=True)
     n = n_terms or max(1, math.ceil(math.log10(sp.f_reduced.max() / sp.f_reduced.min())))

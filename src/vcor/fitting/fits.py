@@ -81,7 +81,7 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
 def run_fit(spec: dict, base_dir="."):
     """(FitResult, FitData, extra attributes) of a fit spec: the built-in Bagley-Torvik data, or measured
     DMA data (``data: {file, T_ref [deg C], shift_file?, shift_model: wlf|arrhenius}``; pyvisco's CSV
-    conventions, ``vcor.dma``). Raw multi-temperature sets are superposed at T_ref (with the shift
+    conventions, ``vcor.fitting.dma``). Raw multi-temperature sets are superposed at T_ref (with the shift
     factors of ``shift_file``, or found from the data), a WLF (default) or Arrhenius shift function is
     fitted to the per-set log a_T and stored with the material (attribute ``shift``), and a Prony
     series is fitted to the master curve (``n_terms``: an integer, or auto = one term per decade)."""

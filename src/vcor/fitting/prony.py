@@ -1,7 +1,7 @@
 """Fits of CERF and Prony relaxation models to relaxation and/or complex-modulus data.
 
 Design (and why it differs from the usual Prony tools): every residual is *relative*
-(E_fit/E - 1 in time, |E*_fit|/|E*| - 1 and tan(delta)_fit/tan(delta) - 1 in frequency), all
+(E_fit/E - 1 in time, ``|E*_fit|/|E*| - 1`` and tan(delta)_fit/tan(delta) - 1 in frequency), all
 coefficients are positive by construction (fitted in log space), nothing is pinned to a data
 point, and the relaxation rates start log-spaced over the data's range and are then refined
 together with the moduli by ``scipy.optimize.least_squares`` (trust-region, bounded). The start
@@ -102,7 +102,7 @@ def bagley_torvik_data(n_freq: int = 61, n_time: int = 61, f_min=1e2, f_max=1e5)
 
 
 def metrics(material, data: FitData) -> dict:
-    """Max and RMS relative errors of E(t) over the window, and of |E*|, tan(delta), E' (storage) and E''
+    """Max and RMS relative errors of E(t) over the window, and of ``|E*|``, tan(delta), E' (storage) and E''
     (loss) over the band."""
     out = {}
     if data.has_time:
@@ -145,8 +145,8 @@ class FitResult:
 
     @property
     def max_error(self) -> float:
-        """The worst of E(t), |E*| and tan delta errors (the automatic N's criterion; E' and E'' are
-        reported, not used: |E*| and tan delta carry the same information)."""
+        """The worst of E(t), ``|E*|`` and tan delta errors (the automatic N's criterion; E' and E'' are
+        reported, not used: ``|E*|`` and tan delta carry the same information)."""
         keys = [k for k in ("E_t_max", "abs_E_star_max", "tan_delta_max") if k in self.metrics]
         return max(self.metrics[k] for k in keys) if keys else math.nan
 

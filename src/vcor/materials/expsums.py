@@ -11,7 +11,7 @@ A material's transient E(t) - E(inf) is written as sum_k E_k exp(-beta_k t) on [
       erfcx(b1 sqrt t)  = b1/pi  int_0^inf e^-st / (s^1/2 (s + b1^2)) ds.
 
   With s = e^x each is an integral over the real line of a function analytic in the strip
-  |Im x| < pi/2, so the trapezoid rule in x (step h) converges exponentially (Trefethen & Weideman
+  ``|Im x| < pi/2``, so the trapezoid rule in x (step h) converges exponentially (Trefethen & Weideman
   2014; the construction of McLean 2018 and Jiang et al. 2017 for t^-beta). The nodes run from
   s_min to s_max; the nodes below s_min, where e^-st ~ 1 on [0, t_max], are summed into a constant
   added to E(inf); the nodes above s_max, whose modes have decayed before t_min, are dropped.
@@ -19,7 +19,7 @@ A material's transient E(t) - E(inf) is written as sum_k E_k exp(-beta_k t) on [
 A-priori relative error bound of the fractional transient on [t_min, t_max] (the sum of three parts,
 each held below tol/3 by the choice of h, s_max and s_min):
 
-* discretisation: 2 sum_j cosh(2 pi^2 j / h)^-1/2 (from |Gamma(1/2 + i w)|^2 = pi / cosh(pi w));
+* discretisation: 2 sum_j cosh(2 pi^2 j / h)^-1/2 (from ``|Gamma(1/2 + i w)|^2 = pi / cosh(pi w)``);
 * dropped fast modes: erfc(sqrt(s_max t_min e^-h));
 * slow modes as a constant: (s_min t_max)^3/2 h e^-3h/2 / ((1 - e^-3h/2) sqrt(pi)).
 

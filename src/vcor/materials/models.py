@@ -671,7 +671,7 @@ class EqOne(Material):
     .. math:: E'(t) = \\frac{E'_a(t) E'_b(t)}{E'_a(t) + E'_b(t)}, \\quad E'_i = c_i E_i(t), \\; c_i = 1/(1 - \\nu_i^2)
 
     This is *not* the viscoelastic series combination (compliances adding in the Laplace domain,
-    :func:`vcor.bodies.series_modulus`); the two agree when one body is rigid, both are elastic, or
+    :func:`vcor.contact.bodies.series_modulus`); the two agree when one body is rigid, both are elastic, or
     both are the same material (E'/2), and differ in between (the documentation, user guide "Bodies"). E'(t) has no closed
     form for its step integrals or its complex modulus: steps are integrated by Gauss-Legendre (the
     base class), the antiderivatives by composite Gauss-Legendre on a grid graded towards t = 0. Kelvin-

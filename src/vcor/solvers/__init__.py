@@ -7,15 +7,16 @@ history), ``ive`` (internal variables, scipy ``solve_ivp``; Prony kernels), ``iv
 variables, fixed step; Prony kernels) and ``paper`` (an explicit baseline for benchmarks).
 
 Names are loaded on first use (PEP 562): importing :mod:`vcor.solvers.options` alone does not
-import numba.
+import numba. The function is :func:`vcor.simulate`; ``vcor.solvers.simulate`` is always the front-end
+module (a package attribute of the same name as a submodule would be replaced by the submodule as
+soon as it is imported).
 """
 
 from importlib import import_module
 
-__all__ = ["METHODS", "Histories", "Result", "SolverOptions", "simulate"]
+__all__ = ["METHODS", "Histories", "Result", "SolverOptions"]
 
-_NAMES = {"METHODS": "simulate", "simulate": "simulate", "Histories": "common", "Result": "common",
-          "SolverOptions": "options"}
+_NAMES = {"METHODS": "simulate", "Histories": "common", "Result": "common", "SolverOptions": "options"}
 
 
 def __getattr__(name):

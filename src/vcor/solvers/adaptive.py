@@ -15,7 +15,7 @@ estimate), so every table (local weights, mode factors) is computed once per lev
 points of a sweep (cached); t_n are sums of powers of two and exact in floating point.
 
 Error control (``_adaptive_kernels.march_adaptive``): the trapezoidal rule's local error h^3 g''/12, with
-g'' from the last three nodes, per unit step against ``step_tol`` * min(v0, |s'| + s / t_c): relative
+g'' from the last three nodes, per unit step against ``step_tol * min(v0, |s'| + s / t_c)``: relative
 to the motion's own scale, so that long contacts whose motion has slowed by orders of magnitude keep
 their separation time (with v0 as the scale, t0 of the 1 mm SLS plate is 6-12 % off). Steps are not
 refined below h_base (t_c / 65536 .. t_c / 131072), where the test is waived: near t = 0 the exact

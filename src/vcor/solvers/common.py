@@ -167,7 +167,7 @@ def separation_scalars(values) -> dict:
 
 def richardson(coarse: float, fine: float, order: float = 2.0) -> tuple[float, float]:
     """Richardson extrapolation from runs at dt (``coarse``) and dt/2 (``fine``) of a method of the
-    given order: (extrapolated value, error estimate of the coarse value |coarse - extrapolated|)."""
+    given order: (extrapolated value, error estimate of the coarse value ``|coarse - extrapolated|``)."""
     f = 2.0**order
     extrapolated = fine + (fine - coarse) / (f - 1.0)
     return extrapolated, abs(coarse - extrapolated)

@@ -155,7 +155,7 @@ class Nodes:
 
 
 def overlap_power(s):
-    """u = sgn(s) |s|^{3/2} in m^1.5 (s in m)."""
+    """``u = sgn(s) |s|^{3/2}`` in m^1.5 (s in m)."""
     return math.copysign(abs(s) ** 1.5, s)
 
 
@@ -182,7 +182,7 @@ def trapezoidal_step(prev, h, mobility, body, convolution):
     -----
     With J_b = J_{n-1} + h/2 F_{n-1}, kin = 1/m + alpha'_n, B = v0 - kin J_b (m/s) and
     c = alpha_n + h/2 kin (m N^-1 s^-1) the step's linear part is J_n = J_b + h/2 F_n, g_n = B - c F_n,
-    F_n = A_n + eta p g_n (p = 3/2 |s_n|^{1/2}), so that F_n = (A_n + eta p B) / (1 + eta p c).
+    F_n = A_n + eta p g_n (``p = 3/2 |s_n|^{1/2}``), so that F_n = (A_n + eta p B) / (1 + eta p c).
     s_n is the root of R(s) = s - s_{n-1} - h/2 (g_{n-1} + g_n(s)), by brentq (relative tolerance
     4 eps) in a bracket grown around the explicit Euler value s_{n-1} + h g_{n-1}.
     """
@@ -570,7 +570,7 @@ class ExponentialSumHistory:
     Step j spans [t_{j-1}, t_j], h_j = t_j - t_{j-1}; on it u' = d_j + c_j (tau - tau_j), tau_j its
     middle, d_j = (u_j - u_{j-1}) / h_j (m^1.5/s), c_j = 2 (d_j - d_{j-1}) / (h_j + h_{j-1}) (c_1 = 0):
     the parabola through three nodes. The newest step n uses the exact kernel, the older ones the
-    exponential sum k~(x) = kappa (E~_inf + sum_k E_k e^{-b_k x}) (exact for Prony kernels):
+    exponential sum k~(x) = kappa (E~_inf + sum_k E_k e^{-b_k x}) (exact for Prony kernels)::
 
         A_n = d_n I0(h_n) + c_n M(h_n)
               + sum_{j<n} sum_k e^{-b_k (t_n - t_j)} (d_j GA_k(h_j) + c_j GB_k(h_j)),
@@ -658,7 +658,7 @@ def _adaptive_mobility(impact, representation):
 
 
 def local_error(h, h_prev, g_n, g_prev, g_prev2):
-    """The trapezoidal rule's local error per unit step, h^2 |g''| / 12 (m/s), g'' from the second
+    """The trapezoidal rule's local error per unit step, ``h^2 |g''| / 12`` (m/s), g'' from the second
     divided difference of g over the last three nodes."""
     g2 = 2.0 * ((g_n - g_prev) / h - (g_prev - g_prev2) / h_prev) / (h + h_prev)
     return h * h * abs(g2) / 12.0
@@ -681,8 +681,8 @@ def grown_level(level, error, tol, top):
 class StepControl:
     """The adaptive method's acceptance rules for a trial step n on ``level`` (step h, ending at t_n).
 
-    * error = h^2 |g''| / 12 (:func:`local_error`, n >= 2) against
-      tol = step_tol min(v0, |g_n| + |s_n| / tc): the motion's own scale (m/s);
+    * error = ``h^2 |g''| / 12`` (:func:`local_error`, n >= 2) against
+      tol = ``step_tol min(v0, |g_n| + |s_n| / tc)``: the motion's own scale (m/s);
       error > tol: retry on :func:`retry_level` (at the floor level the step is accepted);
     * a step that would separate with h > sep_frac t_n: retry one level down (not below the floor);
     * after an accepted step (n >= 2, not separated) the next level is :func:`grown_level`.
@@ -823,7 +823,7 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
         t0 (s), the root in [t_{n-1}, t_n] of the cubic through the nodes lo..lo + 3
         (lo = max(0, min(n - 2, len(t) - 4))) of F, or of s for rule "overlap" or when s too
         crossed zero in step n; s_residual = s(t0) (m), g0 = s'(t0) and J0 = J(t0) by the same
-        cubics; cor = |g0| / v0; sphere_velocity z'0 = v0 - J0/m (m/s);
+        cubics; ``cor = |g0| / v0``; sphere_velocity z'0 = v0 - J0/m (m/s);
         w_h = int_0^t0 F s' dt and W_z = int_0^t0 F z' dt (J) by the trapezoid rule on nodes
         0..n-1 plus [t_{n-1}, t0] (F(t0) = 0 for rule "force", else its cubic); w_plate = W_z - w_h;
         energy_residual = (m v0^2/2 - m z'0^2/2 - W_z) / (m v0^2/2); s_max, f_max (m, N): the

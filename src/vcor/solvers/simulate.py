@@ -4,6 +4,7 @@ the method's runner (``METHODS``, one signature for all) and refines a fixed ste
 from __future__ import annotations
 
 from ..contact.impact import GEOMETRY_DEFAULTS, make_impact
+from ..contact.pair import target_inputs
 from . import adaptive, direct, ive, soe
 from .options import FIXED_STEP_METHODS, METHOD_NAMES, SolverOptions, solver_options
 from .validity import finalised
@@ -39,7 +40,8 @@ def split_keywords(kwargs: dict) -> tuple[dict, dict]:
     return solver, geometry
 
 
-def simulate(material, v0, *, options: SolverOptions | dict | None = None, history: bool = False, **kwargs):
+def simulate(material, v0, *, options: SolverOptions | dict | None = None, history: bool = False, target="plate",
+             **kwargs):
     """Simulate one impact and return a :class:`~vcor.solvers.common.Result`.
 
     Parameters
@@ -53,6 +55,12 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
         instead be given as keywords; not both. An option the chosen method does not use is an error.
     history : bool
         Keep time histories (``result.history``), continued ``ghost`` * t0 past separation.
+    target : str or dict
+        What the sphere hits: ``"plate"`` (the default: the plate of the geometry keywords),
+        ``"rigid"`` (an immovable target), ``{"sphere": {material, r, rho, nu}}`` (a second sphere,
+        head-on: the COR of the relative velocity) or ``{"plate": {material, h, rho, nu}}``
+        (:mod:`vcor.contact.pair`). With a sphere or plate target the impacting sphere takes only r,
+        rho_a and nu; the target's keys default to the impacting sphere's material.
     **kwargs :
         Solver options (see ``options``) and geometry: r (m), rho_a, rho_b (kg/m^3), h (m), nu, case,
         rigid, E_plate (Pa), nu_plate (see :mod:`vcor.contact.impact`).
@@ -67,6 +75,8 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
         raise ValueError(f"history must be true or false, got {history!r}")
     solver_kw, geometry = split_keywords(kwargs)
     opts = solver_options(options, **solver_kw)
+    if target != "plate":
+        material, geometry = target_inputs(material, target, geometry)
     impact = make_impact(material, v0, geometry)
     tc = impact.contact_time_estimate()
     if opts.dt is not None and not opts.dt < tc:

@@ -10,7 +10,7 @@ flag                     mask  set when
 large_indentation        1     s_max / r > MAX_INDENTATION: Hertz contact assumes s << r
 fast_impact              2     v0 > MAX_SPEED_FRACTION c, c = sqrt(E(t0/4) / rho) of the
                                viscoelastic body: the contact is no longer quasi-static
-energy_residual          4     |energy residual| > MAX_ENERGY_RESIDUAL: the energy balance does
+energy_residual          4     ``|energy residual|`` > MAX_ENERGY_RESIDUAL: the energy balance does
                                not close (fixed steps: ~1e-9 in a correct march; adaptive steps:
                                up to ~1e-4, the trapezoid quadrature on a variable grid)
 under_resolved           8     a fixed-step method and a Kelvin-Voigt (Dirac) kernel whose damping

@@ -1,5 +1,5 @@
-"""Aggregation: a scene's shards (``vcor.runner.run_points``) combined into one dataset with dims
-(material, *grid axes), and the global attributes that make it enough to re-run its scene.
+"""Aggregation: a scene's shards (``vcor.study.runner.run_points``) combined into one dataset with dims
+``(material, *grid axes)``, and the global attributes that make it enough to re-run its scene.
 
 The aggregate refuses to combine shards computed by different code (their ``code_fingerprint``
 attributes differ from each other or from the running code) or with different material
@@ -51,7 +51,7 @@ def _check_provenance(shards, scene, catalogue):
 
 
 def aggregate(shards, scene, identities: dict, catalogue: Catalogue | None = None):
-    """Combine shard datasets into one Dataset with dims (material, *grid axes)."""
+    """Combine shard datasets into one Dataset with dims ``(material, *grid axes)``."""
     import xarray as xr
 
     catalogue = catalogue or Catalogue()

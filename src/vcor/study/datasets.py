@@ -132,7 +132,7 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
     relaxation time tau = tau_ratio * t_c), the series at orders 1..4, both Pades and the root of
     Ramirez Eq. 27. A failed point is stored as NaN with its message in ``message`` (never raised).
     ``ice`` ({g_min_cm_s, g_max_cm_s, n}): g* fitted to the Bridges ice law on that range
-    (``vcor.calibrate.fit_g_star``; the numerical eps for each rule, and the Pade) and the fitted curves."""
+    (``vcor.fitting.calibrate.fit_g_star``; the numerical eps for each rule, and the Pade) and the fitted curves."""
     import xarray as xr
 
     b = np.array(sorted(float(x) for x in b_values))

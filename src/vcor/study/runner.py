@@ -1,4 +1,4 @@
-"""Running points: solve grid points into an ``xarray.Dataset`` (one shard; :mod:`vcor.aggregation`
+"""Running points: solve grid points into an ``xarray.Dataset`` (one shard; :mod:`vcor.study.aggregation`
 combines a scene's shards), every variable with its units and long name.
 
 A failed point never sinks its shard: it is stored with its status and message

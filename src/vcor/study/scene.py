@@ -7,14 +7,14 @@ A *scene* (as in ``config.yaml``) names materials, grid axes and solver settings
     tie: {alpha: {to: beta, ratio: 0.25}}  # alpha = 0.25 * beta at every point
     solver: {method: direct, steps_per_contact: 2000}   # vcor.solvers.options.SolverOptions
     geometry: {}                          # fixed geometry keywords (r, rho_a, rho_b, h, nu, case, rigid)
-    # or, instead of geometry, two bodies (vcor.bodies; the one without material takes the swept one):
+    # or, instead of geometry, two bodies (vcor.contact.bodies; the one without material takes the swept one):
     sphere: {material: {model: elastic, E: 200.0e+9}, r: 0.01, rho: 7800, nu: 0.3}
     plate: {h: 0.02, rho: 1100, nu: 0.5}
 
 Grid axes are ``v0`` (m/s), any geometry keyword, or any scalar parameter of the material
 (``Material.params()``: E_glassy, alpha, beta for ``sls``; E0, E1 for ``butyl-fc``; ...).
 This module validates scenes and builds points; shard identity and planning are in
-:mod:`vcor.shards`, solving in :mod:`vcor.runner`.
+:mod:`vcor.study.shards`, solving in :mod:`vcor.study.runner`.
 """
 
 from __future__ import annotations

@@ -1,0 +1,89 @@
+"""Targets: a second sphere (particle-particle collisions), a rigid target or a plate.
+
+Two spheres colliding head-on are one sphere on an immovable target: the reduced radius
+R_eff = R_a R_b / (R_a + R_b), the reduced mass m_eff = m_a m_b / (m_a + m_b) (the sphere's density is
+then m_eff over the volume of a sphere of radius R_eff), no plate mobility, and the contact modulus of
+Green 2026 Eq. 1:
+
+* both of one material and Poisson ratio: E'/2 with E' = E / (1 - nu^2) (the paper's case 2, on an
+  immovable target), exact in every method;
+* one of them rigid: the other's E';
+* both elastic: E'_a E'_b / (E'_a + E'_b), a constant;
+* otherwise Eq. 1 pointwise in time (:class:`vcor.materials.EqOne`), which the method ``direct`` solves.
+
+The COR is that of the relative normal velocity: (v_b - v_a after) / (v_a - v_b before).
+
+:func:`target_inputs` is what ``vcor.simulate(..., target=...)`` calls: ``target`` is ``"plate"``
+(the default geometry keywords), ``"rigid"``, ``{"sphere": {material, r, rho, nu}}`` or
+``{"plate": {material, h, rho, nu}}`` (:mod:`vcor.contact.bodies`); a target body without
+``material`` is of the impacting sphere's material.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..materials import models as _materials
+from .bodies import Body, body_from_spec, impact_inputs
+
+__all__ = ["PLATE_KEYWORDS", "TARGET_KINDS", "sphere_pair", "target_inputs"]
+
+#: what a target may be
+TARGET_KINDS = ("plate", "rigid", "sphere")
+#: geometry keywords that describe the plate (or the case): not with a sphere or body target
+PLATE_KEYWORDS = ("h", "rho_b", "case", "rigid", "E_plate", "nu_plate", "plate_material")
+
+
+def _volume(r: float) -> float:
+    return 4.0 / 3.0 * math.pi * r**3
+
+
+def sphere_pair(a: Body, b: Body) -> tuple[_materials.Material, dict]:
+    """(contact material, geometry keywords) of sphere ``a`` hitting sphere ``b`` head-on (module
+    docstring)."""
+    if a.rigid and b.rigid:
+        raise ValueError("target.sphere: both spheres are rigid: no contact modulus (give one a material)")
+    ra, rb = a.size, b.size
+    r_eff = ra * rb / (ra + rb)
+    ma, mb = a.rho * _volume(ra), b.rho * _volume(rb)
+    m_eff = ma * mb / (ma + mb)
+    geometry = {"r": r_eff, "rho_a": m_eff / _volume(r_eff), "rigid": True}
+    if b.rigid:
+        return a.material, {**geometry, "nu": a.nu, "case": 3}
+    if a.rigid:
+        return b.material, {**geometry, "nu": b.nu, "case": 3}
+    if a.material == b.material and a.nu == b.nu:
+        return a.material, {**geometry, "nu": a.nu, "case": 2}
+    if a.material.is_elastic and b.material.is_elastic:
+        ea, eb = a.c * a.material.glassy, b.c * b.material.glassy
+        return _materials.Elastic(ea * eb / (ea + eb)), {**geometry, "nu": 0.0, "case": 3}
+    return _materials.EqOne(a.material, a.c, b.material, b.c), {**geometry, "nu": 0.0, "case": 3}
+
+
+def target_inputs(material, target, geometry: dict) -> tuple[_materials.Material, dict]:
+    """(material, geometry keywords) for ``simulate`` of ``material`` hitting ``target`` (module
+    docstring); ``geometry`` holds the impacting sphere's keywords (r, rho_a, nu)."""
+    if target == "plate":
+        return material, geometry
+    if target == "rigid":
+        return material, {**geometry, "rigid": True}
+    if not isinstance(target, dict) or len(target) != 1 or next(iter(target)) not in ("sphere", "plate"):
+        raise ValueError(f"target must be one of 'plate', 'rigid', {{'sphere': {{...}}}} or {{'plate': {{...}}}} (one "
+                         f"kind), got {target!r}")
+    (kind, spec), = target.items()
+    clash = sorted(set(geometry) & set(PLATE_KEYWORDS))
+    if clash:
+        raise ValueError(f"target: a {kind} target takes its own size, density and Poisson ratio; the geometry "
+                         f"keywords {clash} describe the default plate and do not go with it")
+    unknown = sorted(set(geometry) - {"r", "rho_a", "nu"})
+    if unknown:
+        raise ValueError(f"target: unknown keyword(s) {unknown} with a {kind} target (the sphere takes r, rho_a, nu)")
+    swept = material if isinstance(material, _materials.Material) else None
+    sphere_spec = {"material": material,
+                   **{k: geometry[g] for k, g in (("r", "r"), ("rho", "rho_a"), ("nu", "nu")) if g in geometry}}
+    sphere = body_from_spec("sphere", sphere_spec, where="sphere")
+    other = body_from_spec(kind, dict(spec or {}), swept=swept or sphere.material, where=f"target.{kind}")
+    if kind == "sphere":
+        return sphere_pair(sphere, other)
+    return impact_inputs(sphere, other)
+

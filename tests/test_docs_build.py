@@ -1,0 +1,123 @@
+"""The documentation: it builds with warnings as errors, and neither its pages, the README nor the
+code's comments and docstrings tell history (that is CHANGELOG.md's and the commit messages')."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = next(p for p in Path(__file__).resolve().parents if (p / "docs" / "conf.py").is_file())
+DOCS = ROOT / "docs"
+
+
+def test_docs_build_without_warnings(tmp_path):
+    """The test extra installs the documentation packages, so the build is never skipped."""
+    out = subprocess.run([sys.executable, "-m", "sphinx", "-W", "-b", "html", "-q", str(DOCS), str(tmp_path / "html")],
+                         cwd=ROOT, capture_output=True, text=True, timeout=900)
+    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-6000:]
+    assert (tmp_path / "html" / "index.html").is_file()
+
+
+# ----------------------------------------------------------------------------- history words
+#: narration of how the code came to be; the pages describe what is (history: CHANGELOG.md only)
+HISTORY = {
+    "issue number": r"\b[Ii]ssues?\s+#?\d+|(?<![\w&/#])#\d+\b",
+    "commit hash": r"\b(?=[0-9a-f]*[0-9])(?=[0-9a-f]*[a-f])[0-9a-f]{7,40}\b",
+    "session": r"(?i)\bsessions?\b",
+    # "X used to do Y", not the passive "X is used to compute Y"
+    "used to": r"(?i)(?<!\bis )(?<!\bare )(?<!\bbe )(?<!\bbeen )(?<!\bbeing )(?<!\bwas )(?<!\bwere )\bused to\b",
+    "tried and not kept": r"(?i)\btried,?\s+(and\s+)?not\s+kept\b|\bnot kept\b",
+    "was": r"(?i)\bwas\b",
+    "no longer": r"(?i)\bno longer\b|\b(is|are) now\b",
+    "earlier versions": r"(?i)\b(earlier|previous|older|old) (READMEs?|versions?|commits?|code|sessions?)\b",
+    "time of writing": r"(?i)\bat the time of writing\b",
+}
+#: fenced code blocks with a language (or none); MyST directives (```{name}) are checked like text
+CODE_FENCE = re.compile(r"^(`{3,}|~{3,})(?!\{)[^\n]*\n.*?^\1[ \t]*$", re.M | re.S)
+#: the pages: every Markdown file of the site (not the generated benchmark tables, not work notes)
+NOT_PAGES = {"DOCSTRING_WARNINGS.md"}
+
+
+def _pages():
+    skip = {DOCS / d for d in ("_build", "_generated", "api")}
+    pages = [p for p in sorted(DOCS.rglob("*.md")) if not any(s in p.parents for s in skip) and p.name not in NOT_PAGES]
+    return pages + [ROOT / "README.md"]
+
+
+def history_hits(text: str) -> list[str]:
+    """(kind: the line) for every history word outside code blocks."""
+    text = CODE_FENCE.sub(lambda m: "\n" * m.group(0).count("\n"), text)
+    hits = []
+    for lineno, line in enumerate(text.splitlines(), 1):
+        for kind, pattern in HISTORY.items():
+            if re.search(pattern, line):
+                hits.append(f"line {lineno} ({kind}): {line.strip()[:160]}")
+    return hits
+
+
+@pytest.mark.parametrize("page", _pages(), ids=lambda p: str(p.relative_to(ROOT)))
+def test_pages_tell_no_history(page):
+    hits = history_hits(page.read_text(encoding="utf-8"))
+    assert not hits, f"{page.relative_to(ROOT)}: history belongs in CHANGELOG.md:\n" + "\n".join(hits[:40])
+
+
+#: in code, "was", "no longer" and "used to" describe what a program does at run time ("the size it was
+#: written with"); the narration words are the rest
+CODE_HISTORY = {k: v for k, v in HISTORY.items() if k not in ("was", "no longer", "used to")}
+
+
+def _code_files():
+    files = [*sorted((ROOT / "src" / "vcor").rglob("*.py")), *sorted((ROOT / "workflow").rglob("*")),
+             ROOT / "Snakefile", ROOT / "config.yaml", *sorted((ROOT / "profiles").rglob("*.yaml"))]
+    return [p for p in files if p.is_file() and p.suffix in (".py", ".smk", ".rst", ".yaml", ".sh", "")]
+
+
+#: tests hold hexadecimal-looking numbers (1.75545e6, fingerprints of fake shards): no hash check there
+TEST_HISTORY = {k: v for k, v in CODE_HISTORY.items() if k != "commit hash"}
+
+
+@pytest.mark.parametrize("path", _code_files() + sorted((ROOT / "tests").glob("*.py")),
+                         ids=lambda p: str(p.relative_to(ROOT)))
+def test_code_tells_no_history(path):
+    words = TEST_HISTORY if path.parent.name == "tests" else CODE_HISTORY
+    if path.name == Path(__file__).name:
+        return  # this file spells the patterns out
+    hits = [f"line {n} ({kind}): {line.strip()[:160]}" for n, line in enumerate(path.read_text().splitlines(), 1)
+            for kind, pattern in words.items() if re.search(pattern, line)]
+    assert not hits, f"{path.relative_to(ROOT)}: history belongs in CHANGELOG.md:\n" + "\n".join(hits[:40])
+
+
+@pytest.mark.parametrize("text", [
+    "Fixed in issue 11, see #12.",
+    "three runs at fdfae6b gave 53.9 s",
+    "before session 4 the cases used case 3's densities",
+    "the solver used to stop at the step budget",
+    "a warm-up of every method (tried and not kept)",
+    "the default was direct",
+    "simulate no longer defaults to direct",
+    "earlier READMEs said 98 s",
+])
+def test_history_narration_is_caught(text):
+    assert history_hits(text)
+
+
+@pytest.mark.parametrize("text", [
+    "The contact-time estimate is used to choose the step.",
+    "Prony rates divided by a_T; C2 in K; 1e-12 relative; 4000000 steps; 0.0003.",
+    "```bash\ngit log 0123abc\n```\n",
+    "## Heading with a number 3",
+    "E* = N_a N_b / (N_a D_b + N_b D_a)",
+])
+def test_todays_text_passes(text):
+    assert not history_hits(text)
+
+
+def test_benchmarks_page_types_no_timing():
+    """Timings reach the benchmarks page only through the generated tables it includes."""
+    text = CODE_FENCE.sub("", (DOCS / "benchmarks.md").read_text(encoding="utf-8"))
+    typed = re.findall(r"\b\d+(?:\.\d+)?\s*(?:s|ms|µs|us|min|h|seconds?|minutes?|hours?)\b", text)
+    assert not typed, typed
