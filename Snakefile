@@ -21,6 +21,7 @@ include: "workflow/rules/spheres.smk"
 include: "workflow/rules/convergence.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/calibrate.smk"
+include: "workflow/rules/dem.smk"
 
 
 rule all:

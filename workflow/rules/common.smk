@@ -270,8 +270,19 @@ def calibration_targets():
     ]
 
 
+def get_dem_spec(wildcards):
+    return PROJECT.dem[wildcards.dem]
+
+
+def get_dem_material_files(wildcards):
+    """The fitted or calibrated material file a dem: entry reads, if it names one."""
+    return PROJECT.dem_material_files(wildcards.dem)
+
+
 def get_all_targets():
     out = []
     for scene in SCENES:
         out += PROJECT.scene_targets(scene) + [f"results/{scene}/MANIFEST.txt"]
+    for name in PROJECT.dem:
+        out += PROJECT.dem_targets(name)
     return out + calibration_targets()

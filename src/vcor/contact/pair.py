@@ -16,7 +16,8 @@ The COR is that of the relative normal velocity: (v_b - v_a after) / (v_a - v_b 
 :func:`target_inputs` is what ``vcor.simulate(..., target=...)`` calls: ``target`` is ``"plate"``
 (the default geometry keywords), ``"rigid"``, ``{"sphere": {material, r, rho, nu}}`` or
 ``{"plate": {material, h, rho, nu}}`` (:mod:`vcor.contact.bodies`); a target body without
-``material`` is of the impacting sphere's material.
+``material`` is of the impacting sphere's material, and a target sphere without ``material`` is
+the impacting sphere's twin (its r, rho and nu by default).
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ import math
 from ..materials import models as _materials
 from .bodies import Body, body_from_spec, impact_inputs
 
-__all__ = ["PLATE_KEYWORDS", "TARGET_KINDS", "sphere_pair", "target_inputs"]
+__all__ = ["PLATE_KEYWORDS", "TARGET_KINDS", "sphere_pair", "target_inputs", "twin_defaults"]
 
 #: what a target may be
 TARGET_KINDS = ("plate", "rigid", "sphere")
@@ -60,6 +61,15 @@ def sphere_pair(a: Body, b: Body) -> tuple[_materials.Material, dict]:
     return _materials.EqOne(a.material, a.c, b.material, b.c), {**geometry, "nu": 0.0, "case": 3}
 
 
+def twin_defaults(sphere: Body, kind: str, spec) -> dict:
+    """A target sphere without its own material is a twin of the impacting sphere: its radius, density
+    and Poisson ratio default to the sphere's (a plate's keys keep their own defaults)."""
+    spec = dict(spec or {})
+    if kind != "sphere" or "material" in spec:
+        return spec
+    return {"r": sphere.size, "rho": sphere.rho, "nu": sphere.nu, **spec}
+
+
 def target_inputs(material, target, geometry: dict) -> tuple[_materials.Material, dict]:
     """(material, geometry keywords) for ``simulate`` of ``material`` hitting ``target`` (module
     docstring); ``geometry`` holds the impacting sphere's keywords (r, rho_a, nu)."""
@@ -82,7 +92,8 @@ def target_inputs(material, target, geometry: dict) -> tuple[_materials.Material
     sphere_spec = {"material": material,
                    **{k: geometry[g] for k, g in (("r", "r"), ("rho", "rho_a"), ("nu", "nu")) if g in geometry}}
     sphere = body_from_spec("sphere", sphere_spec, where="sphere")
-    other = body_from_spec(kind, dict(spec or {}), swept=swept or sphere.material, where=f"target.{kind}")
+    other = body_from_spec(kind, twin_defaults(sphere, kind, spec), swept=swept or sphere.material,
+                           where=f"target.{kind}")
     if kind == "sphere":
         return sphere_pair(sphere, other)
     return impact_inputs(sphere, other)

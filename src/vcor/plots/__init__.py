@@ -10,13 +10,14 @@ from __future__ import annotations
 
 from .calibration import calibration
 from .common import save
+from .dem import dem
 from .paper import fig1, fig2, fig3, fig4, fig5, fig6, fig7, fig8, fig9, prony_terms
 from .spheres import spheres_eps, spheres_hereditary, spheres_ice
 from .studies import stability_map, work_precision
 from .temperature import cor_temperature, cor_v0_temperature, master_curve
 
-__all__ = ["AXIS_OPTIONS", "FIGURES", "FIGURE_OPTIONS", "NEEDS_AXIS", "OPTION_DEFAULTS", "calibration", "draw", "needs",
-           "options_of", "save"]
+__all__ = ["AXIS_OPTIONS", "FIGURES", "FIGURE_OPTIONS", "NEEDS_AXIS", "OPTION_DEFAULTS", "calibration", "dem", "draw",
+           "needs", "options_of", "save"]
 
 FIGURES = {
     "cor_temperature": (cor_temperature, ("sweep",)),

@@ -29,7 +29,8 @@ LOCK_FILE = Path(".snakemake") / "vcor-run.lock"
 
 def _expected(project, base: Path):
     """(path, identity) of the project's outputs that jobs read: datasets of every scene, the material
-    files of the catalogue (identity: the material's content identity), calibration records."""
+    files of the catalogue (identity: the material's content identity), calibration records, DEM
+    datasets."""
     cat = project.catalogue
     for scene in project.scenes:
         for target in project.scene_targets(scene):
@@ -37,6 +38,8 @@ def _expected(project, base: Path):
                 yield base / target, None
         for material in project.scenes[scene].get("convergence", {}).get("materials", []):
             yield base / f"results/{scene}/convergence/{material}.nc", None
+    for name in project.dem:
+        yield base / "results" / "dem" / f"{name}.nc", None
     for name in [*cat.specs, *cat.fits, *cat.calibrations]:
         yield base / cat.material_dir / f"{name}.nc", cat.identity(name)
     for name in cat.calibrations:

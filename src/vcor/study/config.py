@@ -22,6 +22,7 @@ from ..materials.presets import PRESETS
 from ..materials.specs import from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.options import METHOD_NAMES
+from .dem import check_dem
 from .scene import MAX_JOBS, MAX_POINTS, canon, check_temperature_axis, point_count, scene_axes, validate_scene
 
 __all__ = ["NAME_PATTERN", "SCENE_NAME_PATTERN", "Project", "inline_config_materials", "load_project"]
@@ -43,6 +44,20 @@ class Project:
     scenes: dict
     shard_size: int
     config: dict = field(repr=False, default_factory=dict)
+    dem: dict = field(default_factory=dict)
+
+    def dem_targets(self, name: str) -> list[str]:
+        """The outputs of a ``dem:`` entry: its dataset, COR table, LAMMPS deck and figure."""
+        target = self.dem[name].get("target", "rigid")
+        deck = "in.pair" if isinstance(target, dict) and "sphere" in target else "in.wall"
+        return [f"results/dem/{name}.nc", f"results/dem/{name}/table.csv", f"results/dem/{name}/lammps/{deck}",
+                f"results/dem/{name}.png", f"results/dem/{name}.pdf"]
+
+    def dem_material_files(self, name: str) -> list[str]:
+        """The computed material file a ``dem:`` entry's job reads (a fit or calibration), if any."""
+        value = self.dem[name]["sphere"].get("material")
+        computed = self.catalogue.computed()
+        return [f"{self.catalogue.material_dir}/{value}.nc"] if isinstance(value, str) and value in computed else []
 
     def shard_size_of(self, scene: str) -> int:
         return int(self.scenes[scene].get("shard_size", self.shard_size))
@@ -131,6 +146,15 @@ def _check_paths(config: dict, base_dir: Path) -> None:
     for name, spec in (config.get("calibrations") or {}).items():
         if isinstance(spec, dict) and "data" in spec:
             inside_project(f"calibrations.{name}.data", spec["data"], base_dir)
+    for name, spec in (config.get("dem") or {}).items():
+        for body in ("sphere", "target"):
+            part = (spec or {}).get(body) if isinstance(spec, dict) else None
+            if body == "target" and isinstance(part, dict):
+                part = part.get("sphere")
+            material = part.get("material") if isinstance(part, dict) else None
+            if isinstance(material, dict) and "file" in material:
+                where = f"dem.{name}.{body}" + (".sphere" if body == "target" else "") + ".material.file"
+                inside_project(where, material["file"], base_dir)
 
 
 def _material_dir(config: dict, base_dir: Path) -> str:
@@ -269,4 +293,9 @@ def load_project(config: dict, base_dir=".") -> Project:
     for name, scene in (config.get("scenes") or {}).items():
         scenes[name] = inline_config_materials(scene, catalogue)
         _check_scene(name, scenes[name], catalogue, shard_size)
-    return Project(catalogue=catalogue, scenes=scenes, shard_size=shard_size, config=config)
+    dem = dict(config.get("dem") or {})
+    for name, spec in dem.items():
+        if not re.fullmatch(SCENE_NAME_PATTERN, name):
+            raise ValueError(f"dem.{name}: names may use letters, digits, - and _")
+        check_dem(name, spec, catalogue)
+    return Project(catalogue=catalogue, scenes=scenes, shard_size=shard_size, config=config, dem=dem)

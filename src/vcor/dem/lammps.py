@@ -1,0 +1,167 @@
+"""Ready-to-run LAMMPS decks of a ``dem:`` entry: ``in.pair`` (two spheres, ``pair_style granular``)
+or ``in.wall`` (a sphere on a flat wall, ``fix wall/gran granular``), ``units si``.
+
+``lmp -in in.pair -var v0 2.5 -screen none -log none`` prints one line, ``COR = <value>``: the
+relative normal speed after the contact over the approach speed v0 (m/s). The deck holds the
+dataset's ``hertz/material`` modulus E (Pa), Poisson ratio and the fitted parameters; ``-var model
+viscoelastic`` (the default: ``damping viscoelastic`` with eta_n0 and ``limit_damping``) or ``-var
+model coeff_restitution`` (the constant e, without ``limit_damping``, where its COR is e exactly)
+picks the law, and ``-var eta_n0``, ``-var e`` override the values (a temperature sweep lists them
+per temperature in the header). The time step is the elastic Hertz contact time over ``nsteps``
+(default 2000: the COR then agrees with the law's to a few 1e-5; LAMMPS's velocity-Verlet step
+evaluates the dashpot at the half-step velocity, an error about 0.04 / nsteps).
+"""
+
+from __future__ import annotations
+
+from ..io.receipts import atomic_text
+
+__all__ = ["DECK_NAMES", "NSTEPS", "deck_name", "write_deck"]
+
+#: the deck of each contact kind
+DECK_NAMES = {"pair": "in.pair", "wall": "in.wall"}
+#: default time steps per elastic contact time
+NSTEPS = 2000
+
+_HEADER = """\
+# vcor DEM deck, entry {name}: {what}. Written by vcor.dem.lammps; units si.
+#   lmp -in {deck} -var v0 <m/s> -screen none -log none     prints one line: COR = <value>
+# -var model viscoelastic       damping viscoelastic, eta_n0, limit_damping (the force clipped at zero;
+#                               vcor's separation where the force vanishes)            [default]
+# -var model coeff_restitution  damping coeff_restitution, the constant e, no limit_damping
+# Parameters fitted by vcor (results/dem/{name}.nc){t_note}:
+{table}
+"""
+
+_COMMON = """\
+variable v0      index 1.0
+variable model   index viscoelastic
+variable E       index {E:.12g}
+variable nu      index {nu:.12g}
+variable eta_n0  index {eta_n0:.12g}
+variable e       index {e:.12g}
+variable nsteps  index {nsteps}
+units            si
+atom_style       sphere
+dimension        3
+boundary         f f f
+comm_modify      vel yes
+atom_modify      map array
+if "${{model}} == viscoelastic" then "variable coef string '${{eta_n0}}'" "variable tail string 'limit_damping'" &
+   elif "${{model}} == coeff_restitution" "variable coef string '${{e}}'" "variable tail string ' '" &
+   else "print 'model must be viscoelastic or coeff_restitution'" "quit 1"
+variable Eeff    equal v_E/(2.0*(1.0-v_nu^2))
+"""
+
+_PAIR = """\
+variable R1      index {r1:.12g}
+variable R2      index {r2:.12g}
+variable rho1    index {rho1:.12g}
+variable rho2    index {rho2:.12g}
+variable m1      equal 4.0/3.0*PI*v_R1^3*v_rho1
+variable m2      equal 4.0/3.0*PI*v_R2^3*v_rho2
+variable meff    equal v_m1*v_m2/(v_m1+v_m2)
+variable Reff    equal v_R1*v_R2/(v_R1+v_R2)
+variable K       equal 4.0/3.0*v_Eeff*sqrt(v_Reff)
+variable tc      equal 3.2180654597185065*(v_meff/v_K)^0.4*v_v0^(-0.2)
+variable dt      equal v_tc/v_nsteps
+variable L       equal 100.0*(v_R1+v_R2)
+region           box block -${{L}} ${{L}} -${{L}} ${{L}} -${{L}} ${{L}} units box
+create_box       1 box
+variable gap     equal 10.0*v_v0*v_dt
+variable x1      equal -(v_R1+0.5*v_gap)
+variable x2      equal v_R2+0.5*v_gap
+create_atoms     1 single ${{x1}} 0.0 0.0 units box
+create_atoms     1 single ${{x2}} 0.0 0.0 units box
+variable D1      equal 2.0*v_R1
+variable D2      equal 2.0*v_R2
+set              atom 1 diameter ${{D1}} density ${{rho1}}
+set              atom 2 diameter ${{D2}} density ${{rho2}}
+variable vh      equal 0.5*v_v0
+variable mvh     equal -0.5*v_v0
+velocity         all set 0.0 0.0 0.0 units box
+set              atom 1 vx ${{vh}}
+set              atom 2 vx ${{mvh}}
+pair_style       granular
+pair_coeff       * * hertz/material ${{E}} ${{coef}} ${{nu}} tangential linear_nohistory 0.0 0.0 damping ${{model}} ${{tail}}
+neighbor         ${{R1}} bin
+neigh_modify     delay 0 every 1 check yes
+fix              integ all nve/sphere
+timestep         ${{dt}}
+thermo           0
+variable sep     equal x[2]-x[1]-(v_R1+v_R2)
+variable nrun    equal ceil(1.5*v_nsteps)+20
+run              ${{nrun}}
+label            more
+if "${{sep}} <= 0.0" then "run ${{nsteps}}" "jump SELF more"
+variable cor     equal (vx[2]-vx[1])/v_v0
+variable corf    format cor %.12g
+print            "COR = ${{corf}}" append /dev/stdout screen no universe no
+"""
+
+_WALL = """\
+variable R       index {r1:.12g}
+variable rho     index {rho1:.12g}
+variable m       equal 4.0/3.0*PI*v_R^3*v_rho
+variable K       equal 4.0/3.0*v_Eeff*sqrt(v_R)
+variable tc      equal 3.2180654597185065*(v_m/v_K)^0.4*v_v0^(-0.2)
+variable dt      equal v_tc/v_nsteps
+variable L       equal 100.0*v_R
+region           box block -${{L}} ${{L}} -${{L}} ${{L}} -${{L}} ${{L}} units box
+create_box       1 box
+variable gap     equal 10.0*v_v0*v_dt
+variable x1      equal v_R+v_gap
+create_atoms     1 single ${{x1}} 0.0 0.0 units box
+variable D       equal 2.0*v_R
+set              atom 1 diameter ${{D}} density ${{rho}}
+variable mv      equal -v_v0
+velocity         all set 0.0 0.0 0.0 units box
+set              atom 1 vx ${{mv}}
+pair_style       zero ${{R}}
+pair_coeff       * *
+fix              wall all wall/gran granular hertz/material ${{E}} ${{coef}} ${{nu}} tangential linear_nohistory 0.0 0.0 damping ${{model}} ${{tail}} xplane 0.0 NULL
+neighbor         ${{R}} bin
+neigh_modify     delay 0 every 1 check yes
+fix              integ all nve/sphere
+timestep         ${{dt}}
+thermo           0
+variable sep     equal x[1]-v_R
+variable nrun    equal ceil(1.5*v_nsteps)+20
+run              ${{nrun}}
+label            more
+if "${{sep}} <= 0.0" then "run ${{nsteps}}" "jump SELF more"
+variable cor     equal vx[1]/v_v0
+variable corf    format cor %.12g
+print            "COR = ${{corf}}" append /dev/stdout screen no universe no
+"""
+
+
+def deck_name(kind: str) -> str:
+    """``in.pair`` for two spheres, ``in.wall`` for a sphere on a wall."""
+    return DECK_NAMES[kind]
+
+
+def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
+    """The deck of the DEM dataset ``ds`` (:func:`vcor.dem.export.dem_dataset`) at ``path`` (module
+    docstring); the first temperature's parameters are the defaults."""
+    import json
+
+    contact = json.loads(ds.attrs["contact"])
+    kind = contact["kind"]
+    first = (lambda v: float(ds[v].values.flat[0]))
+    has_t = "T" in ds.dims
+    rows = []
+    for i in range(ds.sizes["T"] if has_t else 1):
+        pick = (lambda v, i=i: float(ds[v].values[i] if has_t else ds[v].values))
+        prefix = f"T = {float(ds['T'].values[i]):g} degC: " if has_t else ""
+        rows.append(f"#   {prefix}-var eta_n0 {pick('eta_n0'):.10g}  -var e {pick('e'):.10g}  (E {pick('E_lammps'):.10g} Pa)")
+    radii, dens = contact["radii_m"], contact["densities_kg_m-3"]
+    values = {"E": first("E_lammps"), "nu": contact["nu"], "eta_n0": first("eta_n0"), "e": first("e"),
+              "nsteps": int(nsteps), "r1": radii[0], "rho1": dens[0],
+              "r2": radii[-1], "rho2": dens[-1]}
+    what = ("two spheres, head-on, v0 = relative approach speed" if kind == "pair"
+            else "a sphere on a flat wall, v0 = approach speed")
+    text = _HEADER.format(name=ds.attrs["dem"], what=what, deck=DECK_NAMES[kind], table="\n".join(rows),
+                          t_note=", per temperature" if has_t else "")
+    text += _COMMON.format(**values) + (_PAIR if kind == "pair" else _WALL).format(**values)
+    atomic_text(path, text)

@@ -1,0 +1,113 @@
+"""The contact laws of discrete-element (DEM) codes that a COR can be handed to, and their COR.
+
+A DEM collision is described by its :class:`Contact`: the reduced mass m_eff (kg) and radius
+R_eff (m), the effective (plane-strain) contact modulus E_eff (Pa), so that the Hertz force is
+K xi^(3/2) with K = 4/3 E_eff sqrt(R_eff), and whether the partner is a second sphere (``pair``) or a
+wall. The laws (formulas as each code's documentation and source give them):
+
+``lammps-viscoelastic``
+    LAMMPS ``pair granular`` / ``fix wall/gran granular`` with ``hertz/material E eta_n0 nu`` and
+    ``damping viscoelastic``: F = K xi^(3/2) + eta_n0 m_eff sqrt(R_eff xi) xi'. LAMMPS builds
+    E_eff = E / (2 (1 - nu^2)) for a pair of one atom type and for a wall (the wall is taken to be of
+    the sphere's material), so E = 2 (1 - nu^2) E_eff. With ``limit_damping`` the total normal force
+    is clipped at zero, so the sphere leaves when the force vanishes (vcor's rule ``force``).
+``lammps-coeff-restitution``
+    ``damping coeff_restitution`` with one constant e: without ``limit_damping`` the realised COR is
+    e at every speed for Hertz contact (the damping is Antypov & Elliott's xi^(1/4) form).
+``mercurydpm-bshp``
+    MercuryDPM ``HertzianBSHPViscoelastic``: F = K (xi^(3/2) + 3/2 A xi^(1/2) xi'), clipped at
+    zero, with the dissipation A (s) set by ``setDissipation`` and E* = E_eff by
+    ``setEffectiveElasticModulus``.
+``yade-mindlin``
+    Yade's Hertz-Mindlin law with a velocity-dependent COR (``en`` at the speed ``vn``): Yade finds
+    v* from the Mueller & Poeschel Pade e(v*) = en and A = 2/3 v*^2 (m_eff/K)^(2/5) vn^(-1/5), and
+    applies the same clipped law as BSHP.
+``table``
+    The COR against speed itself, for codes that read a table.
+
+The three Brilliantov laws (the first, third and fourth) have the COR eps(b) of Ramirez et al.
+(1999), b = 3/2 A (K/m_eff)^(2/5) v0^(1/5), with the force-zero end (:func:`vcor.spheres.cor_numeric`,
+rule ``force``). eta_n0 = 2 E_eff A / m_eff maps A to LAMMPS's coefficient.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..spheres import cor_numeric, cor_pade_force
+
+__all__ = ["MODELS", "PARAMETERS", "SOURCES", "Contact", "brilliantov_cor", "eta_n0", "lammps_modulus", "yade_en"]
+
+#: the DEM models, in the order of the datasets' ``model`` dimension
+MODELS = ("lammps-viscoelastic", "lammps-coeff-restitution", "mercurydpm-bshp", "yade-mindlin", "table")
+#: where each law is written down
+SOURCES = {
+    "lammps-viscoelastic": "LAMMPS documentation, pair_style granular (damping viscoelastic, limit_damping); "
+                           "src/GRANULAR/gran_sub_mod_damping.cpp, gran_sub_mod_normal.cpp",
+    "lammps-coeff-restitution": "LAMMPS documentation, pair_style granular (damping coeff_restitution); "
+                                "Antypov & Elliott (2011), EPL 94, 50004",
+    "mercurydpm-bshp": "MercuryDPM HertzianBSHPViscoelasticInteraction::computeNormalForce; Brilliantov et al. "
+                       "(1996), Phys. Rev. E 53, 5382",
+    "yade-mindlin": "Yade Ip2_FrictMat_FrictMat_MindlinPhys (en, vn) and Law2_ScGeom_MindlinPhys_Mindlin; "
+                    "Mueller & Poeschel (2011), Phys. Rev. E 84, 021302",
+    "table": "the vcor COR itself, one value per speed",
+}
+#: each model's parameters: name -> (unit, meaning)
+PARAMETERS = {
+    "lammps-viscoelastic": {"eta_n0": ("m-1 s-1", "hertz/material damping coefficient eta_n0"),
+                            "E_lammps": ("Pa", "hertz/material Young's modulus E")},
+    "lammps-coeff-restitution": {"e": ("1", "damping coeff_restitution: the constant COR e"),
+                                 "E_lammps": ("Pa", "hertz/material Young's modulus E")},
+    "mercurydpm-bshp": {"A": ("s", "setDissipation: the dissipative constant A"),
+                        "E_eff": ("Pa", "setEffectiveElasticModulus: E*")},
+    "yade-mindlin": {"en": ("1", "the COR en at the speed vn"), "vn": ("m s-1", "the speed vn of en")},
+    "table": {},
+}
+
+
+@dataclass(frozen=True)
+class Contact:
+    """One DEM collision (module docstring): ``kind`` ``pair`` or ``wall``; ``m_eff`` (kg), ``r_eff``
+    (m), ``e_eff`` (Pa), ``nu``; the spheres' radii (m) and densities (kg/m^3) for a deck (the
+    second sphere's are None for a wall)."""
+
+    kind: str
+    m_eff: float
+    r_eff: float
+    e_eff: float
+    nu: float
+    radii: tuple
+    densities: tuple
+
+    @property
+    def stiffness(self) -> float:
+        """K = 4/3 E_eff sqrt(R_eff), N m^-3/2."""
+        return 4.0 / 3.0 * self.e_eff * math.sqrt(self.r_eff)
+
+    def b(self, A, v0):
+        """Ramirez's b = 3/2 A (K/m_eff)^(2/5) v0^(1/5) (1) for the dissipation A (s) at v0 (m/s)."""
+        return 1.5 * A * (self.stiffness / self.m_eff) ** 0.4 * np.asarray(v0, dtype=float) ** 0.2
+
+
+def brilliantov_cor(contact: Contact, A: float, v0) -> np.ndarray:
+    """The COR (1) of the clipped Brilliantov law with dissipation A (s) at the speeds v0 (m/s)."""
+    return np.asarray(cor_numeric(np.atleast_1d(contact.b(A, v0)), "force"), dtype=float)
+
+
+def eta_n0(contact: Contact, A: float) -> float:
+    """LAMMPS's viscoelastic coefficient eta_n0 = 2 E_eff A / m_eff, 1/(m s)."""
+    return 2.0 * contact.e_eff * A / contact.m_eff
+
+
+def lammps_modulus(contact: Contact) -> float:
+    """The E (Pa) to give ``hertz/material`` so that LAMMPS's E_eff is the contact's:
+    2 (1 - nu^2) E_eff (a pair of one atom type, or a wall)."""
+    return 2.0 * (1.0 - contact.nu**2) * contact.e_eff
+
+
+def yade_en(contact: Contact, A: float, vn: float) -> float:
+    """The en (1) at the speed vn (m/s) from which Yade derives the dissipation A (s)."""
+    return float(cor_pade_force(contact.b(A, vn)))

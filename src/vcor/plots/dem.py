@@ -1,0 +1,68 @@
+"""A DEM entry: vcor's COR against each DEM law's, and the error each law makes."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from .common import mark_failed, plt
+
+__all__ = ["dem"]
+
+#: the three Brilliantov laws share one curve; drawn once, with their names
+_BRILLIANTOV = ("lammps-viscoelastic", "mercurydpm-bshp", "yade-mindlin")
+_STYLE = {"brilliantov": ("C0", "-"), "lammps-coeff-restitution": ("C1", "--")}
+
+
+def _columns(ds):
+    if "T" not in ds.dims:
+        return [None]
+    n = ds.sizes["T"]
+    return sorted({int(i) for i in np.linspace(0, n - 1, min(4, n)).round()})
+
+
+def dem(ds):
+    """vcor's COR (black) and each DEM law's curve against v0 (top), law minus vcor (bottom), one
+    column per temperature (up to four); the titles give each law's largest error."""
+    cols = _columns(ds)
+    fig, axes = plt.subplots(2, len(cols), figsize=(4.2 * len(cols) + 1.0, 6.0), layout="constrained",
+                             sharex=True, squeeze=False, gridspec_kw={"height_ratios": [3, 2]})
+    models = [str(m) for m in ds["model"].values]
+    v0 = ds["v0"].values
+    for j, it in enumerate(cols):
+        sel = ds if it is None else ds.isel(T=it)
+        top, bottom = axes[0, j], axes[1, j]
+        ok = sel["status"].values == 0
+        top.plot(v0, sel["cor"].values, "k-o", ms=3, label="vcor (hereditary)")
+        mark_failed(top, v0, ok)
+        bottom.axhspan(-0.01, 0.01, color="0.9")
+        bottom.axhline(0.0, color="0.5", lw=0.8)
+        drawn = set()
+        for m in models:
+            if m == "table":
+                continue
+            key = "brilliantov" if m in _BRILLIANTOV else m
+            if key in drawn:
+                continue
+            drawn.add(key)
+            colour, ls = _STYLE.get(key, ("C2", ":"))
+            names = ", ".join(x for x in _BRILLIANTOV if x in models) if key == "brilliantov" else m
+            err = float(sel["max_abs_error"].sel(model=m))
+            top.plot(v0, sel["cor_model"].sel(model=m).values, color=colour, ls=ls,
+                     label=f"{names} (max error {err:.2g})")
+            bottom.plot(v0, sel["error"].sel(model=m).values, color=colour, ls=ls)
+        top.set_ylabel("COR")
+        bottom.set_ylabel("law - vcor")
+        bottom.set_xlabel("impact speed v0 [m/s]")
+        if v0.max() / v0.min() > 5:
+            bottom.set_xscale("log")
+        top.set_title(f"T = {float(ds['T'].values[it]):g} °C" if it is not None else ds.attrs.get("dem", ""),
+                      fontsize=9)
+        if j == 0:
+            top.legend(fontsize=7, loc="lower left")
+    contact = json.loads(ds.attrs.get("contact", "{}"))
+    fig.suptitle(f"DEM entry {ds.attrs.get('dem', '')}: {contact.get('kind', '')}, m_eff = "
+                 f"{contact.get('m_eff_kg', float('nan')):.3g} kg, R_eff = {contact.get('r_eff_m', float('nan')):.3g} m",
+                 fontsize=10)
+    return fig

@@ -1,0 +1,143 @@
+"""The config's ``dem:`` block: one entry per collision handed to DEM codes (:mod:`vcor.dem`).
+
+::
+
+    dem:
+      <name>:
+        sphere: {material: <name or spec>, r: 0.005, rho: 1200, nu: 0.45}   # material required
+        target: {sphere: {...}}       # or rigid, or {plate: {material, h, rho, nu}}
+        v0: {start: 0.1, stop: 10, num: 25, log: true}                      # or a list, m/s
+        T: [0, 20, 40]                # optional, deg C: materials with a shift function
+        models: [lammps-viscoelastic, ...]   # optional: every law of vcor.dem.laws.MODELS
+        solver: {...}                 # optional solver options (default method adaptive)
+
+``sphere.material`` is a name of the project's catalogue (preset, config material, fit or
+calibration) or an inline spec ``{model: ...}``; a target sphere without ``material`` is the
+sphere's twin. :func:`check_dem` checks an entry before any job (every message names the key);
+:func:`run_dem` is the job: the collisions at every temperature and the laws fitted to each.
+"""
+
+from __future__ import annotations
+
+from ..contact.impact import make_impact
+from ..contact.pair import target_inputs
+from ..dem.fit import collision, fit_laws
+from ..dem.laws import MODELS
+from ..materials.catalogue import Catalogue
+from ..materials.shift import at_temperature
+from ..materials.specs import from_spec, shift_function
+from ..solvers.options import SolverOptions
+from .scene import axis_values
+
+__all__ = ["DEM_KEYS", "check_dem", "dem_material", "run_dem"]
+
+#: keys of a dem entry
+DEM_KEYS = {"sphere", "target", "v0", "T", "models", "solver"}
+
+
+def _where(name: str) -> str:
+    return f"dem.{name}"
+
+
+def dem_material(spec: dict, catalogue: Catalogue, T: float | None = None, where: str = "dem"):
+    """(material, shift function or None) of an entry's ``sphere.material`` at temperature T (deg C)."""
+    value = (spec.get("sphere") or {}).get("material")
+    if isinstance(value, str):
+        catalogue.check(value, f"{where}.sphere.material")
+        shift = catalogue.shift(value)
+        material = catalogue.material(value)
+        name = value
+    elif isinstance(value, dict):
+        material = from_spec(value, name="sphere", base_dir=catalogue.base_dir, where=f"{where}.sphere.material")
+        shift = shift_function(value, f"{where}.sphere.material") if "shift" in value else None
+        name = f"{where}.sphere.material"
+    else:
+        raise ValueError(f"{where}.sphere.material: a material name or a spec {{model: ...}}, got {value!r}")
+    if T is not None:
+        material = at_temperature(material, shift, T, name)
+    return material, shift
+
+
+def _speeds(spec, where):
+    try:
+        v0 = axis_values(spec["v0"])
+    except (ValueError, KeyError, TypeError) as exc:
+        raise ValueError(f"{where}.v0: {exc}") from None
+    if isinstance(spec["v0"], dict) and float(spec["v0"]["stop"]) <= float(spec["v0"]["start"]):
+        raise ValueError(f"{where}.v0: a range from low to high speed (stop > start), got {spec['v0']!r}")
+    if v0[0] <= 0:
+        raise ValueError(f"{where}.v0: impact speeds must be > 0 m/s, got {v0[0]}")
+    if len(v0) < 2:
+        raise ValueError(f"{where}.v0: at least two speeds (the laws are fitted over a range), got {v0}")
+    return v0
+
+
+def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
+    """Everything about one entry that can be checked before its job (module docstring)."""
+    where = _where(name)
+    if not isinstance(spec, dict):
+        raise ValueError(f"{where}: a mapping with keys {sorted(DEM_KEYS)}, got {spec!r}")  # noqa: TRY004 (config values)
+    unknown = set(spec) - DEM_KEYS
+    if unknown or "sphere" not in spec or "v0" not in spec:
+        raise ValueError(f"{where}: keys {sorted(DEM_KEYS)} (sphere and v0 required); unknown {sorted(unknown)}")
+    sphere = spec["sphere"]
+    if not isinstance(sphere, dict) or "material" not in sphere:
+        raise ValueError(f"{where}.sphere: a mapping {{material, r, rho, nu}} with a material, got {sphere!r}")
+    target = spec.get("target", "rigid")
+    if not (target == "rigid" or (isinstance(target, dict) and len(target) == 1
+                                  and next(iter(target)) in ("sphere", "plate"))):
+        raise ValueError(f"{where}.target: rigid, {{sphere: {{...}}}} or {{plate: {{...}}}} (one kind), got {target!r}")
+    models = spec.get("models", list(MODELS))
+    if not isinstance(models, list) or not models or not set(models) <= set(MODELS):
+        raise ValueError(f"{where}.models: a list of DEM models of {list(MODELS)}, got {models!r}")
+    v0 = _speeds(spec, where)
+    try:
+        options = SolverOptions(**(spec.get("solver") or {}))
+    except ValueError as exc:
+        raise ValueError(f"{where}.solver: {exc}") from None
+    temps = [None]
+    if "T" in spec:
+        try:
+            temps = axis_values(spec["T"])
+        except (ValueError, TypeError) as exc:
+            raise ValueError(f"{where}.T: {exc}") from None
+    value = sphere["material"]
+    if isinstance(value, str) and value in catalogue.computed():
+        catalogue.check(value, f"{where}.sphere.material")
+        return  # a fit's or calibration's file is written by its rule: its values are checked by the job
+    if temps != [None] and dem_material(spec, catalogue, where=where)[1] is None:
+        raise ValueError(f"{where}.T: the sphere's material has no shift function (a temperature sweep needs "
+                         f"one: materials.<name>.shift, or shift: in the inline spec)")
+    for T in (temps[0], temps[-1]):
+        try:
+            material, _ = dem_material(spec, catalogue, T, where)
+        except ValueError as exc:
+            raise ValueError(f"{where}.T: {exc}" if T is not None else str(exc)) from None
+        body = {k: sphere[k] for k in ("r", "rho", "nu") if k in sphere}
+        geometry = {k: body[s] for k, s in (("r", "r"), ("rho_a", "rho"), ("nu", "nu")) if s in body}
+        for v in (v0[0], v0[-1]):
+            try:
+                mat, geo = target_inputs(material, target, geometry)
+                make_impact(mat, v, geo)
+            except ValueError as exc:
+                raise ValueError(f"{where}: {exc}") from None
+            if mat.kind == "eq1" and options.method not in ("direct", "paper"):
+                raise ValueError(f"{where}.solver.method: two spheres of different viscoelastic materials combine by "
+                                 f"Eq. 1 pointwise in time, which only direct solves: set solver: {{method: direct}}")
+
+
+def run_dem(name: str, spec: dict, catalogue: Catalogue):
+    """(collisions, fitted laws, temperatures or None) of one entry: the job of the workflow's dem rule."""
+    where = _where(name)
+    v0 = _speeds(spec, where)
+    temps = axis_values(spec["T"]) if "T" in spec else None
+    sphere = {k: v for k, v in spec["sphere"].items() if k != "material"}
+    models = spec.get("models", list(MODELS))
+    collisions, fits = [], []
+    for T in temps or [None]:
+        material, _ = dem_material(spec, catalogue, T, where)
+        col = collision(material, v0, sphere=sphere, target=spec.get("target", "rigid"), options=spec.get("solver"))
+        collisions.append(col)
+        fits.append(fit_laws(col, models))
+    return collisions, fits, temps
+

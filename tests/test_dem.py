@@ -1,0 +1,155 @@
+"""The DEM bridge (docs, "DEM codes"): particle-particle collisions, each DEM law fitted to vcor's
+COR with its error, the dataset and table, and bad dem: entries refused before any job."""
+
+import math
+
+import numpy as np
+import pytest
+import yaml
+
+import vcor
+from vcor import materials as M
+from vcor.dem import export, fit, laws
+from vcor.study.config import load_project
+
+KV = M.KelvinVoigt(15e6, 1e-4)
+
+
+@pytest.mark.parametrize("material", ["sls", "butyl-prony3", "kelvin-voigt", "butyl-fc"])
+@pytest.mark.parametrize("method", ["adaptive", "direct"])
+def test_two_equal_spheres_are_one_half_sphere_on_a_rigid_target(material, method):
+    """Two equal spheres (R, rho) give the COR of one sphere of radius R/2 and density 4 rho on a rigid
+    target with the modulus halved, to 1e-9, in every method that solves the material."""
+    r, rho, nu = 0.01, 1100.0, 0.45
+    pair = vcor.simulate(material, 5.0, target={"sphere": {}}, r=r, rho_a=rho, nu=nu, method=method)
+    half = vcor.simulate(M.get(material).scaled(0.5), 5.0, rigid=True, r=r / 2, rho_a=4 * rho, nu=nu, method=method)
+    assert pair.ok and half.ok
+    assert abs(pair.cor - half.cor) < 1e-9 and abs(pair.t0 / half.t0 - 1) < 1e-9
+
+
+def test_target_keyword():
+    """``target``: rigid is the default geometry with rigid=True; a twin sphere by default; a sphere of
+    another material combines by Eq. 1 (direct); bad targets are refused naming them."""
+    assert vcor.simulate("sls", 5.0, target="rigid").cor == vcor.simulate("sls", 5.0, rigid=True).cor
+    twin = vcor.simulate("sls", 5.0, target={"sphere": {}}, r=0.01)
+    same = vcor.simulate("sls", 5.0, target={"sphere": {"material": "sls", "r": 0.01, "rho": 1100.0, "nu": 0.5}},
+                         r=0.01)
+    assert twin.cor == same.cor
+    mixed = vcor.simulate("sls", 5.0, target={"sphere": {"material": "butyl-prony3"}}, method="direct")
+    assert mixed.ok and mixed.cor != twin.cor
+    with pytest.raises(ValueError, match="Eq. 1"):
+        vcor.simulate("sls", 5.0, target={"sphere": {"material": "butyl-prony3"}})
+    for bad, words in [({"sphere": {}, "plate": {}}, "one kind"), ("wall", "target must be"),
+                       ({"sphere": {"radius": 1}}, "radius")]:
+        with pytest.raises(ValueError, match=words):
+            vcor.simulate("sls", 5.0, target=bad)
+    with pytest.raises(ValueError, match=r"\['h'\]"):
+        vcor.simulate("sls", 5.0, target={"sphere": {}}, h=0.01)
+
+
+def test_kelvin_voigt_pair_is_the_brilliantov_law():
+    """A Kelvin-Voigt sphere pair: the hereditary law is Brilliantov's, so lammps-viscoelastic fits it to
+    1e-4 over 0.01..10 m/s, with A = tau and eta_n0 = 2 E_eff tau / m_eff (closed form)."""
+    v0 = np.geomspace(0.01, 10.0, 25)
+    col = fit.collision(KV, v0, sphere={"r": 0.005, "rho": 1200.0, "nu": 0.45}, target={"sphere": {}})
+    laws_ = fit.fit_laws(col)
+    e_eff = 15e6 / (2 * (1 - 0.45**2))
+    m_eff = 1200.0 * 4 / 3 * math.pi * 0.005**3 / 2
+    closed = 2 * e_eff * 1e-4 / m_eff
+    err = np.max(np.abs(laws_["lammps-viscoelastic"]["cor"] - col.cor))
+    print(f"\nKelvin-Voigt pair: max error {err:.2e}, eta_n0 {laws_['lammps-viscoelastic']['eta_n0']:.8g} "
+          f"(closed form {closed:.8g}), A {laws_['mercurydpm-bshp']['A']:.8g} s")
+    assert err <= 1e-4
+    assert col.contact.e_eff == pytest.approx(e_eff, rel=1e-12) and col.contact.m_eff == pytest.approx(m_eff, rel=1e-12)
+    assert laws_["lammps-viscoelastic"]["eta_n0"] == pytest.approx(closed, rel=1e-5)
+    assert laws_["mercurydpm-bshp"]["A"] == pytest.approx(1e-4, rel=1e-5)
+    assert laws_["yade-mindlin"]["vn"] == pytest.approx(math.sqrt(0.01 * 10.0))
+    # Yade's en at vn maps back to the same A through the Pade (the law Yade applies)
+    b = col.contact.b(laws_["mercurydpm-bshp"]["A"], laws_["yade-mindlin"]["vn"])
+    assert laws_["yade-mindlin"]["en"] == pytest.approx(float(vcor.spheres.cor_pade_force(b)), rel=1e-12)
+
+
+def test_a_hereditary_curve_the_one_parameter_laws_cannot_follow():
+    """The paper's SLS, sphere on a rigid wall: its COR rises with speed where every Brilliantov curve
+    falls; the dataset says by how much (the numbers the docs quote are printed here)."""
+    v0 = np.geomspace(0.1, 10.0, 13)
+    col = fit.collision("sls", v0, sphere={"r": 0.005}, target="rigid")
+    laws_ = fit.fit_laws(col)
+    ds = export.dem_dataset("t", [col], [laws_])
+    errs = {m: float(ds["max_abs_error"].sel(model=m)) for m in laws.MODELS}
+    print("\nSLS on a wall, 0.1..10 m/s: max abs error " + ", ".join(f"{m} {e:.3f}" for m, e in errs.items()))
+    assert np.all(np.diff(col.cor) > 0)  # rising
+    assert errs["table"] == 0.0
+    assert errs["lammps-viscoelastic"] == errs["mercurydpm-bshp"] == errs["yade-mindlin"] > 0.05
+    assert 0.0 < errs["lammps-coeff-restitution"] < errs["lammps-viscoelastic"]
+    assert laws_["lammps-coeff-restitution"]["e"] == pytest.approx(float(np.mean(col.cor)))
+
+
+def test_dataset_layout_units_and_the_within_range():
+    v0 = np.geomspace(0.1, 10.0, 5)
+    col = fit.collision("sls", v0, sphere={"r": 0.005}, target={"sphere": {}})
+    ds = export.dem_dataset("t", [col], [fit.fit_laws(col)])
+    assert list(ds["model"].values) == list(laws.MODELS)
+    assert ds["cor_model"].dims == ("model", "v0") and ds["cor"].dims == ("v0",)
+    for var, unit in [("cor", "1"), ("eta_n0", "m-1 s-1"), ("A", "s"), ("e", "1"), ("vn", "m s-1"), ("E_lammps", "Pa"),
+                      ("v0_within_lo", "m s-1"), ("v0", "m s-1")]:
+        assert ds[var].attrs["units"] == unit, var
+    np.testing.assert_array_equal(ds["error"].values, ds["cor_model"].values - ds["cor"].values[None, :])
+    assert export.within_range(np.arange(6.0), np.array([0.02, 0.0, 0.005, 0.02, 0.0, 0.0])) == (1.0, 2.0)
+    assert all(math.isnan(x) for x in export.within_range(np.arange(2.0), np.array([0.5, 0.5])))
+
+
+BASE = {"dem": {"d": {"sphere": {"material": "sls", "r": 0.005}, "target": {"sphere": {}},
+                      "v0": {"start": 0.1, "stop": 10, "num": 5, "log": True}}}}
+
+
+def _with(**changes):
+    cfg = yaml.safe_load(yaml.safe_dump(BASE))
+    cfg["dem"]["d"].update(changes)
+    return cfg
+
+
+@pytest.mark.parametrize("cfg, words", [
+    (_with(target={"sphere": {}, "plate": {}}), ["dem.d.target", "one kind"]),
+    (_with(v0={"start": 10, "stop": 0.1, "num": 5}), ["dem.d.v0", "stop > start"]),
+    (_with(v0=[0.0, 1.0]), ["dem.d.v0", "> 0 m/s"]),
+    (_with(v0=[1.0]), ["dem.d.v0", "at least two"]),
+    (_with(T=[0, 20]), ["dem.d.T", "no shift function"]),
+    (_with(models=["lammps-hooke"]), ["dem.d.models", "lammps-viscoelastic"]),
+    (_with(sphere={"material": "rubber"}), ["dem.d.sphere.material", "rubber"]),
+    (_with(sphere={"r": 0.005}), ["dem.d.sphere", "material"]),
+    (_with(target={"sphere": {"material": "butyl-prony3"}}), ["dem.d.solver.method", "direct"]),
+    (_with(speed=3), ["dem.d", "speed"]),
+    (_with(sphere={"material": {"model": "prony", "file": "../x.nc"}}), ["dem.d.sphere.material.file", "inside"]),
+], ids=["two kinds", "reversed range", "zero speed", "one speed", "T without shift", "unknown model",
+        "unknown material", "no material", "Eq. 1 needs direct", "unknown key", "file outside"])
+def test_bad_dem_entries_are_refused_before_any_job(cfg, words):
+    with pytest.raises(ValueError) as err:
+        load_project(cfg, ".")
+    for w in words:
+        assert w in str(err.value), (w, str(err.value))
+
+
+def test_a_temperature_entry_fits_every_law_per_temperature():
+    spec = {"sphere": {"material": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200,
+                                    "shift": {"model": "wlf", "C1": 8.0, "C2": 120.0, "T_ref": 20.0}}, "r": 0.005},
+            "target": "rigid", "v0": [0.5, 2.0, 8.0], "T": [0.0, 20.0, 40.0]}
+    project = load_project({"dem": {"hot": spec}}, ".")
+    from vcor.study import dem
+
+    cols, fits, temps = dem.run_dem("hot", spec, project.catalogue)
+    ds = export.dem_dataset("hot", cols, fits, temps)
+    assert ds["eta_n0"].dims == ("T",) and ds["cor_model"].dims == ("T", "model", "v0")
+    at20 = fit.collision("sls", [0.5, 2.0, 8.0], sphere={"r": 0.005, "rho": 1100.0, "nu": 0.5}, target="rigid")
+    np.testing.assert_array_equal(ds["cor"].sel(T=20.0).values, at20.cor)  # T_ref: the material as given
+    assert len(set(np.round(ds["eta_n0"].values, 6))) == 3  # one value per temperature
+
+
+def test_a_corrupt_dem_dataset_is_found_by_the_archive_check(tmp_path):
+    from vcor.study import archive
+
+    project = load_project(BASE, str(tmp_path))
+    path = tmp_path / "results" / "dem" / "d.nc"
+    path.parent.mkdir(parents=True)
+    path.write_bytes(b"not a NetCDF file")
+    assert [p for p, _ in archive.problems(project, tmp_path)] == [path]

@@ -1,0 +1,16 @@
+"""One dem: entry (thin: vcor.study.dem and vcor.dem): the collision's COR, the DEM laws fitted to it,
+the dataset and the COR table."""
+
+from vcor.dem import export
+from vcor.io import netcdf
+from vcor.io.joblog import job_log
+from vcor.materials import Catalogue
+from vcor.study import dem
+
+smk = snakemake  # noqa: F821
+with job_log(smk):
+    name, spec = smk.wildcards.dem, smk.params.spec
+    collisions, fits, temps = dem.run_dem(name, spec, Catalogue(**smk.params.catalogue))
+    ds = export.dem_dataset(name, collisions, fits, temps, config=spec)
+    netcdf.write_dataset(ds, smk.output.nc, title=f"vcor DEM parameters, {name}", command="snakemake rule dem")
+    export.table_csv(smk.output.table, collisions, temps)
