@@ -1,118 +1,115 @@
-"""The adaptive method against direct (issue 11's benchmark table): per impact, thin plates, cost
-against plate thickness, sweep throughput inside one shard.
+"""The adaptive method against direct: per impact, where the time of one impact goes, exponential
+modes, a fresh process's first impact, cost against plate thickness, level-table builds, sweep
+throughput inside one shard.
 
-Prints tables of medians (this machine is shared: read ratios). Run: python benchmarks/bench_adaptive.py
-[section ...] (default: all; sections per_impact breakdown mode_counts cold thickness table_builds throughput)
+Every section runs in fresh processes with an empty numba cache, once per run; sections of warm calls
+time them after one untimed call; cells give the median over runs (min–max).
+
+Run: python benchmarks/bench_adaptive.py [section ...] [--runs 2] [--quick] [--out FILE]
+     (default: all sections: per_impact breakdown mode_counts cold thickness table_builds throughput)
 """
 
 from __future__ import annotations
 
-import subprocess
+import json
 import sys
-import tempfile
 import time
 
 import numpy as np
-from timing import cold_process, median_time
+import timing
 
 import vcor
-from vcor import runner, scene
-from vcor.options import solver_options
-from vcor.soe import soe
+from vcor.contact.impact import make_impact
+from vcor.materials.expsums import soe
 from vcor.solvers.adaptive import level_tables, run_adaptive
-from vcor.solvers.simulate import make_impact
+from vcor.solvers.options import solver_options
+from vcor.study import runner, scene
 
-#: calls per median in the per-impact table (15 before 2026-11-23: too few on a shared machine)
-PER_IMPACT_CALLS = 101
-
-
-def per_impact():
-    print("per impact at default settings, v0 = 10 m/s, whole simulate call (direct: 2000 steps per contact-time "
-          "estimate; adaptive: its defaults, step_tol 3e-4 with Richardson extrapolation from three grids)")
-    print(f"{'material':14s} {'direct [ms]':>12s} {'adaptive [ms]':>14s} {'adaptive/direct':>16s} {'steps d/a':>12s}")
-    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
-        td = median_time(lambda n=name: vcor.simulate(n, 10.0), PER_IMPACT_CALLS)
-        ta = median_time(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), PER_IMPACT_CALLS)
-        sd, sa = vcor.simulate(name, 10.0).steps, vcor.simulate(name, 10.0, method="adaptive").steps
-        print(f"{name:14s} {td * 1e3:12.3f} {ta * 1e3:14.3f} {ta / td:16.3f} {sd:>6d}/{sa:<6d}")
-    print()
+MATERIALS = ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3")
+c = timing.cell
 
 
-def breakdown():
-    print("where the time of one adaptive impact goes (v0 = 10 m/s, warm, medians of 200 calls): set-up = options,")
-    print("impact and contact-time estimate; one march = run_adaptive without extrapolation (the accepted grid and")
-    print("its result); three marches = run_adaptive as simulate calls it (grid, halved, quartered, extrapolation)")
-    print(f"{'material':14s} {'simulate [us]':>14s} {'set-up [us]':>12s} {'three marches [us]':>19s} "
-          f"{'one march [us]':>15s} {'steps (grid/all)':>17s} {'modes':>6s}")
-    print("(modes: terms of the exponential sum on [t_c / 2^18, 256 t_c], about the range the march uses)")
+def _calls(args, full, quick):
+    return quick if args.quick else full
+
+
+# --- sections measured inside a fresh process (a worker): return JSON-able results -------------------
+
+def measure_per_impact(args):
+    calls = _calls(args, 101, 11)
+    out = {}
+    for name in MATERIALS:
+        td, rd = timing.warm_timed(lambda n=name: vcor.simulate(n, 10.0, method="direct"), calls)
+        ta, ra = timing.warm_timed(lambda n=name: vcor.simulate(n, 10.0, method="adaptive"), calls)
+        out[name] = {"direct": td, "adaptive": ta, "steps": [rd.steps, ra.steps]}
+    return {"calls": calls, "materials": out}
+
+
+def measure_breakdown(args):
+    calls = _calls(args, 200, 20)
     opts = vcor.SolverOptions(method="adaptive")
-    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
+    kw = {"step_tol": opts.step_tol, "max_steps": opts.max_adaptive_steps, "tol": opts.soe_tol}
+    out = {}
+    for name in MATERIALS:
         imp = make_impact(name, 10.0, {})
         tc = imp.contact_time_estimate()
-        kw = {"step_tol": opts.step_tol, "max_steps": opts.max_adaptive_steps, "tol": opts.soe_tol}
-        whole = median_time(lambda n=name: vcor.simulate(n, 10.0, options=opts), 200)
-        setup = median_time(lambda n=name: (solver_options(method="adaptive"),
-                                            make_impact(n, 10.0, {}).contact_time_estimate()), 200)
-        three = median_time(lambda i=imp, t=tc, k=kw: run_adaptive(i, t, extrapolate=True, **k), 200)
-        one = median_time(lambda i=imp, t=tc, k=kw: run_adaptive(i, t, **k), 200)
-        steps = (run_adaptive(imp, tc, **kw).steps, run_adaptive(imp, tc, extrapolate=True, **kw).steps)
-        modes = soe(imp.material, tc * 2.0**-18, 256.0 * tc, opts.soe_tol).n_terms
-        print(f"{name:14s} {whole * 1e6:14.0f} {setup * 1e6:12.0f} {three * 1e6:19.0f} {one * 1e6:15.0f} "
-              f"{steps[0]:>8d}/{steps[1]:<8d} {modes:6d}")
-    print()
+        w = timing.warm_median
+        out[name] = {
+            "simulate": w(lambda n=name: vcor.simulate(n, 10.0, options=opts), calls),
+            "setup": w(lambda n=name: (solver_options(method="adaptive"),
+                                       make_impact(n, 10.0, {}).contact_time_estimate()), calls),
+            "three": w(lambda i=imp, t=tc: run_adaptive(i, t, extrapolate=True, **kw), calls),
+            "one": w(lambda i=imp, t=tc: run_adaptive(i, t, **kw), calls),
+            "steps": [run_adaptive(imp, tc, **kw).steps, run_adaptive(imp, tc, extrapolate=True, **kw).steps],
+            "modes": soe(imp.material, tc * 2.0**-18, 256.0 * tc, opts.soe_tol).n_terms}
+    return {"calls": calls, "materials": out}
 
 
-def mode_counts():
-    print("modes of the exponential sums (v0 = 10 m/s): all = on the range of the one-call path's tables,")
-    print("[h_base / 4, 2 x horizon] = [t_c 2^-18, 256 t_c] in powers of two; slow = of those, beta t_max < 1e-3")
-    print("(nearly constant over the whole horizon); a sum ending at 8 t_c instead; live = modes a step")
-    print("touches on the coarsest / finest level (rows 0 and last of the tables)")
-    print(f"{'material':14s} {'all':>5s} {'slow':>5s} {'to 8 t_c':>9s} {'live finest/coarsest':>21s}")
-    opts = vcor.SolverOptions(method="adaptive")
+def measure_mode_counts(args):
+    tol = vcor.SolverOptions(method="adaptive").soe_tol
+    out = {}
     for name in ("butyl-fc", "butyl-cerf"):
         imp = make_impact(name, 10.0, {})
         top = 2.0 ** np.floor(np.log2(imp.contact_time_estimate()))
         t_max = 256.0 * top
-        rep = soe(imp.material, top * 2.0**-18, t_max, opts.soe_tol)
-        slow = int(np.sum(np.asarray(rep.material.beta) * t_max < 1e-3))
-        short = soe(imp.material, top * 2.0**-18, 8.0 * top, opts.soe_tol).n_terms
-        tab = level_tables(imp.material, float(imp.kappa), top * 2.0**-18, 22, t_max, opts.soe_tol)
-        print(f"{name:14s} {rep.n_terms:5d} {slow:5d} {short:9d} {tab['live'][0]:>10d}/{tab['live'][-1]:<10d}")
-    print()
+        rep = soe(imp.material, top * 2.0**-18, t_max, tol)
+        live = level_tables(imp.material, float(imp.kappa), top * 2.0**-18, 22, t_max, tol).levels.live_modes
+        out[name] = {"all": rep.n_terms, "slow": int(np.sum(np.asarray(rep.material.beta) * t_max < 1e-3)),
+                     "short": soe(imp.material, top * 2.0**-18, 8.0 * top, tol).n_terms,
+                     "live": [int(live[0]), int(live[-1])]}
+    return out
 
 
-def cold():
-    print("fresh process (import vcor, one simulate('sls', 10.0)), numba cache empty (compiles) / filled:")
-    for label, options in (("direct", "dt=1e-6"), ("adaptive", "method='adaptive'")):
-        with tempfile.TemporaryDirectory() as d:
-            empty = cold_process({"NUMBA_CACHE_DIR": d}, options)[0]
-            filled = cold_process({"NUMBA_CACHE_DIR": d}, options)[0]
-        print(f"{label:10s} {empty:6.2f} s / {filled:5.2f} s")
-    print()
+def measure_thickness(args):
+    calls = _calls(args, 5, 2)
+    out = {"calls": calls,
+           "standard": timing.warm_median(lambda: vcor.simulate("sls", 10.0, method="adaptive"), 9), "rows": []}
+    for h in np.geomspace(1e-3, 1.0, 3 if args.quick else 7):
+        ta, ra = timing.warm_timed(lambda hh=h: vcor.simulate("sls", 10.0, h=hh, method="adaptive"), calls)
+        td, rd = timing.warm_timed(lambda hh=h: vcor.simulate("sls", 10.0, h=hh, method="direct"), 1)
+        out["rows"].append({"h": h, "status": ra.status, "t0": ra.t0, "cor": ra.cor, "steps": ra.steps, "adaptive": ta,
+                            "direct_status": rd.status, "direct": td})
+    return out
 
 
-def thickness():
-    print("cost against plate half-thickness h (sls, v0 = 10 m/s): adaptive; direct for comparison")
-    print(f"{'h [mm]':>8s} {'status':>7s} {'t0 [s]':>10s} {'COR':>10s} {'steps':>7s} {'adaptive [s]':>13s} "
-          f"{'direct status':>14s} {'direct [s]':>11s}")
-    standard = median_time(lambda: vcor.simulate("sls", 10.0, method="adaptive"), 9)
-    for h in np.geomspace(1e-3, 1.0, 7):
-        ra = vcor.simulate("sls", 10.0, h=h, method="adaptive")
-        ta = median_time(lambda hh=h: vcor.simulate("sls", 10.0, h=hh, method="adaptive"), 5)
-        t = time.perf_counter()
-        rd = vcor.simulate("sls", 10.0, h=h)
-        td = time.perf_counter() - t
-        print(f"{h * 1e3:8.2f} {ra.status:>7s} {ra.t0:10.4g} {ra.cor:10.3e} {ra.steps:7d} {ta:13.4f} {rd.status:>14s} "
-              f"{td:11.4f}")
-    thin = median_time(lambda: vcor.simulate("sls", 10.0, h=1e-3, method="adaptive"), 5)
-    print(f"thin plate h = 1 mm / standard impact (h = 2 r = 20 mm), adaptive: {thin / standard:.1f}x "
-          f"({thin * 1e3:.2f} ms / {standard * 1e3:.3f} ms)")
-    print()
+def measure_table_builds(args):
+    n_ranges = _calls(args, 20, 5)
+    out = {"ranges": n_ranges, "materials": {}}
+    for name in MATERIALS:
+        imp = make_impact(name, 10.0, {})
+        ts = []
+        for k in range(8, 9 + n_ranges):  # a different range each time: nothing cached; the first untimed
+            top = 2.0**-k
+            t = time.perf_counter()
+            level_tables(imp.material, float(imp.kappa), top * 2.0**-18, 22, 256.0 * top, 1e-10)
+            ts.append(time.perf_counter() - t)
+        out["materials"][name] = float(np.median(ts[1:]))
+    return out
 
 
-def _throughput_scenes():
+def _throughput_scenes(quick):
     scenes = {}
-    for n_v0, n_b in ((30, 50), (250, 334)):
+    for n_v0, n_b in ((30, 50),) if quick else ((30, 50), (250, 334)):
         scenes[f"sls, v0 1..30 ({n_v0}) x beta (4)"] = {
             "materials": ["sls"], "grid": {"v0": list(np.linspace(1.0, 30.0, n_v0)), "beta": [600, 1200, 2400, 4800]},
             "tie": {"alpha": {"to": "beta", "ratio": 0.25}}}
@@ -125,56 +122,139 @@ def shard_wall(label, method):
     """(points, wall time [s], level tables built) of run_points over the scene ``label`` in this
     process, after a 3-point warm-up (compiles; the other materials' and step ranges' tables are
     built in the run)."""
-    s2 = {**_throughput_scenes()[label], "solver": {"method": method}}
+    s2 = {**_throughput_scenes(False)[label], "solver": {"method": method}}
     pts = scene.scene_points(s2)
     settings = scene.settings_of(s2)
     runner.run_points(pts[:3], settings)  # JIT
     built = level_tables.cache_info().misses
     t = time.perf_counter()
     runner.run_points(pts, settings)
-    return len(pts), time.perf_counter() - t, level_tables.cache_info().misses - built
+    return {"points": len(pts), "wall": time.perf_counter() - t, "built": level_tables.cache_info().misses - built}
 
 
-def table_builds():
-    print("level tables of one (material, step range) pair, as a sweep point on a new power of two of t_c")
-    print("builds them (exponential sum with its check, per-level weights): medians over 20 ranges")
-    print(f"{'material':14s} {'build [ms]':>11s}")
-    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
-        imp = make_impact(name, 10.0, {})
-        ts = []
-        for k in range(8, 28):  # a different range each time: nothing cached
-            top = 2.0**-k
-            t = time.perf_counter()
-            level_tables(imp.material, float(imp.kappa), top * 2.0**-18, 22, 256.0 * top, 1e-10)
-            ts.append(time.perf_counter() - t)
-        print(f"{name:14s} {np.median(ts) * 1e3:11.2f}")
-    print()
+MEASURE = {"per_impact": measure_per_impact, "breakdown": measure_breakdown, "mode_counts": measure_mode_counts,
+           "thickness": measure_thickness, "table_builds": measure_table_builds}
 
 
-def throughput():
-    print("sweep throughput inside one shard (runner.run_points: validation, solve, dataset; each in a fresh")
-    print("process after a 3-point warm-up that compiles: the tables of the other materials and step ranges")
-    print("are built inside the timed run, as in a shard); 1000 points is config.yaml's shard_size")
-    print(f"{'scene':36s} {'points':>7s} {'method':>9s} {'wall [s]':>9s} {'points/s':>9s} {'tables built':>13s}")
-    for label in _throughput_scenes():
+# --- the sections' tables --------------------------------------------------------------------------
+
+def by_material(args, section):
+    """(the section's results over RUNS fresh workers, {material: its results over the runs})."""
+    res = timing.worker_runs(args.runs, section, *args.flags)
+    return res, {name: timing.column(res, "materials", name) for name in MATERIALS}
+
+
+def per_impact(args):
+    res, by = by_material(args, "per_impact")
+    rows = []
+    for name, runs in by.items():
+        td, ta = [r["direct"] for r in runs], [r["adaptive"] for r in runs]
+        rows.append([name, c(td, 1e3, ".3f"), c(ta, 1e3, ".3f"), c([a / d for a, d in zip(ta, td)], 1.0, ".3f"),
+                     "/".join(map(str, runs[0]["steps"]))])
+    return [f"Per impact at default settings, v0 = 10 m/s, whole simulate call, warm: median of {res[0]['calls']} "
+            "calls after one untimed call (direct: 2000 steps per contact-time estimate; adaptive: its defaults, "
+            "step_tol 3e-4 with Richardson extrapolation from three grids).",
+            timing.table(["material", "direct [ms]", "adaptive [ms]", "adaptive / direct", "steps direct/adaptive"],
+                         rows)]
+
+
+def breakdown(args):
+    res, by = by_material(args, "breakdown")
+    rows = []
+    for name, runs in by.items():
+        rows.append([name] + [c([r[k] for r in runs], 1e6, ".0f") for k in ("simulate", "setup", "three", "one")]
+                    + ["/".join(map(str, runs[0]["steps"])), runs[0]["modes"]])
+    return [f"Where the time of one adaptive impact goes (v0 = 10 m/s, warm: median of {res[0]['calls']} calls after "
+            "one untimed call): set-up = options, impact and contact-time estimate; one march = run_adaptive "
+            "without extrapolation; three marches = run_adaptive as simulate calls it (grid, halved, quartered, "
+            "extrapolation); modes: terms of the exponential sum on [t_c / 2^18, 256 t_c].",
+            timing.table(["material", "simulate [µs]", "set-up [µs]", "three marches [µs]", "one march [µs]",
+                          "steps (grid/all)", "modes"], rows)]
+
+
+def mode_counts(args):
+    res = timing.worker_runs(1, "mode_counts", *args.flags)[0]  # counts, not timings: one run
+    rows = [[name, r["all"], r["slow"], r["short"], "/".join(map(str, r["live"]))] for name, r in res.items()]
+    return ["Modes of the exponential sums (v0 = 10 m/s; counts, not timings): all = on the range of the one-call "
+            "path's tables, [t_c 2^-18, 256 t_c] in powers of two; slow = of those, beta t_max < 1e-3; a sum ending "
+            "at 8 t_c instead; live = modes a step touches on the finest / coarsest level (rows 0 and last of the "
+            "tables).",
+            timing.table(["material", "all", "slow", "to 8 t_c", "live finest/coarsest"], rows)]
+
+
+def cold(args):
+    labels = (("direct, dt = 1 µs", "method='direct', dt=1e-6"), ("adaptive", "method='adaptive'"))
+    res = [{label: timing.cold_and_cached(options) for label, options in labels} for _ in range(args.runs)]
+    rows = [[label, state, c([r[label][state][0] for r in res]), c([r[label][state][1] for r in res])]
+            for label, _ in labels for state in ("empty", "filled")]
+    return ["A fresh process's first impact (import vcor, one simulate('sls', 10.0)): an empty numba cache "
+            "(compiles), then a second fresh process with the cache the first one filled.",
+            timing.table(["method", "numba cache", "process wall [s]", "import + run inside [s]"], rows)]
+
+
+def thickness(args):
+    res = timing.worker_runs(args.runs, "thickness", *args.flags)
+    rows = []
+    for i, r in enumerate(res[0]["rows"]):
+        runs = [x["rows"][i] for x in res]
+        rows.append([f"{r['h'] * 1e3:.2f}", r["status"], f"{r['t0']:.4g}", f"{r['cor']:.3e}", r["steps"],
+                     c([x["adaptive"] for x in runs], 1e3, ".2f"), r["direct_status"],
+                     c([x["direct"] for x in runs], 1e3, ".1f")])
+    thin = [x["rows"][0]["adaptive"] / x["standard"] for x in res]
+    return [f"Cost against plate half-thickness h (sls, v0 = 10 m/s), warm: adaptive the median of {res[0]['calls']} "
+            "calls, direct one call, each after one untimed call.",
+            timing.table(["h [mm]", "status", "t0 [s]", "COR", "steps", "adaptive [ms]", "direct status",
+                          "direct [ms]"], rows),
+            f"Thin plate h = 1 mm against the standard impact (h = 2 r = 20 mm), adaptive: {c(thin, 1.0, '.1f')} times "
+            f"({c(timing.column(res, 'standard'), 1e3, '.3f')} ms for the standard impact, median of 9 warm calls)."]
+
+
+def table_builds(args):
+    res = timing.worker_runs(args.runs, "table_builds", *args.flags)
+    rows = [[name, c(timing.column(res, "materials", name), 1e3, ".2f")] for name in MATERIALS]
+    return [f"Level tables of one (material, step range) pair, as a sweep point on a new power of two of t_c builds "
+            f"them (exponential sum with its check, per-level weights): median over {res[0]['ranges']} new ranges "
+            "after one untimed build.", timing.table(["material", "build [ms]"], rows)]
+
+
+def throughput(args):
+    rows = []
+    for label in _throughput_scenes(args.quick):
         for method in ("adaptive", "direct"):
-            out = subprocess.run([sys.executable, __file__, "--shard", label, method], capture_output=True,
-                                 text=True, check=True)
-            n, wall, built = out.stdout.split()
-            print(f"{label:36s} {int(n):7d} {method:>9s} {float(wall):9.3f} {int(n) / float(wall):9.0f} "
-                  f"{int(built):13d}")
-    print()
+            res = [timing.fresh_json([timing.PYTHON, __file__, "--shard", label, method]) for _ in range(args.runs)]
+            walls = timing.column(res, "wall")
+            rows.append([label, res[0]["points"], method, c(walls, 1.0, ".3f"),
+                         c([res[0]["points"] / w for w in walls], 1.0, ".0f"), res[0]["built"]])
+    return ["Sweep throughput inside one shard (study.runner.run_points: validation, solve, dataset), each in a fresh "
+            "process with an empty numba cache after a 3-point warm-up that compiles (the tables of the other "
+            "materials and step ranges are built inside the timed run, as in a shard).",
+            timing.table(["scene", "points", "method", "wall [s]", "points/s", "tables built"], rows)]
+
+
+SECTIONS = (per_impact, breakdown, mode_counts, cold, thickness, table_builds, throughput)
+
+
+def main():
+    names = [f.__name__ for f in SECTIONS]
+    p = timing.parser(__doc__, quick="fewer calls, sizes and scenes in every section")
+    p.add_argument("sections", nargs="*", metavar="section", help=f"any of {' '.join(names)} (default: all)")
+    args = p.parse_args()
+    unknown = set(args.sections) - set(names)
+    if unknown:
+        p.error(f"unknown section(s) {sorted(unknown)}; choose from {names}")
+    if args.worker:
+        print(json.dumps(MEASURE[args.sections[0]](args)))
+        return
+    args.flags = timing.quick_flags(args)
+    blocks = []
+    for f in SECTIONS:
+        if f.__name__ in (args.sections or names):
+            blocks += [f"**{f.__name__}**", *f(args)]
+    timing.publish(args.out, args.runs, blocks)
 
 
 if __name__ == "__main__":
     if sys.argv[1:2] == ["--shard"]:
-        print(*shard_wall(sys.argv[2], sys.argv[3]))
-        sys.exit(0)
-    sections = (per_impact, breakdown, mode_counts, cold, thickness, table_builds, throughput)
-    chosen = sys.argv[1:] or [f.__name__ for f in sections]  # e.g. bench_adaptive.py per_impact breakdown
-    unknown = set(chosen) - {f.__name__ for f in sections}
-    if unknown:
-        sys.exit(f"unknown section(s) {sorted(unknown)}; choose from {[f.__name__ for f in sections]}")
-    for f in sections:
-        if f.__name__ in chosen:
-            f()
+        print(json.dumps(shard_wall(sys.argv[2], sys.argv[3])))
+    else:
+        main()

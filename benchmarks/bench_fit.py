@@ -1,33 +1,49 @@
-"""Fit benchmark: time of each fit (median of 5) and its worst relative error. Run:
-python benchmarks/bench_fit.py"""
+"""Fit benchmark: the time of each fit of the Bagley–Torvik data (automatic Prony, CERF, Prony with
+N = 3, 7, 9, 12) and of the fit to pyvisco's raw DMA example (superposition, WLF, a Prony series with
+one term per decade), with each fit's worst relative error.
 
-from pathlib import Path
+Each run is a fresh process with an empty numba cache; each time is the median of CALLS warm calls
+after one untimed call; cells give the median over runs (min–max).
 
-from timing import timed
+Run: python benchmarks/bench_fit.py [--runs 2] [--calls 3] [--quick] [--out FILE]
+"""
 
-from vcor import fit
+from __future__ import annotations
+
+import timing
+
+from vcor.fitting import fits, prony
+
+RAW = "data/pyvisco/freq_user_raw.csv"  # relative to the repository (base_dir of the fit)
 
 
-def main():
-    data = fit.bagley_torvik_data()
-    rows = []
-    t_auto, auto = timed(lambda: fit.fit_prony(data, None, tol=0.01))
-    rows.append((f"Prony, automatic N (= {auto.n_terms}), tol 1 %", t_auto, auto.max_error))
-    t_cerf, cerf = timed(lambda: fit.fit_cerf(data))
-    rows.append(("CERF", t_cerf, cerf.max_error))
-    for n in (3, 7, 9, 12):
-        t, r = timed(lambda n=n: fit.fit_prony(data, n), 3)
-        rows.append((f"Prony, N = {n}", t, r.max_error))
-    # measured data: pyvisco's raw DMA example (superposition + WLF + Prony, one term per decade)
-    raw = Path(__file__).resolve().parents[1] / "data/pyvisco/freq_user_raw.csv"
-    spec = {"model": "prony", "data": {"file": str(raw), "T_ref": -5.0}}
-    t, (r, _, _) = timed(lambda: fit.run_fit(spec), 3)
-    rows.append((f"pyvisco raw DMA, superposition + N = {r.n_terms}", t, r.max_error))
-    print(f"{'fit':40s} {'median':>10s} {'worst rel. error':>18s}")
-    for name, t, e in rows:
-        print(f"{name:40s} {t * 1e3:8.1f} ms {e:18.3e}")
-    print(f"{'material stage (automatic Prony + CERF)':40s} {(t_auto + t_cerf) * 1e3:8.1f} ms   target: well under 1 s")
+def measure(args):
+    calls = timing.calls(args)
+    data = prony.bagley_torvik_data()
+    cases = [("Prony, automatic N, tol 1 %", lambda: prony.fit_prony(data, None, tol=0.01)),
+             ("CERF", lambda: prony.fit_cerf(data))]
+    cases += [(f"Prony, N = {n}", lambda n=n: prony.fit_prony(data, n)) for n in ((3, 7) if args.quick else (3, 7, 9, 12))]
+    spec = {"model": "prony", "data": {"file": RAW, "T_ref": -5.0}}
+    cases.append(("pyvisco raw DMA: superposition + WLF + Prony", lambda: fits.run_fit(spec, timing.ROOT)[0]))
+    out = {}
+    for name, fn in cases:
+        t, res = timing.warm_timed(fn, calls)
+        out[name] = {"time": t, "error": res.max_error, "n_terms": res.n_terms}
+    out["calls"] = calls
+    return out
+
+
+def report(args, results):
+    r0 = results[0]
+    names = [k for k in r0 if k != "calls"]
+    rows = [[name, r0[name]["n_terms"] or "-", timing.cell(timing.column(results, name, "time"), 1e3, ".1f"),
+             f"{r0[name]['error']:.3e}"] for name in names]
+    stage = [r[names[0]]["time"] + r[names[1]]["time"] for r in results]
+    rows.append(["material stage (automatic Prony + CERF)", "", timing.cell(stage, 1e3, ".1f"), ""])
+    return [f"Fits: median of {r0['calls']} warm call(s) after one untimed call, one fresh process with an empty "
+            "numba cache per run; cells: median over runs (min–max).",
+            timing.table(["fit", "terms N", "time [ms]", "worst relative error"], rows)]
 
 
 if __name__ == "__main__":
-    main()
+    timing.main(__doc__, measure, report, quick="one call per fit, N = 3 and 7 only", calls=3)

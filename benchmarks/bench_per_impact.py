@@ -1,87 +1,85 @@
 """Per-impact cost of the default method against another commit, in one run.
 
 Each round starts one fresh process per implementation (this checkout's ``src``, and a clean checkout
-of REV made with ``git worktree``), alternating, so that both meet the same machine load; each
-process warms up (compile or cache load, first tables) and then times CALLS warm calls of
-``vcor.simulate(material, 10.0, method="adaptive")`` per material. Printed: per material the median
-over rounds of each implementation's median, and the ratio this/REV (< 1: this checkout is faster).
+of REV made with ``git worktree``), each with an empty numba cache, alternating which goes first, so
+that both meet the same machine load; each process warms up (one untimed call: compile, first tables)
+and then times CALLS warm calls of ``vcor.simulate(material, 10.0, method=<this checkout's default
+method>)`` per material. The table gives per material the median over rounds of each implementation's
+median (min–max over rounds) and the median of the per-round ratios this/REV (< 1: this checkout is
+faster).
 
-Run: python benchmarks/bench_per_impact.py REV [--rounds 5] [--calls 101] [--out FILE]
+Run: python benchmarks/bench_per_impact.py REV [--rounds 5] [--calls 101] [--quick] [--out FILE]
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import os
-import statistics
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+import timing
+
 MATERIALS = ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3")
 
-WORKER = """
-import json, statistics, sys, time
-import vcor
-calls = int(sys.argv[1])
-out = {}
-for name in sys.argv[2:]:
-    vcor.simulate(name, 10.0, method="adaptive")
-    times = []
-    for _ in range(calls):
-        t = time.perf_counter()
-        vcor.simulate(name, 10.0, method="adaptive")
-        times.append(time.perf_counter() - t)
-    out[name] = statistics.median(times)
-print(json.dumps(out))
-"""
+
+def worker(calls: int, method: str) -> dict:
+    """In a process whose PYTHONPATH names the implementation: per material the median of ``calls``
+    warm calls (s), and where vcor was imported from."""
+    import vcor
+
+    out = {name: timing.warm_median(lambda n=name: vcor.simulate(n, 10.0, method=method), calls)
+           for name in MATERIALS}
+    return {"times": out, "vcor": str(Path(vcor.__file__).resolve().parent)}
 
 
-def run_worker(src: Path, calls: int) -> dict:
-    env = dict(os.environ, PYTHONPATH=str(src))
-    out = subprocess.run([sys.executable, "-c", WORKER, str(calls), *MATERIALS], env=env, capture_output=True,
-                         text=True, check=True)
-    return json.loads(out.stdout)
+def run_worker(src: Path, calls: int, method: str) -> dict:
+    out = timing.fresh_json([timing.PYTHON, __file__, timing.WORKER_FLAG, str(calls), method], env={"PYTHONPATH": str(src)})
+    if Path(out["vcor"]) != (src / "vcor").resolve():
+        raise RuntimeError(f"the worker for {src} imported vcor from {out['vcor']}")
+    return out["times"]
 
 
-def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main():
+    p = timing.parser(__doc__, runs=5, quick="2 rounds of 11 calls", calls=101)
     p.add_argument("rev", help="the commit to compare with (e.g. HEAD~1)")
-    p.add_argument("--rounds", type=int, default=5)
-    p.add_argument("--calls", type=int, default=101)
-    p.add_argument("--out", type=Path, default=None, help="also write the table (Markdown) to this file")
-    args = p.parse_args(argv)
-    rev = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", args.rev], capture_output=True, text=True,
-                         check=True).stdout.strip()
+    p.add_argument("--rounds", dest="runs", type=timing.at_least_two, default=argparse.SUPPRESS,
+                   help="the same as --runs: rounds (default 5)")
+    args = p.parse_args()
+    from vcor.solvers.options import DEFAULT_METHOD
+
+    rounds, calls = (2, 11) if args.quick else (args.runs, args.calls)
+    rev = timing.short_rev(args.rev)
+    results = {"this": [], rev: []}
     with tempfile.TemporaryDirectory() as tmp:
         tree = Path(tmp) / "tree"
-        subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(tree), rev], capture_output=True,
-                       check=True)
+        subprocess.run(["git", "-C", str(timing.ROOT), "worktree", "add", "--detach", str(tree), rev],
+                       capture_output=True, check=True)
         try:
-            os.environ["NUMBA_CACHE_DIR"] = str(Path(tmp) / "numba-cache")
-            results = {"this": [], rev: []}
-            for _ in range(args.rounds):
-                results["this"].append(run_worker(ROOT / "src", args.calls))
-                results[rev].append(run_worker(tree / "src", args.calls))
+            sources = {"this": timing.ROOT / "src", rev: tree / "src"}
+            for i in range(rounds):
+                for key in (("this", rev) if i % 2 == 0 else (rev, "this")):
+                    results[key].append(run_worker(sources[key], calls, DEFAULT_METHOD))
         finally:
-            subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(tree)], capture_output=True)
-    lines = [f"Per impact, v0 = 10 m/s, method adaptive (whole simulate call): medians over {args.rounds} rounds of "
-             f"{args.calls} warm calls, this checkout against {rev}",
-             "", "| material | this [us] | " + rev + " [us] | this / " + rev + " |", "|---|---|---|---|"]
+            subprocess.run(["git", "-C", str(timing.ROOT), "worktree", "remove", "--force", str(tree)],
+                           capture_output=True)
+    rows = []
     for name in MATERIALS:
-        this = statistics.median(r[name] for r in results["this"])
-        other = statistics.median(r[name] for r in results[rev])
-        ratios = statistics.median(a[name] / b[name] for a, b in zip(results["this"], results[rev]))
-        lines.append(f"| {name} | {this * 1e6:.1f} | {other * 1e6:.1f} | {ratios:.3f} |")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if args.out:
-        args.out.parent.mkdir(parents=True, exist_ok=True)
-        args.out.write_text(text)
+        this, other = timing.column(results["this"], name), timing.column(results[rev], name)
+        rows.append([name, timing.cell(this, 1e6, ".1f"), timing.cell(other, 1e6, ".1f"),
+                     f"{timing.median(a / b for a, b in zip(this, other)):.3f}"])
+    timing.publish(args.out, rounds, [
+        f"Per impact, v0 = 10 m/s, method {DEFAULT_METHOD} (this checkout's default), whole simulate call: per "
+        f"round one fresh process per implementation (empty numba cache, one untimed call, then the median of "
+        f"{calls} warm calls); cells: median over {rounds} rounds (min–max); ratio: median of the per-round "
+        f"ratios; this checkout against {rev}.",
+        timing.table(["material", "this [µs]", f"{rev} [µs]", f"this / {rev}"], rows)])
 
 
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:2] == [timing.WORKER_FLAG]:  # run_worker: --worker CALLS METHOD
+        print(json.dumps(worker(int(sys.argv[2]), sys.argv[3])))
+    else:
+        main()

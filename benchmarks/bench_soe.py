@@ -1,28 +1,50 @@
-"""The fixed-step soe method against direct, per impact (the adaptive method, thin plates and cost
-against plate thickness: bench_adaptive.py).
+"""The fixed-step soe method against direct (and ive-numba for Prony kernels), per impact at the
+default fixed-step settings (2000 steps per contact-time estimate), v0 = 10 m/s, whole simulate call
+(the adaptive method, thin plates and cost against plate thickness: bench_adaptive.py).
 
-Prints tables of medians (this machine is shared: read ratios). Run: python benchmarks/bench_soe.py
+Each run is a fresh process with an empty numba cache; each number is the median of CALLS warm calls
+after one untimed call; cells give the median over runs (min–max).
+
+Run: python benchmarks/bench_soe.py [--runs 2] [--calls 15] [--quick] [--out FILE]
 """
 
 from __future__ import annotations
 
-from timing import median_time
+import timing
 
 import vcor
 
+MATERIALS = ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3")
+PRONY = ("sls", "butyl-prony3")  # ive-numba takes Prony kernels only
 
-def main():
-    print("per impact at default settings (2000 steps per contact-time estimate), v0 = 10 m/s, whole simulate call")
-    print(f"{'material':14s} {'direct [ms]':>12s} {'soe [ms]':>10s} {'soe/direct':>11s} {'ive-numba [ms]':>15s} "
-          f"{'|COR soe - direct|':>19s}")
-    for name in ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3"):
-        td = median_time(lambda n=name: vcor.simulate(n, 10.0), 15)
-        ts = median_time(lambda n=name: vcor.simulate(n, 10.0, method="soe"), 15)
-        prony = name in ("sls", "butyl-prony3")
-        ti = median_time(lambda n=name: vcor.simulate(n, 10.0, method="ive-numba"), 15) if prony else float("nan")
-        gap = abs(vcor.simulate(name, 10.0, method="soe").cor - vcor.simulate(name, 10.0).cor)
-        print(f"{name:14s} {td * 1e3:12.3f} {ts * 1e3:10.3f} {ts / td:11.2f} {ti * 1e3:15.3f} {gap:19.1e}")
+
+def measure(args):
+    out = {}
+    for name in MATERIALS:
+        def call(method, n=name):
+            return lambda: vcor.simulate(n, 10.0, method=method)
+
+        td, rd = timing.warm_timed(call("direct"), timing.calls(args, 2))
+        ts, rs = timing.warm_timed(call("soe"), timing.calls(args, 2))
+        ti = timing.warm_median(call("ive-numba"), timing.calls(args, 2)) if name in PRONY else None
+        out[name] = {"direct": td, "soe": ts, "ive": ti, "gap": abs(rs.cor - rd.cor)}
+    return out
+
+
+def report(args, results):
+    c = timing.cell
+    rows = []
+    for name in MATERIALS:
+        runs = timing.column(results, name)
+        ive = c([r["ive"] for r in runs], 1e3, ".3f") if name in PRONY else "-"
+        rows.append([name, c([r["direct"] for r in runs], 1e3, ".3f"), c([r["soe"] for r in runs], 1e3, ".3f"),
+                     c([r["soe"] / r["direct"] for r in runs]), ive, f"{runs[-1]['gap']:.1e}"])
+    return [f"Per impact, v0 = 10 m/s, whole simulate call, fixed-step defaults; warm: median of {timing.calls(args, 2)} calls "
+            "after one untimed call, one fresh process with an empty numba cache per run; cells: median over "
+            "runs (min–max).",
+            timing.table(["material", "direct [ms]", "soe [ms]", "soe / direct", "ive-numba [ms]",
+                          "abs(COR soe − COR direct)"], rows)]
 
 
 if __name__ == "__main__":
-    main()
+    timing.main(__doc__, measure, report, quick="2 warm calls per median", calls=15)

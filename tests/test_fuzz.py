@@ -25,8 +25,6 @@ from vcor.study.config import load_project
 ROOT = Path(__file__).resolve().parents[1]
 API_CASES = 500
 CONFIG_CASES = 60
-#: each test must finish within this (s): the suite's budget for fuzzing
-BUDGET = 60.0
 
 #: values no parameter takes, and edge values of the right type
 HOSTILE = st.one_of(
@@ -115,7 +113,6 @@ def test_api_refuses_or_solves_every_hostile_call():
     elapsed = time.perf_counter() - start
     print(f"\n{API_CASES} hostile API calls: {counts}, {elapsed:.1f} s")
     assert sum(counts.values()) >= API_CASES and counts["solved"] > 25 and counts["refused"] > 200
-    assert elapsed < BUDGET
 
 
 # --- configs --------------------------------------------------------------------------------------
@@ -191,7 +188,6 @@ def test_config_checks_refuse_or_accept_every_hostile_config(tmp_path):
     print(f"\n{CONFIG_CASES} hostile configs: {counts}, {elapsed:.1f} s")
     assert sum(counts.values()) >= CONFIG_CASES and counts["refused"] > CONFIG_CASES // 2
     assert sorted(p.name for p in tmp_path.iterdir()) == before
-    assert elapsed < BUDGET
 
 
 @pytest.mark.parametrize("key, value", [("material_dir", ""), ("material_dir", "/"), ("material_dir", "../out"),

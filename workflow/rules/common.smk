@@ -15,6 +15,7 @@ import vcor.study.archive as varchive
 import vcor.study.config as vconfig
 import vcor.study.scene as vscene
 import vcor.study.shards as vshards
+import vcor.study.uncertainty as vuncertainty
 
 validate(config, schema="../schemas/config.schema.yaml")
 
@@ -192,6 +193,12 @@ def get_material_identity(wildcards):
 
 def get_fit_spec(wildcards):
     return CATALOGUE.fits[wildcards.material]
+
+
+def get_samples_identity(wildcards):
+    """The content identity of a samples file (vcor.study.uncertainty.samples_identity)."""
+    spec = {"bootstrap": int(wildcards.n), "seed": int(wildcards.seed)}
+    return vuncertainty.samples_identity(CATALOGUE, wildcards.material, spec)
 
 
 def get_fit_data_files(wildcards):

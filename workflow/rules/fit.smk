@@ -40,6 +40,28 @@ rule fit_material:
         "../scripts/fit_material.py"
 
 
+rule fit_samples:
+    # bootstrap samples of a fit to measured data, for the scenes with uncertainty (vcor.study.uncertainty)
+    input:
+        get_fit_data_files,
+    output:
+        f"{MATERIAL_DIR}/samples/{{material}}-b{{n}}-s{{seed}}.nc",
+    log:
+        f"{MATERIAL_DIR}/logs/samples/{{material}}-b{{n}}-s{{seed}}.log",
+    benchmark:
+        f"{MATERIAL_DIR}/benchmarks/samples/{{material}}-b{{n}}-s{{seed}}.tsv"
+    wildcard_constraints:
+        n="[0-9]+",
+        seed="[0-9]+",
+    priority: 10
+    params:
+        code=CODE,
+        spec=get_fit_spec,
+        identity=get_samples_identity,
+    script:
+        "../scripts/fit_samples.py"
+
+
 rule fit_metrics:
     input:
         get_scene_fit_files,

@@ -12,10 +12,12 @@ A second row of unit names is allowed (and read); without it the values are SI (
 A UTF-8 byte-order mark is accepted. Every error names the file, the line (1-based) and the column.
 
 Superposition (:func:`superpose`): each set's temperature is the mean of its T column; with shift
-factors given they are interpolated linearly in T (inside their range only); otherwise adjacent sets
-are shifted horizontally onto each other by matching log f at equal log E' over the E' range they
-share (E' superposes; in pyvisco's example E'' does not), and the shifts are summed from the
-reference temperature. Where E' is flat (glassy, rubbery plateaus) that is ill-conditioned. ``wlf_fit`` / ``arrhenius_fit`` fit the shift function to the per-set log a_T and report
+factors given they are interpolated linearly in T (inside their range only), or taken per set
+(``log_aT``); otherwise adjacent sets are shifted horizontally onto each other by matching log f at
+equal log E' over the E' range they share (E' superposes; in pyvisco's example E'' does not), and the
+shifts are summed from the reference temperature (the pairwise shifts of ``method: free``; the
+default measured-data fit finds all shifts at once, :mod:`vcor.fitting.superpose`). Where E' is flat
+(glassy, rubbery plateaus) that is ill-conditioned. ``wlf_fit`` / ``arrhenius_fit`` fit the shift function to the per-set log a_T and report
 the residuals. The convention is pyvisco's: the master curve is E'(f a_T) at T_ref, so that a
 material at T relaxes a_T times slower than at T_ref: E(t; T) = E_ref(t / a_T) (:mod:`vcor.materials.shift`).
 """
@@ -28,12 +30,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from ..io.csvfile import cell_number, data_rows, read_rows, units_row
 from ..materials.shift import GAS_CONSTANT, wlf_log_aT
 from .prony import FitData, fit_prony
 
-__all__ = ["DMATable", "Superposition", "arrhenius_fit", "check_data", "fit_master", "read_table", "superpose", "wlf_fit"]
+__all__ = ["DMATable", "Superposition", "arrhenius_fit", "check_data", "fit_master", "read_table", "set_arrays",
+           "superpose", "wlf_fit"]
 
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 UNITS = {"f": {"Hz": 1.0}, "t": {"s": 1.0}, "E_stor": MODULUS_UNITS, "E_loss": MODULUS_UNITS,
@@ -116,7 +120,10 @@ class Superposition:
     T_point: np.ndarray | None = None
 
 
-def _sets(raw: DMATable):
+def set_arrays(raw: DMATable) -> list:
+    """The raw sets of a table as (T [deg C, mean of the set's T column], f [Hz], E' [Pa], E'' [Pa]),
+    frequencies ascending, sets by temperature; ValueError naming the file unless the table holds raw
+    frequency data at two or more temperatures."""
     if raw.kind != "frequency" or not raw.is_raw:
         raise ValueError(f"{raw.path}: superposition needs raw frequency data with T and Set columns")
     c = raw.columns
@@ -159,7 +166,7 @@ def check_data(raw: DMATable, shifts: DMATable | None = None) -> None:
         raise ValueError(f"{shifts.path}: not a shift-factor file (T,log_aT)")
     if not raw.is_raw:
         return
-    T = np.array([s[0] for s in _sets(raw)])
+    T = np.array([s[0] for s in set_arrays(raw)])
     if shifts is not None:
         ts = shifts.columns["T"]
         if T.min() < ts.min() - 0.5 or T.max() > ts.max() + 0.5:
@@ -167,13 +174,21 @@ def check_data(raw: DMATable, shifts: DMATable | None = None) -> None:
                              f"{T.min():g}..{T.max():g} deg C")
 
 
-def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None) -> Superposition:
-    """Master curve at ``T_ref`` (deg C) from raw sets, with ``shifts`` (a shift-factor table) or with
-    shift factors found from the data (module docstring)."""
-    sets = _sets(raw)
+@threadpool_limits.wrap(limits=1, user_api="blas")  # many small solves (vcor.fitting.dmafit)
+def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None, *, log_aT=None,
+              source: str | None = None) -> Superposition:
+    """Master curve at ``T_ref`` (deg C) from raw sets, with ``shifts`` (a shift-factor table), with
+    ``log_aT`` (per set, ascending temperature, decades; ``source`` says where they come from) or with
+    shift factors found from the data pairwise (module docstring)."""
+    sets = set_arrays(raw)
     T = np.array([s[0] for s in sets])
     notes = []
-    if shifts is not None:
+    if log_aT is not None:
+        log_aT = np.asarray(log_aT, dtype=float)
+        if log_aT.shape != T.shape:
+            raise ValueError(f"{raw.path}: {T.size} sets need {T.size} shift factors, got {log_aT.size}")
+        source = source or "given per set"
+    elif shifts is not None:
         if shifts.kind != "shift":
             raise ValueError(f"{shifts.path}: not a shift-factor file (T,log_aT)")
         order = np.argsort(shifts.columns["T"])
@@ -237,6 +252,7 @@ def arrhenius_fit(T, log_aT, T_ref):
     return slope * GAS_CONSTANT * math.log(10.0), slope * x - y
 
 
+@threadpool_limits.wrap(limits=1, user_api="blas")
 def fit_master(sp: Superposition, n_terms: int | None = None):
     """Prony fit (``vcor.fitting.prony.fit_prony``) of the master curve E*(omega = 2 pi f_reduced) at T_ref.
     ``n_terms`` defaults to one term per decade of reduced frequency (a tolerance on the worst error

@@ -3,14 +3,29 @@ record (residual curves, metrics), and the fit-metrics table of a scene.
 
 Specs: ``{model: prony | cerf, n_terms: int | auto, tol, n_max, domain}`` on the built-in
 Bagley-Torvik data (the fractional law of Green Eq. 23 on the paper's band), or
-``{model: prony, data: {file, T_ref, shift_file?, shift_model?}}`` on measured DMA data
+``{model: prony, method?, data: {file, T_ref, shift_file?, shift_model?}}`` on measured DMA data
 (:mod:`vcor.fitting.dma`). A name containing ``{n}`` with a list ``n_terms`` expands to one fit per N.
+
+Measured data are fitted by one of two methods (``method``):
+
+* ``spectrum`` (default): start-free global shift factors refined together with a smooth relaxation
+  spectrum, merged to 2 modes per decade (:mod:`vcor.fitting.dmafit`). Smooth by construction: no
+  tan delta ripple from the fit. ``n_terms`` must be ``auto`` (the modes follow from the data's range).
+* ``free``: shifts of adjacent sets matched pairwise in E', then a Prony series whose relaxation times
+  are free parameters of a least-squares fit (``n_terms``, default one per decade;
+  :func:`vcor.fitting.dma.fit_master`). Fast and close to the data point by point, but the free times
+  put ripples into tan delta between them.
+
+``shift_model`` (default ``table``) is the shift function stored with the material: ``table`` (the
+per-set log10 a_T, linear in T, not extrapolated beyond the sets), ``wlf`` or ``arrhenius`` (fitted
+to the per-set shifts).
 """
 
 from __future__ import annotations
 
 import json
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -19,10 +34,10 @@ from ..materials.catalogue import FIT_SCALARS
 from ..materials.files import from_file
 from ..materials.presets import get as _preset
 from ..materials.shift import ShiftFunction
-from . import dma
+from . import dma, dmafit
 from .prony import FitData, FitResult, bagley_torvik_data, fit, metrics
 
-__all__ = ["DMA_DATA_KEYS", "FIT_MODELS", "check_fit_spec", "data_from_spec", "expand_fits", "metrics_table", "result_dataset", "run_fit",
+__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "SHIFT_MODELS", "check_fit_spec", "data_from_spec", "expand_fits", "metrics_table", "result_dataset", "run_fit",
            "scene_metrics_table"]
 
 
@@ -48,6 +63,10 @@ def expand_fits(fits: dict, where: str = "fits") -> dict:
 FIT_MODELS = tuple(FIT_SCALARS)
 #: keys of a measured-data fit's ``data`` mapping
 DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model"}
+#: methods of a measured-data fit (module docstring); the first is the default
+FIT_METHODS = ("spectrum", "free")
+#: shift functions a measured-data fit may store; the first is the default
+SHIFT_MODELS = ("table", "wlf", "arrhenius")
 
 
 def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
@@ -65,8 +84,9 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
         raise ValueError(f"{where}.data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
     if model != "prony":
         raise ValueError(f"{where}.model: a fit to measured data is a Prony fit (model: prony), got {model!r}")
-    if d.get("shift_model", "wlf") not in ("wlf", "arrhenius"):
-        raise ValueError(f"{where}.data.shift_model must be wlf or arrhenius, got {d['shift_model']!r}")
+    _check_method(spec, where)
+    if d.get("shift_model", SHIFT_MODELS[0]) not in SHIFT_MODELS:
+        raise ValueError(f"{where}.data.shift_model must be one of {list(SHIFT_MODELS)}, got {d['shift_model']!r}")
     try:
         T_ref = float(d["T_ref"])
     except (TypeError, ValueError):
@@ -76,15 +96,33 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     raw = dma.read_table(Path(base_dir) / d["file"])
     shifts = dma.read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
     dma.check_data(raw, shifts)
+    if raw.is_raw and d.get("shift_model", SHIFT_MODELS[0]) == "table" and "shift_file" not in d:
+        T = np.array([t for t, *_ in dma.set_arrays(raw)])
+        if not T.min() <= T_ref <= T.max():
+            raise ValueError(f"{where}.data.T_ref: {T_ref:g} deg C lies outside the sets' {T.min():.4g}..{T.max():.4g} "
+                             f"deg C: a tabulated shift function (shift_model: table) needs T_ref inside; "
+                             f"use shift_model wlf or arrhenius")
+
+
+def _check_method(spec: dict, where: str) -> str:
+    """The measured-data fit's method (module docstring); ValueError naming ``where.method``."""
+    method = spec.get("method", FIT_METHODS[0])
+    if method not in FIT_METHODS:
+        raise ValueError(f"{where}.method must be one of {list(FIT_METHODS)}, got {method!r}")
+    if method == "spectrum" and spec.get("n_terms", "auto") != "auto":
+        raise ValueError(f"{where}.n_terms: method spectrum places its modes on a fixed grid (2 per decade of the "
+                         f"data's reduced range): n_terms must be auto; a given number of terms is method free's")
+    return method
 
 
 def run_fit(spec: dict, base_dir="."):
     """(FitResult, FitData, extra attributes) of a fit spec: the built-in Bagley-Torvik data, or measured
-    DMA data (``data: {file, T_ref [deg C], shift_file?, shift_model: wlf|arrhenius}``; pyvisco's CSV
-    conventions, ``vcor.fitting.dma``). Raw multi-temperature sets are superposed at T_ref (with the shift
-    factors of ``shift_file``, or found from the data), a WLF (default) or Arrhenius shift function is
-    fitted to the per-set log a_T and stored with the material (attribute ``shift``), and a Prony
-    series is fitted to the master curve (``n_terms``: an integer, or auto = one term per decade)."""
+    DMA data (``data: {file, T_ref [deg C], shift_file?, shift_model: table|wlf|arrhenius}``; pyvisco's
+    CSV conventions, ``vcor.fitting.dma``). Raw multi-temperature sets are superposed at T_ref (with the
+    shift factors of ``shift_file``, or found from the data) and a Prony series is fitted to them by
+    ``method`` (module docstring); the shift function (``shift_model``, default a table of the per-set
+    log a_T) is stored with the material (attribute ``shift``), the per-set shifts and their residuals in
+    attribute ``superposition``."""
     d = spec.get("data") or {}
     if "file" not in d:
         data = data_from_spec(spec)
@@ -95,26 +133,81 @@ def run_fit(spec: dict, base_dir="."):
         raise ValueError(f"fit data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
     if spec.get("model") != "prony":
         raise ValueError(f"a fit to measured data is a Prony fit (model: prony), got {spec.get('model')!r}")
+    method = _check_method(spec, "fit")
+    shift_model = d.get("shift_model", SHIFT_MODELS[0])
+    if shift_model not in SHIFT_MODELS:
+        raise ValueError(f"fit data.shift_model must be one of {list(SHIFT_MODELS)}, got {shift_model!r}")
     T_ref = float(d["T_ref"])
     raw = dma.read_table(Path(base_dir) / d["file"])
     if raw.kind != "frequency":
         raise ValueError(f"{raw.path}: measured-data fits take frequency-domain data (f,E_stor,E_loss)")
     shifts = dma.read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
+    if method == "free":
+        return _run_free(spec, raw, shifts, T_ref, shift_model)
+    return _run_spectrum(spec, raw, shifts, T_ref, shift_model)
+
+
+def _measured_result(material, sp, d, settings, t_start):
+    """(FitResult, FitData) of a material against a master curve ``sp`` (a dma.Superposition)."""
+    data = FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name=str(d["file"]),
+                   measured=True, T_point=sp.T_point)
+    met = metrics(material, data)
+    met["tan_delta_extrema"] = dmafit.tan_delta_extrema(material, float(sp.f_reduced.min()), float(sp.f_reduced.max()))
+    return FitResult(material, met, settings, n_terms=len(material.E), fit_time=time.perf_counter() - t_start), data
+
+
+def _run_spectrum(spec, raw, shifts, T_ref, shift_model):
+    t_start = time.perf_counter()
+    d = spec["data"]
+    if not raw.is_raw:
+        c = raw.columns
+        order = np.argsort(c["f"])
+        sp = dma.Superposition(np.array([T_ref]), np.zeros(1), T_ref, c["f"][order], c["E_stor"][order],
+                               c["E_loss"][order], "a master curve as given (no temperature sets)")
+        smooth, reduced = dmafit.fit_curve(sp.f_reduced, sp.E_stor, sp.E_loss)
+        material = dmafit.DMAFit(sp.T, sp.log_aT, np.zeros(1), T_ref, None, None, smooth, reduced, {}, {}, {}).material()
+        settings = {"model": "prony", "method": "spectrum", "lam": smooth.lam, "modes_fine": smooth.n_modes,
+                    "merge_change": reduced.change}
+        result, data = _measured_result(material, sp, d, settings, t_start)
+        return result, data, {}
+    given = dma.superpose(raw, T_ref, shifts).log_aT if shifts is not None else None
+    fitted = dmafit.fit_dma(raw, T_ref, log_aT=given)
+    shift = dmafit.shift_function(fitted, shift_model)
+    sp = dma.superpose(raw, T_ref, log_aT=fitted.log_aT,
+                       source=f"given ({shifts.path}), linear in T, zero at T_ref" if shifts is not None else
+                       "global superposition of all sets, refined with the spectrum (vcor.fitting.dmafit)")
+    material = fitted.material()
+    settings = {"model": "prony", "method": "spectrum", "lam": fitted.spectrum.lam, "smoothing": fitted.smoothing,
+                "modes_fine": fitted.spectrum.n_modes, "merge_change": fitted.reduced.change,
+                "components": [1.0, dmafit.LOSS_WEIGHT], "notes": fitted.notes,
+                "times": {k: round(v, 3) for k, v in fitted.times.items()}}
+    result, data = _measured_result(material, sp, d, settings, t_start)
+    residual = np.array([shift.log_aT(float(t)) for t in fitted.T]) - fitted.log_aT
+    attrs = {"shift": json.dumps(shift.to_dict()), "superposition": json.dumps({
+        "T_degC": fitted.T.tolist(), "log_aT": fitted.log_aT.tolist(), "log_aT_std": fitted.log_aT_std.tolist(),
+        "shift_fit_residual": residual.tolist(), "shift_model": shift_model, "source": sp.source,
+        "overlap_rms_log10_E_stor": sp.overlap_rms,
+        "wlf": {k: fitted.wlf[k] for k in ("C1", "C2", "C1_std", "C2_std", "rms")},
+        "arrhenius": {k: fitted.arrhenius[k] for k in ("E_a", "E_a_std", "rms")}}, default=float)}
+    return result, data, attrs
+
+
+def _run_free(spec, raw, shifts, T_ref, shift_model):
+    d = spec["data"]
     attrs = {}
     if raw.is_raw:
         sp = dma.superpose(raw, T_ref, shifts)
-        model = d.get("shift_model", "wlf")
-        if model == "wlf":
+        if shift_model == "wlf":
             c1, c2, res = dma.wlf_fit(sp.T, sp.log_aT, T_ref)
             shift = ShiftFunction("wlf", T_ref, C1=c1, C2=c2)
-        elif model == "arrhenius":
+        elif shift_model == "arrhenius":
             ea, res = dma.arrhenius_fit(sp.T, sp.log_aT, T_ref)
             shift = ShiftFunction("arrhenius", T_ref, E_a=ea)
         else:
-            raise ValueError(f"fit data.shift_model must be wlf or arrhenius, got {model!r}")
+            shift, res = ShiftFunction.table(T_ref, sp.T, sp.log_aT), np.zeros(sp.T.size)
         attrs = {"shift": json.dumps(shift.to_dict()), "superposition": json.dumps({
             "T_degC": sp.T.tolist(), "log_aT": sp.log_aT.tolist(), "shift_fit_residual": np.asarray(res).tolist(),
-            "source": sp.source, "overlap_rms_log10_E_stor": sp.overlap_rms})}
+            "shift_model": shift_model, "source": sp.source, "overlap_rms_log10_E_stor": sp.overlap_rms})}
     else:
         c = raw.columns
         order = np.argsort(c["f"])
@@ -122,6 +215,7 @@ def run_fit(spec: dict, base_dir="."):
                                c["E_loss"][order], "a master curve as given (no temperature sets)")
     n = spec.get("n_terms", "auto")
     result = dma.fit_master(sp, None if n == "auto" else int(n))
+    result.settings["method"] = "free"
     data = FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name=str(d["file"]),
                    measured=True, T_point=sp.T_point)
     return result, data, attrs

@@ -10,7 +10,13 @@ a_T, the fractional E1 times sqrt(a_T), the CERF b1 divided by sqrt(a_T), a Kelv
 a_T). Shift functions (T in deg C, C2 in K, E_a in J/mol):
 
 * WLF: log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref), defined for T > T_ref - C2;
-* Arrhenius: log10 a_T = E_a / (R ln 10) (1/T - 1/T_ref) with T in K.
+* Arrhenius: log10 a_T = E_a / (R ln 10) (1/T - 1/T_ref) with T in K;
+* table: log10 a_T given at temperatures T_1 < ... < T_K (a fit's per-set shift factors), linear in T
+  between them. It is not extrapolated: outside [T_1 - 0.5 K, T_K + 0.5 K] it refuses, naming the
+  range. The 0.5 K (:data:`TABLE_TOLERANCE`) is the scatter of a DMA set's temperature readings about
+  their mean (the set's temperature); within it the end segments are extended. A measured set's
+  shift function is a table by default: WLF does not describe every material's shifts (pyvisco's
+  example leaves 0.78 decade rms, ``docs/user-guide/dma.md``).
 """
 
 from __future__ import annotations
@@ -26,10 +32,14 @@ import numpy as np
 from ..checks import number, positive
 from .models import Material
 
-__all__ = ["GAS_CONSTANT", "ShiftFunction", "at_temperature", "shift_from_file", "time_shifted", "wlf_log_aT"]
+__all__ = ["GAS_CONSTANT", "SHIFT_MODELS", "TABLE_TOLERANCE", "ShiftFunction", "at_temperature", "shift_from_file", "time_shifted", "wlf_log_aT"]
 
 #: molar gas constant, J/(mol K)
 GAS_CONSTANT = 8.314462618
+#: the shift-function models
+SHIFT_MODELS = ("wlf", "arrhenius", "table")
+#: how far (K) a table reaches beyond its first and last temperature (module docstring)
+TABLE_TOLERANCE = 0.5
 
 
 def wlf_log_aT(T, T_ref, C1, C2):
@@ -47,42 +57,79 @@ def time_shifted(material: Material, log_aT: float) -> Material:
 
 @dataclass(frozen=True)
 class ShiftFunction:
-    """log10 a_T(T) of a material: ``model`` "wlf" (C1, C2 in K) or "arrhenius" (E_a in J/mol), at the
-    reference temperature ``T_ref`` (deg C). Built from a config spec by :meth:`from_spec`."""
+    r"""log10 a_T(T) of a material at the reference temperature ``T_ref`` (deg C).
+
+    ``model`` "wlf" (C1, C2 in K), "arrhenius" (E_a in J/mol) or "table" (``T`` in deg C, strictly
+    increasing, and ``log_aT`` in decades at those temperatures, linear in T between them; module
+    docstring). Built from a config spec by :meth:`from_spec`; :meth:`to_dict` gives that spec back.
+
+    .. math:: \log_{10} a_T(T) = \log_{10} a_{T,k} + \frac{T - T_k}{T_{k+1} - T_k}
+              (\log_{10} a_{T,k+1} - \log_{10} a_{T,k}), \quad T_k \le T \le T_{k+1} \quad (\text{table})
+    """
 
     model: str
     T_ref: float
     C1: float = math.nan
     C2: float = math.nan
     E_a: float = math.nan
+    T: tuple = ()
+    log_aT_table: tuple = ()
+
+    def __post_init__(self):
+        if self.model not in SHIFT_MODELS:
+            raise ValueError(f"shift model must be one of {list(SHIFT_MODELS)}, got {self.model!r}")
+        if self.model == "table":
+            _check_table(self.T, self.log_aT_table, self.T_ref, "shift")
+            object.__setattr__(self, "T", tuple(float(x) for x in self.T))
+            object.__setattr__(self, "log_aT_table", tuple(float(x) for x in self.log_aT_table))
+
+    @classmethod
+    def table(cls, T_ref: float, T, log_aT) -> ShiftFunction:
+        """A tabulated shift function: ``log_aT`` (decades) at temperatures ``T`` (deg C, increasing)."""
+        return cls("table", float(T_ref), T=tuple(np.asarray(T, float)), log_aT_table=tuple(np.asarray(log_aT, float)))
 
     @classmethod
     def from_spec(cls, spec: dict, where: str = "shift") -> ShiftFunction:
-        """From ``{model: wlf, C1, C2, T_ref}`` or ``{model: arrhenius, E_a, T_ref}``; errors name
-        ``where.<key>`` and the allowed range."""
-        if not isinstance(spec, dict) or spec.get("model") not in ("wlf", "arrhenius"):
-            raise ValueError(f"{where}: a mapping with model wlf (C1, C2 [K], T_ref [deg C]) or arrhenius "
-                             f"(E_a [J/mol], T_ref [deg C]), got {spec!r}")
-        need = {"wlf": ("C1", "C2", "T_ref"), "arrhenius": ("E_a", "T_ref")}[spec["model"]]
+        """From ``{model: wlf, C1, C2, T_ref}``, ``{model: arrhenius, E_a, T_ref}`` or
+        ``{model: table, T: [...], log_aT: [...], T_ref}``; errors name ``where.<key>`` and the allowed
+        range."""
+        if not isinstance(spec, dict) or spec.get("model") not in SHIFT_MODELS:
+            raise ValueError(f"{where}: a mapping with model wlf (C1, C2 [K], T_ref [deg C]), arrhenius "
+                             f"(E_a [J/mol], T_ref [deg C]) or table (T [deg C], log_aT, T_ref [deg C]), got {spec!r}")
+        need = {"wlf": ("C1", "C2", "T_ref"), "arrhenius": ("E_a", "T_ref"), "table": ("T", "log_aT", "T_ref")}[spec["model"]]
         extra = set(spec) - set(need) - {"model"}
         missing = [k for k in need if k not in spec]
         if missing or extra:
             raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; takes {list(need)}")
+        T_ref = number(f"{where}.T_ref", spec["T_ref"], -273.15, unit="deg C")
+        if spec["model"] == "table":
+            _check_table(spec["T"], spec["log_aT"], T_ref, where)
+            return cls.table(T_ref, spec["T"], spec["log_aT"])
         units = {"C1": "", "C2": "K", "E_a": "J/mol"}
-        values = {k: (number(f"{where}.T_ref", spec[k], -273.15, unit="deg C") if k == "T_ref"
-                      else positive(f"{where}.{k}", spec[k], unit=units[k])) for k in need}
-        return cls(spec["model"], **values)
+        values = {k: positive(f"{where}.{k}", spec[k], unit=units[k]) for k in need if k != "T_ref"}
+        return cls(spec["model"], T_ref, **values)
 
     def valid_range(self) -> tuple[float, float]:
-        """Temperatures (deg C, open interval) where a_T is defined: T > T_ref - C2 (WLF), T > -273.15."""
+        """Temperatures (deg C) where a_T is defined: T > T_ref - C2 (WLF, open), T > -273.15
+        (Arrhenius, open), [T_1 - 0.5, T_K + 0.5] (table, closed; module docstring)."""
+        if self.model == "table":
+            return self.T[0] - TABLE_TOLERANCE, self.T[-1] + TABLE_TOLERANCE
         lo = self.T_ref - self.C2 if self.model == "wlf" else -273.15
         return lo, math.inf
 
     def log_aT(self, T: float) -> float:
         """log10 a_T at T (deg C); ValueError naming T and the valid range outside it."""
-        lo, _ = self.valid_range()
-        if isinstance(T, bool) or not isinstance(T, (int, float, np.floating, np.integer)) or not (
-                math.isfinite(T) and T > lo):
+        lo, hi = self.valid_range()
+        number_like = not isinstance(T, bool) and isinstance(T, (int, float, np.floating, np.integer))
+        if self.model == "table":
+            if not (number_like and math.isfinite(T) and lo <= T <= hi):
+                raise ValueError(f"temperature T must be in [{lo:g}, {hi:g}] deg C for this tabulated shift function "
+                                 f"(the measured sets' range, T_ref = {self.T_ref:g} deg C; a table is not "
+                                 f"extrapolated), got {T!r}")
+            x, y = self.T, self.log_aT_table
+            k = min(max(int(np.searchsorted(x, T)) - 1, 0), len(x) - 2)
+            return float(y[k] + (T - x[k]) / (x[k + 1] - x[k]) * (y[k + 1] - y[k]))
+        if not (number_like and math.isfinite(T) and T > lo):
             raise ValueError(f"temperature T must be in ({lo:g}, inf) deg C for this {self.model} shift function "
                              f"(T_ref = {self.T_ref:g} deg C), got {T!r}")
         if self.model == "wlf":
@@ -90,9 +137,31 @@ class ShiftFunction:
         return self.E_a / (GAS_CONSTANT * math.log(10.0)) * (1.0 / (T + 273.15) - 1.0 / (self.T_ref + 273.15))
 
     def to_dict(self) -> dict:
+        """The spec :meth:`from_spec` takes (JSON-ready)."""
         d = {"model": self.model, "T_ref": self.T_ref}
-        d.update({"C1": self.C1, "C2": self.C2} if self.model == "wlf" else {"E_a": self.E_a})
+        if self.model == "wlf":
+            d.update(C1=self.C1, C2=self.C2)
+        elif self.model == "arrhenius":
+            d.update(E_a=self.E_a)
+        else:
+            d.update(T=list(self.T), log_aT=list(self.log_aT_table))
         return d
+
+
+def _check_table(T, log_aT, T_ref, where):
+    """A table's temperatures (deg C): finite, strictly increasing, at least two, as many as log_aT
+    (finite, decades); T_ref inside the range (a fit's table is 0 there; a given one is taken as it is)."""
+    try:
+        x, y = np.asarray(T, dtype=float), np.asarray(log_aT, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}: T and log_aT must be lists of numbers, got {T!r} and {log_aT!r}") from None
+    if x.ndim != 1 or x.shape != y.shape or x.size < 2:
+        raise ValueError(f"{where}: T and log_aT must be lists of equal length >= 2, got {np.shape(x)} and {np.shape(y)}")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y)) and np.all(np.diff(x) > 0) and x[0] > -273.15):
+        raise ValueError(f"{where}.T: temperatures (deg C) must be finite, above -273.15 and strictly increasing, "
+                         f"with finite log_aT; got T = {x.tolist()}")
+    if not x[0] <= T_ref <= x[-1]:
+        raise ValueError(f"{where}.T_ref: {T_ref:g} deg C lies outside the table's {x[0]:g}..{x[-1]:g} deg C")
 
 
 def at_temperature(material: Material, shift: ShiftFunction | None, T: float, name: str = "material") -> Material:

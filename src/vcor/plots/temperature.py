@@ -11,6 +11,22 @@ from .common import fixed_axes, mark_failed, plt
 __all__ = ["cor_temperature", "cor_v0_temperature", "master_curve"]
 
 
+def _band(ax, d, x, ok, color):
+    """The bootstrap band (``cor_lo`` .. ``cor_hi``) of the ok points, shaded, when the sweep has one."""
+    if "cor_lo" in d:
+        ax.fill_between(d[x].values[ok], d["cor_lo"].values[ok], d["cor_hi"].values[ok], color=color, alpha=0.2,
+                        lw=0)
+
+
+def _band_note(sweep) -> str:
+    """The title's line on the band: its probability and the number of samples ('' without a band)."""
+    if "cor_lo" not in sweep:
+        return ""
+    level = float(sweep.attrs.get("uncertainty_level", 0.95))
+    return (f"\nlines: median; shaded: {100 * level:g} % band over {sweep.sizes['sample']} bootstrap samples "
+            f"of the DMA data")
+
+
 def cor_temperature(sweep, opts):
     """COR against temperature T (deg C), one line per material and impact speed v0; any other
     axis at the value the options name (e.g. ``nu: 0.5``) or its first; points not ok as red crosses."""
@@ -24,11 +40,13 @@ def cor_temperature(sweep, opts):
         for v0 in v0s:
             d = sweep.sel(material=m, v0=v0, **sel)
             ok = d["status"].values == 0
-            ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
+            line, = ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
+            _band(ax, d, "T", ok, line.get_color())
             nbad += mark_failed(ax, d["T"].values, ok)
     ax.set_xlabel("temperature T [°C]")
     ax.set_ylabel("COR")
-    ax.set_title("COR against temperature" + fixed + (f", {nbad} not ok" if nbad else ""), fontsize=9)
+    ax.set_title("COR against temperature" + fixed + (f", {nbad} not ok" if nbad else "") + _band_note(sweep),
+                 fontsize=9)
     ax.legend(fontsize=7)
     return fig
 
@@ -54,13 +72,14 @@ def cor_v0_temperature(sweep, opts):
             d = sweep.sel(material=m, T=t, **sel)
             ok = d["status"].values == 0
             ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, color=c, label=f"T = {t:g} °C")
+            _band(ax, d, "v0", ok, c)
             nbad += mark_failed(ax, d["v0"].values, ok)
         ax.set_xscale("log")
         ax.set_xlabel("impact speed v0 [m/s]")
         ax.set_ylabel("COR")
         ax.set_title(f"{m}" + (f" ({nbad} not ok)" if nbad else ""), fontsize=9)
         ax.legend(fontsize=7)
-    fig.suptitle("COR against impact speed at several temperatures" + fixed, fontsize=10)
+    fig.suptitle("COR against impact speed at several temperatures" + fixed + _band_note(sweep), fontsize=10)
     return fig
 
 

@@ -38,6 +38,11 @@ BOOLEAN_OPTIONS = ("volterra", "richardson")
 IVE_METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853")
 
 
+def _one_of(value, allowed) -> bool:
+    """``value`` is one of ``allowed``: a plain string or number (not a bool, array or other container)."""
+    return isinstance(value, (str, int, float)) and not isinstance(value, bool) and value in allowed
+
+
 def _spec(default, methods, help_text, allowed=None, bounds=None, method_defaults=None, unit="none"):
     """Field metadata: the value used when the option is not set (``default``; ``method_defaults``
     overrides it per method), the methods that use it, the allowed values (a tuple), a help text and
@@ -127,7 +132,7 @@ class SolverOptions:
     ghost: float = _SPEC["ghost"]["default"]
 
     def __post_init__(self):
-        if isinstance(self.method, bool) or self.method not in METHOD_NAMES:
+        if not _one_of(self.method, METHOD_NAMES):
             raise ValueError(f"solver option method must be one of {METHOD_NAMES}, got {self.method!r}")
         values = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         # 1. types and ranges of what was set
@@ -136,7 +141,7 @@ class SolverOptions:
             if value is None:
                 continue
             if spec["allowed"] is not None:
-                if isinstance(value, bool) or value not in spec["allowed"]:
+                if not _one_of(value, spec["allowed"]):
                     raise ValueError(f"solver option {name} must be one of {spec['allowed']}, got {value!r}")
             elif name in BOOLEAN_OPTIONS:
                 if not isinstance(value, bool):

@@ -4,7 +4,8 @@
 The aggregate refuses to combine shards computed by different code (their ``code_fingerprint``
 attributes differ from each other or from the running code) or with different material
 parameters than the current ones: an archive never mixes old and new results. Units, long names
-and status flags of the variables are those the shards carry. (A module of its own, without the
+and status flags of the variables are those the shards carry. A scene with ``uncertainty`` is
+reduced over its bootstrap samples (:func:`vcor.study.uncertainty.reduce_samples`). (A module of its own, without the
 solvers: the workflow's aggregate jobs then do not import numba.)
 """
 
@@ -19,6 +20,7 @@ from ..materials.catalogue import Catalogue
 from ..provenance import code_fingerprint
 from .scene import AXIS_UNITS, canon, material_params, scene_axes, settings_of
 from .shards import identified_points, point_key
+from .uncertainty import reduce_samples, uncertainty_of
 
 __all__ = ["aggregate", "dataset_attrs"]
 
@@ -99,4 +101,5 @@ def aggregate(shards, scene, identities: dict, catalogue: Catalogue | None = Non
         u, ln = AXIS_UNITS.get(a, ("1", a))
         ds[a].attrs.update(units=u, long_name=ln)
     ds["material"].attrs["long_name"] = "material (preset or fitted name)"
-    return ds
+    spec = uncertainty_of(scene)
+    return ds if spec is None else reduce_samples(ds, spec["level"])

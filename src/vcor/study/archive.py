@@ -20,6 +20,7 @@ import os
 from pathlib import Path
 
 from ..io import receipts
+from .uncertainty import samples_identity, uncertainty_of
 
 __all__ = ["LOCK_FILE", "ProjectLock", "heal", "problems", "remove_stale_snakemake_locks"]
 
@@ -38,6 +39,10 @@ def _expected(project, base: Path):
                 yield base / target, None
         for material in project.scenes[scene].get("convergence", {}).get("materials", []):
             yield base / f"results/{scene}/convergence/{material}.nc", None
+    for scene in project.scenes:
+        spec = uncertainty_of(project.scenes[scene])
+        for path, name in project.samples_of(scene):
+            yield base / path, samples_identity(cat, name, spec)
     for name in project.dem:
         yield base / "results" / "dem" / f"{name}.nc", None
     for name in [*cat.specs, *cat.fits, *cat.calibrations]:

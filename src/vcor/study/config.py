@@ -24,6 +24,7 @@ from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.options import METHOD_NAMES
 from .dem import check_dem
 from .scene import MAX_JOBS, MAX_POINTS, canon, check_temperature_axis, point_count, scene_axes, validate_scene
+from .uncertainty import check_uncertainty, samples_file, uncertainty_of
 
 __all__ = ["NAME_PATTERN", "SCENE_NAME_PATTERN", "Project", "inline_config_materials", "load_project"]
 
@@ -76,6 +77,7 @@ class Project:
         out = [f"results/{scene}/{n}.nc" for n in self.datasets_of(scene)]
         out += [f"{self.catalogue.material_dir}/{m}.nc" for m in self._used(scene)
                 if m in self.catalogue.specs or m in self.catalogue.computed()]
+        out += [path for path, _ in self.samples_of(scene)]
         for fig in cfg.get("figures", {}):
             out += [f"results/{scene}/figures/{fig}.png", f"results/{scene}/figures/{fig}.pdf"]
         if "convergence" in cfg:
@@ -93,7 +95,15 @@ class Project:
         """The computed material files (fits, calibrations) a scene's jobs read; presets and config
         materials are built from their definitions."""
         computed = self.catalogue.computed()
-        return [f"{self.catalogue.material_dir}/{m}.nc" for m in self._used(scene) if m in computed]
+        return ([f"{self.catalogue.material_dir}/{m}.nc" for m in self._used(scene) if m in computed]
+                + [path for path, _ in self.samples_of(scene)])
+
+    def samples_of(self, scene: str) -> list[tuple[str, str]]:
+        """(samples file, fit name) of every material of an uncertainty scene (vcor.study.uncertainty)."""
+        spec = uncertainty_of(self.scenes[scene])
+        if spec is None:
+            return []
+        return [(samples_file(self.catalogue.material_dir, m, spec), m) for m in self.scenes[scene]["materials"]]
 
 
 def inline_config_materials(scene: dict, catalogue: Catalogue) -> dict:
@@ -266,6 +276,7 @@ def _check_scene(name: str, scene: dict, catalogue: Catalogue, shard_size: int) 
     where = f"scenes.{name}"
     if not re.fullmatch(SCENE_NAME_PATTERN, name):
         raise ValueError(f"{where}: scene names may use letters, digits, - and _")
+    check_uncertainty(where, scene, catalogue)
     if "grid" in scene:
         _check_size(where, scene, int(scene.get("shard_size", shard_size)))
         check_temperature_axis(name, scene, catalogue)  # before the corner points (which would shift)

@@ -28,6 +28,7 @@ from ..contact.bodies import impact_inputs, scene_bodies
 from ..contact.impact import GEOMETRY_DEFAULTS, make_impact
 from ..materials.catalogue import Catalogue
 from ..solvers.options import SolverOptions
+from .uncertainty import sample_material, samples_file, uncertainty_of
 
 __all__ = [
     "AXIS_UNITS",
@@ -68,6 +69,7 @@ AXIS_UNITS = {
     "b1": ("s-1/2", "CERF rate parameter"),
     "tau": ("s", "retardation time"),
     "T": ("degC", "temperature (materials with a shift function: E(t; T) = E(t / a_T))"),
+    "sample": ("1", "bootstrap sample of the fitted materials (scenes with uncertainty)"),
 }
 
 
@@ -163,6 +165,9 @@ def scene_axes(scene) -> dict[str, list[float]]:
             out[k] = axis_values(v)
         except ValueError as exc:
             raise ValueError(f"{k}: {exc}") from None
+    spec = uncertainty_of(scene)
+    if spec is not None:  # the bootstrap axis (vcor.study.uncertainty)
+        out["sample"] = [float(k) for k in range(spec["bootstrap"])]
     return out
 
 
@@ -174,6 +179,9 @@ def point_count(scene) -> int:
             n *= axis_length(v)
         except ValueError as exc:
             raise ValueError(f"{k}: {exc}") from None
+    spec = scene.get("uncertainty")
+    if isinstance(spec, dict) and isinstance(spec.get("bootstrap"), int):
+        n *= max(int(spec["bootstrap"]), 1)
     return n
 
 
@@ -204,6 +212,9 @@ def settings_of(scene) -> dict:
     }
     if "sphere" in scene or "plate" in scene:
         out["bodies"] = {k: dict(scene.get(k) or {}) for k in ("sphere", "plate")}
+    spec = uncertainty_of(scene)
+    if spec is not None:
+        out["uncertainty"] = spec
     return out
 
 
@@ -228,7 +239,7 @@ def _check_bodies(where, scene, axes):
 def _check_axis_names(where, scene, axes, catalogue):
     """Every grid axis is v0, T, a geometry keyword (not with bodies) or a scalar parameter of every
     material of the scene; every tie target is a scalar parameter of every material."""
-    fixed = {"v0", "T"} | (set() if "sphere" in scene or "plate" in scene else set(GEOMETRY_AXES))
+    fixed = {"v0", "T", "sample"} | (set() if "sphere" in scene or "plate" in scene else set(GEOMETRY_AXES))
     params = {m: catalogue.scalar_parameters(m) for m in scene["materials"] if _known(catalogue, m)}
     shared = sorted(set.intersection(*map(set, params.values()))) if params else []
     for key, block in [(a, "grid") for a in axes if a not in fixed] + [(t, "tie") for t in scene.get("tie") or {}]:
@@ -328,7 +339,7 @@ def build_point(point, settings, catalogue: Catalogue | None = None):
     overrides = {}
     v0 = None
     for key, value in point.items():
-        if key in ("material", "material_id", "T"):
+        if key in ("material", "material_id", "T", "sample"):
             continue
         if key == "v0":
             v0 = float(value)
@@ -338,7 +349,12 @@ def build_point(point, settings, catalogue: Catalogue | None = None):
             overrides[key] = value
     for target, spec in settings["tie"].items():
         overrides[target] = float(spec["ratio"]) * float(point[spec["to"]])
-    material = catalogue.at(point["material"], overrides, float(point["T"]) if "T" in point else None)
+    T = float(point["T"]) if "T" in point else None
+    if "sample" in point:
+        path = samples_file(catalogue.material_dir, point["material"], settings["uncertainty"])
+        material = sample_material(path, int(point["sample"]), overrides, T, point["material"])
+    else:
+        material = catalogue.at(point["material"], overrides, T)
     if "bodies" in settings:
         material, geometry = impact_inputs(*scene_bodies(settings["bodies"], material))
     return material, v0, geometry

@@ -1,0 +1,164 @@
+"""Uncertainty from measured data (docs: User guide, Uncertainty): does the bootstrap band cover the
+truth, and what does it cost?
+
+``coverage``: synthetic DMA data of two known Prony materials (5 terms) shifted by WLF (C1 = 8.86,
+C2 = 101.6 K, T_ref = 20 deg C; five sets at -10..50 deg C, ten frequencies 0.1..100 Hz, 1 % noise on
+E' and E''), one data set per seed; each is fitted and resampled (vcor.fitting.resample.samples_dataset, B samples) and the COR of a
+steel sphere (r = 10 mm) on a rigid target at 1 m/s is computed for every sample at 0, 20 and 40 deg C.
+The table counts the seeds whose 95 % band (2.5 % .. 97.5 % quantiles) holds the true material's COR,
+and gives the band's median width; a noise-free data set gives the band's width without noise. This
+part is not a timing (the per-seed fit time is printed for information only).
+
+``cost``: the default config's ``pyvisco`` scene (both fits of pyvisco's raw data, 50 bootstrap
+samples, 620 grid points: 31000 impacts) in a fresh copy of the project with an empty numba cache:
+``snakemake -j2 results/pyvisco/sweep.nc``, wall time, RUNS runs, median (min-max); and the same scene
+without ``uncertainty`` for the ratio.
+
+Run: python benchmarks/bench_uncertainty.py [coverage] [cost] [--seeds 20] [--bootstrap 50] [--runs 2]
+     [--quick] [--out FILE]
+"""
+
+from __future__ import annotations
+
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import timing
+import yaml
+
+ROOT = timing.ROOT
+TEMPS = (0.0, 20.0, 40.0)
+V0 = 1.0
+
+
+#: the known materials (Prony: E_inf [Pa], E [Pa], beta [1/s]) and their WLF shift (C1, C2 [K], T_ref [deg C])
+MATERIALS = {
+    "rates 1e1..1e9 1/s": (2e6, (5e6, 20e6, 60e6, 150e6, 400e6), (1e1, 1e3, 1e5, 1e7, 1e9)),
+    "rates 1e1..1e7 1/s": (2e6, (5e6, 20e6, 60e6, 150e6, 400e6), tuple(10.0 ** np.linspace(1, 7, 5))),
+}
+WLF = (8.86, 101.6, 20.0)
+SETS = (-10.0, 5.0, 20.0, 35.0, 50.0)  # deg C
+FREQ = np.geomspace(0.1, 100, 10)  # Hz
+
+
+def _write_csv(path: Path, material, seed: int, noise: float) -> None:
+    """Five sets of the known material, multiplicative normal noise on E' and E''."""
+    from vcor.materials.shift import wlf_log_aT
+
+    rng = np.random.default_rng(seed)
+    rows = ["f,E_stor,E_loss,T,Set", "Hz, MPa, MPa, C, -"]
+    for k, T in enumerate(SETS):
+        e = material.complex_modulus(2 * np.pi * FREQ * 10 ** wlf_log_aT(T, WLF[2], WLF[0], WLF[1]))
+        n = 1 + noise * rng.standard_normal((2, FREQ.size))
+        rows += [f"{f:.17g},{x.real * a / 1e6:.17g},{x.imag * b / 1e6:.17g},{T:g},{k}"
+                 for f, x, a, b in zip(FREQ, e, *n)]
+    path.write_text("\n".join(rows) + "\n")
+
+
+def one_seed(material, seed: int, noise: float, n: int, folder: Path) -> dict:
+    """Band and truth at TEMPS for one synthetic data set."""
+    import vcor
+    from vcor.fitting import resample
+    from vcor.materials.shift import at_temperature, time_shifted, wlf_log_aT
+
+    _write_csv(folder / "dma.csv", material, seed, noise)
+    spec = {"model": "prony", "data": {"file": "dma.csv", "T_ref": WLF[2]}}
+    t = time.perf_counter()
+    ds = resample.samples_dataset("synthetic", spec, n, seed=seed, base_dir=folder)
+    fit_time = time.perf_counter() - t
+    mats = resample.sample_materials(ds)
+    out = {"fit_time": fit_time, "covered": [], "width": [], "offset": []}
+    for T in TEMPS:
+        want = vcor.simulate(time_shifted(material, float(wlf_log_aT(T, WLF[2], WLF[0], WLF[1]))), V0, rigid=True).cor
+        cor = np.array([vcor.simulate(at_temperature(m, s, T), V0, rigid=True).cor for m, s in mats])
+        lo, hi = np.quantile(cor, [0.025, 0.975])
+        out["covered"].append(bool(lo <= want <= hi))
+        out["width"].append(float(hi - lo))
+        out["offset"].append(float(np.median(cor) - want))
+    return out
+
+
+def coverage(args) -> list[str]:
+    from vcor.materials import Prony
+
+    seeds = 3 if args.quick else args.seeds
+    n = 10 if args.quick else args.bootstrap
+    rows = []
+    with tempfile.TemporaryDirectory() as d:
+        for label, params in MATERIALS.items():
+            material = Prony(*params)
+            results = []
+            for seed in range(seeds):
+                r = one_seed(material, seed, 0.01, n, Path(d))
+                results.append(r)
+                print(f"{label}, seed {seed}: covered {r['covered']}, widths {np.round(r['width'], 5)}, "
+                      f"fit {r['fit_time']:.1f} s", file=sys.stderr, flush=True)
+            clean = one_seed(material, 0, 0.0, n, Path(d))
+            covered = np.array([r["covered"] for r in results])
+            widths = np.array([r["width"] for r in results])
+            offsets = np.array([r["offset"] for r in results])
+            rows += [[label, f"{T:g}", f"{int(covered[:, j].sum())} of {seeds}", f"{np.median(widths[:, j]):.1e}",
+                      f"{np.median(offsets[:, j]):+.1e}", f"{clean['width'][j]:.1e}", f"{clean['offset'][j]:+.1e}"]
+                     for j, T in enumerate(TEMPS)]
+    return [f"Coverage: {seeds} synthetic data sets per material (five sets at {', '.join(f'{t:g}' for t in SETS)} °C, "
+            f"ten frequencies 0.1..100 Hz, 1 % noise), {n} bootstrap samples each, COR of a steel sphere "
+            f"(r = 10 mm) at {V0:g} m/s on a rigid target. Offset: median of the samples minus the true COR.",
+            timing.table(["material", "T [°C]", "95 % band holds the true COR", "median band width (1)",
+                          "median offset (1)", "noise-free data: band width (1)", "noise-free: offset (1)"], rows)]
+
+
+def _project(folder: Path, uncertainty: dict | None, quick: bool) -> Path:
+    for name in ("Snakefile", "workflow", "profiles", "data"):
+        src = ROOT / name
+        (shutil.copytree if src.is_dir() else shutil.copy)(src, folder / name)
+    cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
+    scene = cfg["scenes"]["pyvisco"]
+    scene.pop("uncertainty", None)
+    if uncertainty:
+        scene["uncertainty"] = uncertainty
+    if quick:
+        scene["grid"] = {"v0": [1, 10], "T": [-20, 20], "nu": [0.5]}
+    cfg["scenes"] = {"pyvisco": scene}
+    cfg["dem"] = {}
+    (folder / "config.yaml").write_text(yaml.safe_dump(cfg, sort_keys=False))
+    return folder
+
+
+def cost(args) -> list[str]:
+    bootstrap = 4 if args.quick else args.bootstrap
+    cmd = [sys.executable, "-m", "snakemake", "-j2", "results/pyvisco/sweep.nc"]
+    rows = {}
+    for label, unc in (("without uncertainty", None), (f"bootstrap {bootstrap}", {"bootstrap": bootstrap})):
+        walls = []
+        for _ in range(args.runs):
+            with tempfile.TemporaryDirectory() as d:
+                path = _project(Path(d), unc, args.quick)
+                walls.append(timing.run_fresh(cmd, cwd=path).wall)
+        rows[label] = walls
+    base = timing.median(rows["without uncertainty"])
+    lines = [[label, timing.cell(w, fmt=".1f"), f"{timing.median(w) / base:.1f}"] for label, w in rows.items()]
+    return [f"Cost: the default config's `pyvisco` scene{' (quick: a 2 x 2 x 1 grid)' if args.quick else ''}, "
+            "`snakemake -j2 results/pyvisco/sweep.nc` in a fresh copy of the project (fits, samples, "
+            "shards, aggregate), empty numba cache.",
+            timing.table(["scene", "wall time [s], median (min-max)", "ratio"], lines)]
+
+
+def main() -> None:
+    p = timing.parser(__doc__, quick="3 seeds with 10 samples; the cost on a 4-point grid with 4 samples")
+    p.add_argument("parts", nargs="*", choices=["coverage", "cost"], default=[])
+    p.add_argument("--seeds", type=int, default=20)
+    p.add_argument("--bootstrap", type=int, default=50)
+    args = p.parse_args()
+    parts = args.parts or ["coverage", "cost"]
+    blocks = []
+    for part in parts:
+        blocks += {"coverage": coverage, "cost": cost}[part](args)
+    timing.publish(args.out, args.runs, blocks)
+
+
+if __name__ == "__main__":
+    main()

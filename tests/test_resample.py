@@ -1,0 +1,82 @@
+"""Bootstrap of measured-data fits (vcor.fitting.resample): resampling schemes, the samples dataset
+(the contract of a study's uncertainty band) and the plausibility of the shifts' bootstrap spread."""
+
+import json
+
+import numpy as np
+import pytest
+from synthetic_dma import T_REF, TEMPS, TRUE, synthetic, write_csv
+
+from vcor.fitting import resample
+from vcor.io.netcdf import scalar_dataset_check
+from vcor.materials.files import from_file
+from vcor.materials.shift import shift_from_file
+
+
+def test_resample_schemes():
+    data = synthetic(0)
+    rng = np.random.default_rng(4)
+    b = resample.resample(data, rng)
+    assert b["f"].size == data["f"].size and np.all(b["weight"] > 0)
+    assert b["weight"].mean() == pytest.approx(1.0, rel=1e-12)
+    for _ in range(10):
+        c = resample.resample(data, rng, T_ref=T_REF, mode="classical")
+        kept = np.unique(c["Set"])
+        assert 2 in kept and kept.size >= 2 and np.all(c["weight"] >= 1)  # the set at T_ref is always kept
+    with pytest.raises(ValueError, match="mode must be one of"):
+        resample.resample(data, rng, mode="jackknife")
+    with pytest.raises(ValueError, match="two or more temperatures"):
+        resample.resample({k: v[:10] for k, v in data.items()}, rng)
+
+
+@pytest.fixture(scope="module")
+def samples(tmp_path_factory):
+    path = write_csv(tmp_path_factory.mktemp("boot") / "dma.csv", synthetic(1))
+    spec = {"model": "prony", "data": {"file": str(path), "T_ref": T_REF}}
+    return resample.samples_dataset("syn", spec, 3, seed=7), spec
+
+
+def test_samples_dataset_layout_and_materials(samples, tmp_path):
+    ds, spec = samples
+    assert dict(ds.sizes)["sample"] == 3 and list(ds["sample"].values) == [0, 1, 2]
+    assert np.allclose(ds["T_set"].values, TEMPS)
+    scalar_dataset_check(ds)
+    assert json.loads(ds.attrs["spec"]) == spec and ds.attrs["n"] == 3 and ds.attrs["seed"] == 7
+    n = ds["n_modes"].values
+    for i in range(3):  # padding: E = 0 and beta = NaN after the sample's own terms
+        assert np.all(ds["E"].values[i, n[i]:] == 0) and np.all(np.isnan(ds["beta"].values[i, n[i]:]))
+        assert np.all(np.isfinite(ds["beta"].values[i, :n[i]]))
+    pairs = resample.sample_materials(ds)
+    assert len(pairs) == 3
+    for (mat, shift), row in zip(pairs, ds["log_aT"].values):
+        assert shift.model == "table" and shift.log_aT(float(TEMPS[0])) == pytest.approx(row[0])
+        assert mat.kind == "prony" and len(mat.E) <= ds.sizes["mode"]
+    # written like a fit's material file: the full-data material and shift read back
+    from vcor.io.netcdf import write_dataset
+
+    path = write_dataset(ds, tmp_path / "syn.nc", title="bootstrap", timestamp=False, command="test")
+    assert from_file(path).kind == "prony" and shift_from_file(path).model == "table"
+
+
+def test_bootstrap_spread_of_the_shifts_is_plausible(samples):
+    """The full-data shifts lie within 0.1 decade of the truth (1 % noise), every sample's within 0.3, and
+    the samples' spread is below 0.1 decade and within 1/10..20 times the linearised standard errors (the
+    linearised errors assume independent residuals; three samples make a rough spread)."""
+    ds, _ = samples
+    assert np.abs(ds["log_aT_full"].values - TRUE).max() < 0.1
+    assert np.abs(ds["log_aT"].values - TRUE).max() < 0.3
+    spread = ds["log_aT"].std("sample").values
+    std = ds["log_aT_std"].values
+    free = std > 0
+    ratio = spread[free] / std[free]
+    print(f"\nbootstrap sd / linearised sd: {np.round(ratio, 2)}")
+    assert np.all((ratio > 0.1) & (ratio < 20.0)) and spread.max() < 0.1
+
+
+def test_refusals_name_the_fit(tmp_path):
+    one = write_csv(tmp_path / "one.csv", synthetic(0, temps=np.array([20.0])))
+    with pytest.raises(ValueError, match="two or more temperatures"):
+        resample.samples_dataset("x", {"model": "prony", "data": {"file": str(one), "T_ref": 20}}, 2)
+    two = write_csv(tmp_path / "two.csv", synthetic(0))
+    with pytest.raises(ValueError, match="fits.x.method"):
+        resample.samples_dataset("x", {"model": "prony", "method": "free", "data": {"file": str(two), "T_ref": 20}}, 2)
