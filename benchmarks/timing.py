@@ -173,8 +173,9 @@ def short_rev(rev: str = "HEAD") -> str:
 
 
 def commit() -> str:
-    """``git rev-parse --short HEAD``, with ``+changes`` when the working tree differs from it."""
-    return short_rev() + ("+changes" if _git("status", "--porcelain") else "")
+    """``git rev-parse --short HEAD``, with ``+changes`` when the working tree differs from it (the
+    benchmark tables under docs/_generated, which the benchmarks write, do not count)."""
+    return short_rev() + ("+changes" if _git("status", "--porcelain", "--", ".", ":!docs/_generated") else "")
 
 
 def machine() -> str:
