@@ -25,13 +25,10 @@ Run: python benchmarks/bench_dma.py [--runs 3] [--out docs/_generated/dma.md]
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import json
 import math
 import os
-import platform
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -150,26 +147,6 @@ def run_worker(method, *args):
 
 
 # --- the report ------------------------------------------------------------------------------------
-
-def _commit():
-    def git(*a):
-        return subprocess.run(["git", "-C", str(ROOT), *a], capture_output=True, text=True, check=True).stdout.strip()
-
-    rev = git("rev-parse", "--short", "HEAD")
-    return rev + (" + uncommitted changes" if git("status", "--porcelain") else "")
-
-
-def _machine():
-    cpu = platform.processor()
-    cpu = f", {cpu}" if cpu and cpu != platform.machine() else ""
-    return (f"{platform.system()} {platform.release()} {platform.machine()}{cpu}, {os.cpu_count()} CPUs, "
-            f"Python {platform.python_version()}")
-
-
-def _header(runs, command):
-    date = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    return f"`{command}` · commit {_commit()} · {date} · {_machine()} · {runs} run{'s' if runs != 1 else ''}"
-
 
 def _pct(x):
     return f"{100 * x:.2f} %"
@@ -395,7 +372,7 @@ def main():
     if VENV_PYTHON.exists():
         versions.append(f"pyvisco and mastercurves from {VENV_PYTHON}")
     text = "\n\n".join([
-        _header(args.runs, command),
+        timing.header(args.runs, command),
         f"pyvisco's raw example (`data/pyvisco/freq_user_raw.csv`, 21 sets), T_ref = {T_REF:g} °C. Each row is "
         f"fitted in its own fresh process ({', '.join(f'{k}=1' for k in THREAD_ENV)}, an empty NUMBA_CACHE_DIR), "
         f"{args.runs} times; times: median (min–max). Errors: rms of fit/data − 1 over each fit's own master "

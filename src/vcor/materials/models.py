@@ -20,6 +20,8 @@ Presets (Green 2026, Eqs. 14, 23b, 24, 26) are in :mod:`vcor.materials.presets`.
 
 from __future__ import annotations
 
+import functools
+
 import json
 import math
 import numbers
@@ -95,14 +97,15 @@ class Material:
         return self if m == 1.0 and a == 1.0 else self._scaled(m, a)
 
     # -- shared -----------------------------------------------------------------------
-    @property
+    @functools.cached_property
     def glassy(self) -> float:
-        """E(0+) in Pa (``inf`` for the fractional power law)."""
+        """E(0+) in Pa (``inf`` for the fractional power law); computed once per material (every impact
+        asks for it)."""
         return float(self.relaxation_modulus(np.array([0.0]))[0])
 
-    @property
+    @functools.cached_property
     def rubbery(self) -> float:
-        """E(t -> inf) in Pa."""
+        """E(t -> inf) in Pa; computed once per material."""
         return float(self.relaxation_modulus(np.array([np.inf]))[0])
 
     @property
