@@ -372,7 +372,7 @@ def main():
     if VENV_PYTHON.exists():
         versions.append(f"pyvisco and mastercurves from {VENV_PYTHON}")
     text = "\n\n".join([
-        timing.header(args.runs, command),
+        timing.header(args.runs, command=command),
         f"pyvisco's raw example (`data/pyvisco/freq_user_raw.csv`, 21 sets), T_ref = {T_REF:g} °C. Each row is "
         f"fitted in its own fresh process ({', '.join(f'{k}=1' for k in THREAD_ENV)}, an empty NUMBA_CACHE_DIR), "
         f"{args.runs} times; times: median (min–max). Errors: rms of fit/data − 1 over each fit's own master "
