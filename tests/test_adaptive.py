@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor.solvers import adaptive
 from vcor.contact.impact import make_impact
+from vcor.solvers import adaptive
 
 PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
 

@@ -11,12 +11,12 @@ import pytest
 import yaml
 
 import vcor
+from vcor import materials as M
+from vcor import spheres as S
 from vcor.fitting import fits
 from vcor.fitting import prony as fit
 from vcor.study import scene
 from vcor.study.config import load_project
-from vcor import materials as M
-from vcor import spheres as S
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor.contact import bodies
 from vcor import materials as M
+from vcor.contact import bodies
 from vcor.study.scene import build_point, settings_of, validate_scene
 
 

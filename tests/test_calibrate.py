@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 import vcor
+from vcor import materials as M
 from vcor.fitting import calibrate as C
 from vcor.materials import Catalogue
-from vcor import materials as M
 
 TRUE = M.SLS(15e6, 300.0, 1200.0)
 START = M.SLS(10e6, 300.0, 2000.0)

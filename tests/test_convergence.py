@@ -5,8 +5,8 @@ import json
 import numpy as np
 
 from vcor import status
-from vcor.study import convergence
 from vcor.solvers.options import SolverOptions
+from vcor.study import convergence
 
 
 def test_study_records_options_statuses_and_order_two():

@@ -37,7 +37,7 @@ HISTORY = {
     "time of writing": r"(?i)\bat the time of writing\b",
 }
 #: fenced code blocks with a language (or none); MyST directives (```{name}) are checked like text
-CODE_FENCE = re.compile(r"^(`{3,}|~{3,})(?!\{)[^\n]*\n.*?^\1[ \t]*$", re.M | re.S)
+CODE_FENCE = re.compile(r"^(`{3,}|~{3,})(?!\{)[^\n]*\n.*?^\1[ \t]*$", re.MULTILINE | re.DOTALL)
 #: the pages: every Markdown file of the site (not the generated benchmark tables, not work notes)
 NOT_PAGES = {"DOCSTRING_WARNINGS.md"}
 

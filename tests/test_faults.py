@@ -15,7 +15,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-
 from test_workflow import make_project
 
 CONFIG = {

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 import vcor
+from vcor import materials as M
 from vcor.fitting import fits
 from vcor.fitting import prony as fit
 from vcor.io import netcdf as io
-from vcor import materials as M
 
 
 @pytest.fixture(scope="module")

@@ -9,7 +9,12 @@ import yaml
 
 import vcor
 from vcor import cli
-from vcor.solvers.options import BOOLEAN_OPTIONS, DEFAULT_METHOD, SolverOptions, solver_options
+from vcor.solvers.options import (
+    BOOLEAN_OPTIONS,
+    DEFAULT_METHOD,
+    SolverOptions,
+    solver_options,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text())

@@ -8,8 +8,8 @@ from scipy.integrate import solve_ivp
 
 import vcor
 from vcor import materials as M
-from vcor.solvers.common import richardson
 from vcor.contact.impact import make_impact
+from vcor.solvers.common import richardson
 
 
 def rel(a, b):

@@ -13,7 +13,9 @@ import numpy as np
 import pytest
 from synthetic_dma import T_REF, TRUE, synthetic
 
-from vcor.fitting import dmafit, spectrum as spc, superpose as sp
+from vcor.fitting import dmafit
+from vcor.fitting import spectrum as spc
+from vcor.fitting import superpose as sp
 
 RAW = Path(__file__).resolve().parents[1] / "data/pyvisco/freq_user_raw.csv"
 

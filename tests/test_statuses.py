@@ -8,8 +8,8 @@ import pytest
 
 import vcor
 from vcor import status
-from vcor.study import datasets, runner, scene
 from vcor.contact.impact import Impact
+from vcor.study import datasets, runner, scene
 
 SCENE = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}}
 

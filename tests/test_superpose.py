@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from synthetic_dma import T_REF, TEMPS, TRUE, C1, C2, synthetic
+from synthetic_dma import C1, C2, T_REF, TEMPS, TRUE, synthetic
 
 from vcor.fitting import superpose as sp
 from vcor.materials.shift import GAS_CONSTANT, ShiftFunction, wlf_log_aT

@@ -36,7 +36,7 @@ def job_log(smk):
     sys.stderr = log or terminal
     try:
         yield
-    except BaseException as exc:  # noqa: BLE001 - reported twice, then the job fails
+    except BaseException as exc:
         if isinstance(exc, SystemExit) and exc.code in (0, None):
             raise
         text = f"vcor: job failed: {type(exc).__name__}: {exc}\n{traceback.format_exc()}"

@@ -21,7 +21,6 @@ Presets (Green 2026, Eqs. 14, 23b, 24, 26) are in :mod:`vcor.materials.presets`.
 from __future__ import annotations
 
 import functools
-
 import json
 import math
 import numbers

@@ -42,7 +42,7 @@ def get(name: str) -> Material:
     return _preset(name)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _preset(name: str) -> Material:
     # materials are frozen: one object per preset serves every call (and keys the solvers' caches)
     return PRESETS[name]()

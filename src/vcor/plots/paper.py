@@ -10,10 +10,10 @@ import numpy as np
 from .common import (
     cor_line,
     json_materials,
-    run_label,
     mark_failed,
     plt,
     point,
+    run_label,
     status_name,
     v0_line,
 )

@@ -147,11 +147,11 @@ class Nodes:
         return self.s[-1], self.g[-1], self.F[-1], self.J[-1]
 
     def append(self, t, s, g, F, J, u):
-        for name, value in zip("t s g F J u".split(), (t, s, g, F, J, u)):
+        for name, value in zip(["t", "s", "g", "F", "J", "u"], (t, s, g, F, J, u)):
             getattr(self, name).append(float(value))
 
     def arrays(self):
-        return {name: np.array(getattr(self, name)) for name in "t s g F J u".split()}
+        return {name: np.array(getattr(self, name)) for name in ["t", "s", "g", "F", "J", "u"]}
 
 
 def overlap_power(s):

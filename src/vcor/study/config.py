@@ -23,7 +23,15 @@ from ..materials.specs import from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.options import METHOD_NAMES
 from .dem import check_dem
-from .scene import MAX_JOBS, MAX_POINTS, canon, check_temperature_axis, point_count, scene_axes, validate_scene
+from .scene import (
+    MAX_JOBS,
+    MAX_POINTS,
+    canon,
+    check_temperature_axis,
+    point_count,
+    scene_axes,
+    validate_scene,
+)
 from .uncertainty import check_uncertainty, samples_file, uncertainty_of
 
 __all__ = ["NAME_PATTERN", "SCENE_NAME_PATTERN", "Project", "inline_config_materials", "load_project"]

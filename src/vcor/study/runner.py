@@ -16,8 +16,8 @@ import numpy as np
 
 from .. import status as _status
 from ..materials.catalogue import Catalogue
-from ..solvers.common import LONG_NAMES, UNITS, richardson
 from ..solvers import validity as _validity
+from ..solvers.common import LONG_NAMES, UNITS, richardson
 from ..solvers.simulate import simulate
 from .scene import build_point
 

@@ -38,8 +38,17 @@ import numpy as np
 from ..materials.catalogue import content_hash, with_parameters
 from ..materials.shift import at_temperature
 
-__all__ = ["KEYS", "MAX_BOOTSTRAP", "BANDED", "check_uncertainty", "reduce_samples", "sample_material",
-           "samples_file", "samples_identity", "uncertainty_of"]
+__all__ = [
+    "BANDED",
+    "KEYS",
+    "MAX_BOOTSTRAP",
+    "check_uncertainty",
+    "reduce_samples",
+    "sample_material",
+    "samples_file",
+    "samples_identity",
+    "uncertainty_of",
+]
 
 #: keys of a scene's ``uncertainty`` mapping
 KEYS = ("bootstrap", "seed", "level")
