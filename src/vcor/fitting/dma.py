@@ -12,7 +12,8 @@ A second row of unit names is allowed (and read); without it the values are SI (
 A UTF-8 byte-order mark is accepted. Every error names the file, the line (1-based) and the column.
 
 Superposition (:func:`superpose`): each set's temperature is the mean of its T column; with shift
-factors given they are interpolated linearly in T (inside their range only), or taken per set
+factors given they are interpolated in T like a tabulated shift function (PCHIP, up to 0.5 K beyond
+their range and no further; :mod:`vcor.materials.shift`), or taken per set
 (``log_aT``); otherwise adjacent sets are shifted horizontally onto each other by matching log f at
 equal log E' over the E' range they share (E' superposes; in pyvisco's example E'' does not), and the
 shifts are summed from the reference temperature (the pairwise shifts of ``method: free``; the
@@ -33,7 +34,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ..io.csvfile import cell_number, data_rows, read_rows, units_row
-from ..materials.shift import GAS_CONSTANT, wlf_log_aT
+from ..materials.shift import GAS_CONSTANT, TABLE_TOLERANCE, table_log_aT, wlf_log_aT
 from .prony import FitData, fit_prony
 
 __all__ = ["DMATable", "Superposition", "arrhenius_fit", "check_data", "fit_master", "read_table", "set_arrays",
@@ -193,11 +194,15 @@ def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None, *, lo
             raise ValueError(f"{shifts.path}: not a shift-factor file (T,log_aT)")
         order = np.argsort(shifts.columns["T"])
         ts, ls = shifts.columns["T"][order], shifts.columns["log_aT"][order]
-        if T.min() < ts[0] - 0.5 or T.max() > ts[-1] + 0.5:
+        tol = TABLE_TOLERANCE
+        if T.min() < ts[0] - tol or T.max() > ts[-1] + tol:
             raise ValueError(f"{shifts.path}: shift factors cover {ts[0]:g}..{ts[-1]:g} deg C, the sets "
                              f"{T.min():g}..{T.max():g} deg C")
-        log_aT = np.interp(T, ts, ls) - np.interp(T_ref, ts, ls)
-        source = f"given ({shifts.path}), linear in T, zero at T_ref"
+        if not ts[0] - tol <= T_ref <= ts[-1] + tol:
+            raise ValueError(f"{shifts.path}: shift factors cover {ts[0]:g}..{ts[-1]:g} deg C, T_ref = {T_ref:g} "
+                             f"deg C lies outside (the factors are made zero at T_ref)")
+        log_aT = table_log_aT(ts, ls, T) - table_log_aT(ts, ls, T_ref)
+        source = f"given ({shifts.path}), PCHIP in T, zero at T_ref"
     else:
         steps = []
         for (ta, fa, ea, _), (tb, fb, eb, _) in itertools.pairwise(sets):

@@ -113,7 +113,7 @@ class DMAFit:
 
 
 def shift_function(fit: DMAFit, model: str = "table") -> ShiftFunction:
-    """The shift function of a fit: ``"table"`` (the per-set log10 a_T, linear in T), ``"wlf"`` or
+    """The shift function of a fit: ``"table"`` (the per-set log10 a_T, PCHIP in T), ``"wlf"`` or
     ``"arrhenius"`` (fitted to them)."""
     if model == "table":
         return ShiftFunction.table(fit.T_ref, fit.T, fit.log_aT)

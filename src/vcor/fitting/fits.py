@@ -17,7 +17,7 @@ Measured data are fitted by one of two methods (``method``):
   put ripples into tan delta between them.
 
 ``shift_model`` (default ``table``) is the shift function stored with the material: ``table`` (the
-per-set log10 a_T, linear in T, not extrapolated beyond the sets), ``wlf`` or ``arrhenius`` (fitted
+per-set log10 a_T, PCHIP in T between the sets, not extrapolated beyond them), ``wlf`` or ``arrhenius`` (fitted
 to the per-set shifts).
 """
 
@@ -174,7 +174,7 @@ def _run_spectrum(spec, raw, shifts, T_ref, shift_model):
     fitted = dmafit.fit_dma(raw, T_ref, log_aT=given)
     shift = dmafit.shift_function(fitted, shift_model)
     sp = dma.superpose(raw, T_ref, log_aT=fitted.log_aT,
-                       source=f"given ({shifts.path}), linear in T, zero at T_ref" if shifts is not None else
+                       source=f"given ({shifts.path}), PCHIP in T, zero at T_ref" if shifts is not None else
                        "global superposition of all sets, refined with the spectrum (vcor.fitting.dmafit)")
     material = fitted.material()
     settings = {"model": "prony", "method": "spectrum", "lam": fitted.spectrum.lam, "smoothing": fitted.smoothing,

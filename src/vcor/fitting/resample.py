@@ -1,18 +1,35 @@
 r"""Bootstrap of a measured-data fit: resampled DMA data, refitted shifts and spectrum per sample.
 
-Resampling (:func:`resample`) is by default the two-stage Bayesian bootstrap (Rubin 1981): set k gets
-a weight :math:`g_k \sim \mathrm{Exp}(1)` (normalised to mean 1 over the sets), each of its points a
-weight :math:`p_{ki} \sim \mathrm{Exp}(1)` (mean 1 within the set), and the point multiplicity is
-:math:`m_{ki} = g_k p_{ki}`: the continuous version of drawing sets with replacement and then points
-within sets. No set is ever dropped, so the overlap chain between temperature-adjacent sets cannot
-break. (Drawing sets with replacement, ``mode="classical"``, drops sets; on pyvisco's example 149 of
-200 such draws leave two neighbours with no common E', E'' or tan delta range.)
+Default resampling (:func:`wild_sample`, ``mode="wild"``): a two-level wild bootstrap of the
+full-data fit's residuals. Every point keeps its frequency and its set; its moduli become
+
+.. math:: E^{*}_{ki} = \hat E_{ki}\, \exp\!\big(v_k\, \bar\rho_k + v_{ki}\,(\rho_{ki} - \bar\rho_k)\big),
+          \qquad \rho_{ki} = \frac{\ln(E_{ki} / \hat E_{ki})}{1 - h_{ki}},
+
+separately for E' and E'' (:math:`\hat E` the full-data spectrum at the point's reduced frequency,
+:math:`h` its leverage in that fit, :func:`vcor.fitting.spectrum.leverage`; :math:`\bar\rho_k` the
+set's mean, a per-set modulus scale error such as a geometry or clamping error), with independent
+weights :math:`v_k` per set and :math:`v_{ki}` per point, drawn from Webb's six-point distribution
+(:math:`\pm\sqrt{1/2}, \pm 1, \pm\sqrt{3/2}`, mean 0, variance 1; Webb 2016, for few clusters; the
+same :math:`v` for a point's E' and E''). So both levels of the data's scatter, the points within a
+set and the sets, are resampled, the design (frequencies, temperatures) stays that of the data, and
+no overlap between sets can break. Dividing by :math:`1 - h` (the HC3 correction of MacKinnon &
+White 1985, as Davidson & Flachaire 2008 use in the wild bootstrap) undoes the shrinking of the
+residuals where few points decide the fit: without it, on synthetic data (``python
+benchmarks/bench_uncertainty.py coverage``) the samples' spread at the end of the data's reduced
+range was half the fit's actual error.
+
+``mode="bayesian"`` (:func:`resample`): the two-stage Bayesian bootstrap (Rubin 1981) of the points,
+set k weighted :math:`g_k \sim \mathrm{Exp}(1)` and each of its points :math:`p_{ki} \sim \mathrm{Exp}(1)`,
+multiplicity :math:`g_k p_{ki}`. ``mode="classical"``: sets drawn with replacement and then points
+within sets, as integer multiplicities (it drops sets: on pyvisco's example 149 of 200 such draws
+leave two neighbours with no common E', E'' or tan delta range). Both resample the pairs
+(point, value) and understate the scatter where leverage is high, as above.
 
 Every sample is refitted by :func:`vcor.fitting.dmafit.fit_dma` with the full-data fit's smoothing
-parameters held fixed (spline mu, joint and final lambda) and its spectrum as the start: GCV on
-weighted data undersmooths (a heavily weighted point acts like a duplicate that cross-validation
-cannot see). The spread of the samples is the data's: it does not cover the model's own error
-(linear viscoelasticity, horizontal-only shifts) nor a Poisson-ratio choice downstream.
+parameters held fixed (spline mu, joint and final lambda) and its spectrum as the start. The spread of
+the samples is the data's: it does not cover the model's own error (linear viscoelasticity,
+horizontal-only shifts, a smooth spectrum) nor a Poisson-ratio choice downstream.
 
 :func:`samples_dataset` fits a measured-data fit spec and ``n`` samples into one dataset with a
 ``sample`` dimension; :func:`sample_materials` turns it back into (material, shift function) pairs.
@@ -23,6 +40,7 @@ from __future__ import annotations
 import json
 import math
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -31,15 +49,74 @@ from threadpoolctl import threadpool_limits
 from ..materials.models import Prony
 from ..materials.shift import ShiftFunction
 from . import dma, dmafit, fits
+from . import spectrum as _spectrum
+from . import superpose as _superpose
 
-__all__ = ["MODES", "bootstrap", "resample", "sample_materials", "samples_dataset"]
+__all__ = ["MODES", "WEBB", "Residuals", "bootstrap", "resample", "residuals", "sample_materials", "samples_dataset",
+           "wild_sample"]
 
 #: resampling schemes (the first is the default)
-MODES = ("bayesian", "classical")
+MODES = ("wild", "bayesian", "classical")
+#: Webb's six-point distribution of the wild weights (mean 0, variance 1)
+WEBB = np.array([-math.sqrt(1.5), -1.0, -math.sqrt(0.5), math.sqrt(0.5), 1.0, math.sqrt(1.5)])
+
+
+@dataclass
+class Residuals:
+    """What :func:`wild_sample` needs of the full-data fit, per set (ascending temperature).
+
+    Attributes
+    ----------
+    sets : list of DMASet
+        The data.
+    fit_stor, fit_loss : list of ndarray
+        The full-data spectrum's E', E'' at every point, Pa.
+    rho_stor, rho_loss : list of ndarray
+        Leverage-corrected log residuals ln(E / fit) / (1 - h) (module docstring).
+    """
+
+    sets: list
+    fit_stor: list
+    fit_loss: list
+    rho_stor: list
+    rho_loss: list
+
+
+def residuals(raw, full) -> Residuals:
+    """The full-data fit's leverage-corrected log residuals at every raw point (module docstring).
+
+    Parameters
+    ----------
+    raw : mapping, object with ``.columns`` or list of DMASet
+    full : DMAFit
+        The fit of ``raw`` (:func:`vcor.fitting.dmafit.fit_dma`).
+    """
+    sets = _superpose.split_sets(raw)
+    fr = np.concatenate([s.f * 10.0 ** la for s, la in zip(sets, full.log_aT)])
+    es = np.concatenate([s.E_stor for s in sets])
+    el = np.concatenate([s.E_loss for s in sets])
+    e = full.spectrum.complex_modulus(2 * math.pi * fr)
+    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, components=(1.0, dmafit.LOSS_WEIGHT))
+    rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
+    cut = np.cumsum([s.f.size for s in sets])[:-1]
+    return Residuals(sets, np.split(e.real, cut), np.split(e.imag, cut), np.split(rs, cut), np.split(rl, cut))
+
+
+def wild_sample(res: Residuals, rng) -> list:
+    """One two-level wild-bootstrap sample (module docstring): the sets with resampled moduli."""
+    out = []
+    for s, fs, fl, rs, rl in zip(res.sets, res.fit_stor, res.fit_loss, res.rho_stor, res.rho_loss):
+        vk, v = rng.choice(WEBB), rng.choice(WEBB, s.f.size)
+        w = np.ones(s.f.size) if s.weight is None else s.weight
+        ms, ml = np.average(rs, weights=w), np.average(rl, weights=w)
+        out.append(_superpose.DMASet(s.T, s.f, fs * np.exp(vk * ms + v * (rs - ms)), fl * np.exp(vk * ml + v * (rl - ml)),
+                                     s.label, s.weight))
+    return out
 
 
 def resample(raw, rng, *, T_ref=None, mode="bayesian", min_sets=2):
-    """One bootstrap sample of raw multi-temperature data, as point weights (module docstring).
+    """One pairs-bootstrap sample of raw multi-temperature data, as point weights (module docstring;
+    the default resampling is :func:`wild_sample`).
 
     Parameters
     ----------
@@ -94,7 +171,7 @@ def resample(raw, rng, *, T_ref=None, mode="bayesian", min_sets=2):
                         break
                 weight[rows] += w
     else:
-        raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
+        raise ValueError(f"mode must be one of {list(MODES[1:])} (pairs; 'wild': wild_sample), got {mode!r}")
     weight *= base
     keep = weight > 0
     out = {k: np.asarray(c[k])[keep] for k in ("f", "E_stor", "E_loss", "T", "Set")}
@@ -103,7 +180,7 @@ def resample(raw, rng, *, T_ref=None, mode="bayesian", min_sets=2):
 
 
 @threadpool_limits.wrap(limits=1, user_api="blas")
-def bootstrap(raw, T_ref, n, seed=0, *, mode="bayesian", log_aT=None, max_failures=None):
+def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=None):
     """The full-data fit and ``n`` refits of resampled data (module docstring).
 
     Parameters
@@ -116,8 +193,8 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="bayesian", log_aT=None, max_failur
         Number of samples, >= 1.
     seed : int
         Seed of ``numpy.random.default_rng``.
-    mode : "bayesian" or "classical"
-        :func:`resample`.
+    mode : "wild", "bayesian" or "classical"
+        :func:`wild_sample` or :func:`resample`.
     log_aT : array_like, optional
         Given shift factors per set (decades): only the spectrum is refitted.
     max_failures : int, optional
@@ -132,12 +209,15 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="bayesian", log_aT=None, max_failur
     """
     if not (isinstance(n, (int, np.integer)) and n >= 1):
         raise ValueError(f"the number of bootstrap samples must be an integer >= 1, got {n!r}")
+    if mode not in MODES:
+        raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
     full = dmafit.fit_dma(raw, T_ref, log_aT=log_aT)
+    res = residuals(raw, full) if mode == "wild" else None
     rng = np.random.default_rng(seed)
     samples, fails, times = [], [], []
     max_failures = n if max_failures is None else max_failures
     while len(samples) < n:
-        data = resample(raw, rng, T_ref=T_ref, mode=mode)
+        data = wild_sample(res, rng) if res is not None else resample(raw, rng, T_ref=T_ref, mode=mode)
         t0 = time.perf_counter()
         try:
             samples.append(dmafit.fit_dma(data, T_ref, log_aT=log_aT, smoothing=full.smoothing, start=full))

@@ -87,7 +87,7 @@ from scipy.optimize import nnls
 from .superpose import anchor_matrix
 
 __all__ = ["LAM_GRID", "JointFit", "ReducedModes", "SpectrumFit", "complex_modulus", "count_extrema", "fit_metrics",
-           "fit_spectrum", "fit_with_shifts", "loss_weights", "reduce_modes", "relaxation_modulus", "tau_grid"]
+           "fit_spectrum", "fit_with_shifts", "leverage", "loss_weights", "reduce_modes", "relaxation_modulus", "tau_grid"]
 
 #: candidates of the regularisation parameter lambda, scanned from large to small
 LAM_GRID = np.logspace(5, -5, 21)
@@ -527,6 +527,46 @@ def fit_spectrum(f, E_stor, E_loss, *, weight=None, relaxation=None, per_decade=
         met["E_relax_rms"], met["E_relax_max"] = float(np.sqrt(np.mean(r**2))), float(np.max(np.abs(r)))
     return SpectrumFit(tau, E, E_inf, E / math.log(tau[1] / tau[0]), lam_used, method, scan, met, (f_lo, f_hi),
                        time.perf_counter() - t0, notes)
+
+
+def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, components=(1.0, 1.0, 1.0)):
+    r"""Leverages of data points in a spectrum fit: the diagonal of the linearised hat matrix
+    :math:`A_\lambda = J (J^\top J + \lambda L^\top L)^{-1} J^\top` at the fit's solution (module
+    docstring), for the E' and the E'' residual of every point.
+
+    A point of leverage :math:`h` pulls the fit towards itself: its fitted residual is about
+    :math:`(1 - h)` times its error, so residuals alone understate the scatter where few points
+    decide the fit (the ends of the data). Scale-free (the row weights cancel).
+
+    Parameters
+    ----------
+    fit : SpectrumFit
+    f : array_like
+        Frequencies of the points, Hz (reduced, as fitted).
+    E_stor, E_loss : array_like
+        The data, Pa.
+    components : tuple
+        Weights a', a'' of the E' and E'' residuals, as in the fit.
+
+    Returns
+    -------
+    (h_stor, h_loss) : tuple of ndarray
+        In [0, 1).
+    """
+    f = np.asarray(f, float)
+    es, el = np.asarray(E_stor, float), np.asarray(E_loss, float)
+    fit_E_inf = fit.E_inf > 0
+    pr = _Problem(2 * math.pi * f, es, el, np.ones(f.size), None, None, fit.tau, _components(components, es, el),
+                  fit_E_inf)
+    th = np.concatenate([[math.log(fit.E_inf) if fit_E_inf else 0.0], np.log(fit.E)])
+    J = pr.data_jac(th)
+    A = J.T @ J + fit.lam * pr.penalty_matrix()
+    if not fit_E_inf:
+        J, A = J[:, 1:], A[1:, 1:]
+    A += 1e-12 * np.trace(A) / A.shape[0] * np.eye(A.shape[0])
+    h = np.einsum("ij,ji->i", J, cho_solve(cho_factor(A), J.T))
+    h = np.clip(h, 0.0, 1.0 - 1e-9)
+    return h[:f.size], h[f.size:]
 
 
 @dataclass
