@@ -89,6 +89,22 @@ def test_reduction_gives_median_band_and_samples_and_an_honest_status():
     assert red["t0_lo"].attrs["units"] == "s" and red.attrs["uncertainty_level"] == 0.9
 
 
+def test_significant_reversals_count_the_turns_the_band_supports():
+    from vcor.study.uncertainty import significant_reversals
+
+    T = np.linspace(-50, 100, 31)
+    valley = 0.9 - 0.4 * np.exp(-((T - 20) / 30) ** 2)                   # one minimum
+    assert significant_reversals(valley, 0.01) == 1
+    wiggly = valley + 0.004 * np.sin(T / 3)                               # ripple of 0.008 peak to peak
+    assert significant_reversals(wiggly, 0.005) == 1                      # inside the band: not counted
+    assert significant_reversals(wiggly, 0.001) >= 3                      # a narrow band: the ripple counts
+    bump = valley + 0.05 * np.exp(-((T + 30) / 5) ** 2)                    # a real bump on the cold side
+    # the bump's top and the minimum count; the dip just before the bump falls by 0.004 on its cold side
+    assert significant_reversals(bump, 0.01) == 2 and significant_reversals(bump, 0.1) == 1
+    assert significant_reversals(np.linspace(0.5, 0.9, 10), 0.0) == 0     # monotone
+    assert significant_reversals([0.5, 0.5, 0.6, 0.6, 0.5], 0.05) == 1    # flat steps skipped
+
+
 def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
     """A fit to synthetic DMA data with 4 bootstrap samples: the samples file, the sample axis in the
     shards, the reduced sweep (median, band, samples; every sample's COR is vcor.simulate of that
@@ -106,7 +122,7 @@ def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
            "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": 20.0}}},
            "scenes": {"band": {"materials": ["measured"], "grid": {"v0": [1.0, 3.0], "T": [0.0, 40.0]},
                                "geometry": {"rigid": True}, "uncertainty": {"bootstrap": 4, "seed": 2},
-                               "figures": {"cor_temperature": {}}}}}
+                               "figures": {"cor_temperature": {}, "master_curve": {"materials": ["measured"]}}}}}
     path = make_project(tmp_path, cfg)
     (path / "data").mkdir(exist_ok=True)
     _synthetic(path / "data/dma.csv", 1)
@@ -124,6 +140,20 @@ def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
         want = vcor.simulate(tts.at_temperature(material, shift, 40.0), 3.0, rigid=True).cor
         assert ds["cor_samples"].sel(material="measured", v0=3.0, T=40.0, sample=float(k)).item() == want
     np.testing.assert_array_equal(ds["cor"].values, ds["cor_samples"].median("sample").values)
+    # the master curve shades the samples' spectrum band (E', E'', tan delta)
+    from matplotlib.collections import PolyCollection
+
+    from vcor import plots
+
+    assert (path / "results/band/figures/master_curve.png").stat().st_size > 0
+    fit = xr.open_dataset(path / "results/materials/measured.nc")
+    fig = plots.draw("master_curve", {"material_fit": [fit], "material_samples": [samples]}, {})
+    top, bottom = fig.axes[0], fig.axes[1]
+    assert "95 % band over 4 bootstrap samples" in top.get_title()
+    assert sum(isinstance(c, PolyCollection) for c in top.collections) == 2
+    assert sum(isinstance(c, PolyCollection) for c in bottom.collections) == 1
+    plain = plots.draw("master_curve", {"material_fit": [fit], "material_samples": []}, {})
+    assert "bootstrap" not in plain.axes[0].get_title()
     shards = sorted((path / "results/band/shards").glob("*.nc"))
     cfg["scenes"]["band"]["grid"]["v0"] = [1.0, 3.0, 10.0]
     (path / "config.yaml").write_text(yaml.safe_dump(cfg))

@@ -233,13 +233,20 @@ def get_moduli_materials(wildcards):
 
 
 def figure_inputs(scene):
-    """Every dataset the scene's figures need (the union over its figures; fits: one file each)."""
+    """Every dataset the scene's figures need (the union over its figures; fits: one file each; the
+    bootstrap samples of those fits when the scene has an uncertainty band)."""
     out = {}
     for fig, opts in SCENES[scene].get("figures", {}).items():
         for n in vplots.FIGURES[fig][1]:
             if n == "material_fit":
                 out[f"{fig}_fits"] = [
                     f"{MATERIAL_DIR}/{m}.nc" for m in opts.get("materials", [])
+                ]
+            elif n == "material_samples":
+                out[f"{fig}_samples"] = [
+                    path
+                    for path, m in PROJECT.samples_of(scene)
+                    if m in opts.get("materials", [])
                 ]
             else:
                 out[n] = f"results/{scene}/{n}.nc"

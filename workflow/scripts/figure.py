@@ -19,6 +19,7 @@ def load(path):
 with job_log(smk):
     inp, params = smk.input, smk.params
     for fig, png, pdf in zip(params.figures, smk.output.png, smk.output.pdf):
-        files = {n: inp[f"{fig}_fits"] if n == "material_fit" else inp[n] for n in plots.FIGURES[fig][1]}
+        lists = {"material_fit": f"{fig}_fits", "material_samples": f"{fig}_samples"}
+        files = {n: list(getattr(inp, lists[n], [])) if n in lists else inp[n] for n in plots.FIGURES[fig][1]}
         data = {n: [load(p) for p in f] if isinstance(f, list) else load(f) for n, f in files.items()}
         plots.save(plots.draw(fig, data, params.options[fig]), png, pdf)

@@ -17,7 +17,7 @@ no overlap between sets can break. Dividing by :math:`1 - h` (the HC3 correction
 White 1985, as Davidson & Flachaire 2008 use in the wild bootstrap) undoes the shrinking of the
 residuals where few points decide the fit: without it, on synthetic data (``python
 benchmarks/bench_uncertainty.py coverage``) the samples' spread at the end of the data's reduced
-range was half the fit's actual error.
+range is half the fit's actual error.
 
 ``mode="bayesian"`` (:func:`resample`): the two-stage Bayesian bootstrap (Rubin 1981) of the points,
 set k weighted :math:`g_k \sim \mathrm{Exp}(1)` and each of its points :math:`p_{ki} \sim \mathrm{Exp}(1)`,

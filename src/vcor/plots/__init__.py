@@ -22,7 +22,7 @@ __all__ = ["AXIS_OPTIONS", "FIGURES", "FIGURE_OPTIONS", "NEEDS_AXIS", "OPTION_DE
 FIGURES = {
     "cor_temperature": (cor_temperature, ("sweep",)),
     "cor_v0_temperature": (cor_v0_temperature, ("sweep",)),
-    "master_curve": (master_curve, ("material_fit",)),
+    "master_curve": (master_curve, ("material_fit", "material_samples")),
     "fig1": (fig1, ("sweep", "moduli")),
     "fig2": (fig2, ("histories",)),
     "fig3": (fig3, ("histories",)),
@@ -88,7 +88,8 @@ def options_of(name, opts) -> dict:
 
 def draw(name, data, opts):
     """Figure ``name`` from its datasets ``data`` (a dict: need -> Dataset, or list of Datasets for
-    ``material_fit``) and the scene's options for it (completed by OPTION_DEFAULTS)."""
+    ``material_fit`` and ``material_samples``, the latter possibly empty) and the scene's options for it
+    (completed by OPTION_DEFAULTS)."""
     fn, need = FIGURES[name]
     return fn(*(data[n] for n in need), options_of(name, opts))
 

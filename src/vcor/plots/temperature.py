@@ -83,10 +83,26 @@ def cor_v0_temperature(sweep, opts):
     return fig
 
 
-def master_curve(fits, opts):
+def _spectrum_band(ax1, ax2, samples, f, level=0.95):
+    """The band of the bootstrap samples' E', E'' and tan delta at T_ref over [min f, max f] (Hz), shaded."""
+    from vcor.fitting.resample import sample_materials
+
+    fd = np.geomspace(f.min(), f.max(), 200)
+    e = np.array([m.complex_modulus(2 * np.pi * fd) for m, _ in sample_materials(samples)])
+    q = [(1 - level) / 2, (1 + level) / 2]
+    for y, ax in ((e.real, ax1), (e.imag, ax1), (e.imag / e.real, ax2)):
+        lo, hi = np.quantile(y, q, axis=0)
+        ax.fill_between(fd, lo, hi, color="0.6", alpha=0.4, lw=0)
+    return f"; shaded: {100 * level:g} % band over {samples.sizes['sample']} bootstrap samples"
+
+
+def master_curve(fits, samples, opts):
     """Measured-data fits' master curves at T_ref, a column per fit: the shifted data (E', E''
     coloured by the temperature of their set) and the Prony fit, and tan delta, against reduced
-    frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta."""
+    frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta.
+    ``samples``: bootstrap samples datasets (vcor.fitting.resample.samples_dataset) of some of the
+    fits (matched by name; empty without an uncertainty band): their 95 % band is shaded."""
+    banded = {d.attrs.get("fit_name"): d for d in samples}
     fig, axes = plt.subplots(2, len(fits), figsize=(5.5 * len(fits), 7.0), layout="constrained", sharex="col",
                              squeeze=False)
     for (ax1, ax2), fit in zip(axes.T, fits):
@@ -117,6 +133,9 @@ def master_curve(fits, opts):
         title += "\nrms relative error: " + ", ".join(
             f"{lab} {100 * met[k]:.1f} %" for lab, k in (("E'", "storage_rms"), ("E''", "loss_rms"),
                                                         ("tan delta", "tan_delta_rms")) if k in met)
+        name = fit.attrs.get("material_name")
+        if name in banded:
+            title += _spectrum_band(ax1, ax2, banded[name], f)
         ax1.set_title(title, fontsize=8)
     return fig
 

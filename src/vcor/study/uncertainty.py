@@ -26,6 +26,9 @@ solver's error, far smaller), the choice of the Poisson ratio (a grid axis of it
 the data share (an instrument's calibration, a phase error common to every set).
 
 A scene without ``uncertainty`` has no sample axis and computes none of this.
+
+:func:`significant_reversals` counts the ups and downs of a curve (COR against T) that are larger than
+the band there: the ones the data support.
 """
 
 from __future__ import annotations
@@ -47,6 +50,7 @@ __all__ = [
     "sample_material",
     "samples_file",
     "samples_identity",
+    "significant_reversals",
     "uncertainty_of",
 ]
 
@@ -191,3 +195,31 @@ def reduce_samples(ds, level: float):
     red.attrs["uncertainty_level"] = level
     red["sample"].attrs.update(units="1", long_name="bootstrap sample of the fitted materials")
     return red
+
+
+def significant_reversals(y, half_width) -> int:
+    """Turns of a sampled curve that the band supports: interior local extrema of ``y`` (sign changes of
+    its steps, flat steps skipped) whose rise or fall to the neighbouring extremum (or end) on *both*
+    sides is larger than ``half_width`` at the extremum. A wiggle inside the band is not counted, nor is
+    a turn whose one side is; one minimum of COR(T) counts 1.
+
+    Parameters
+    ----------
+    y : array_like
+        The curve (e.g. the median COR over a temperature grid), finite.
+    half_width : array_like or float
+        The band's half-width at each point ((cor_hi - cor_lo) / 2), same unit as ``y``.
+    """
+    y = np.asarray(y, float)
+    hw = np.broadcast_to(np.asarray(half_width, float), y.shape)
+    keep = np.flatnonzero(np.r_[True, np.diff(y) != 0])     # drop repeated values (flat steps)
+    yk = y[keep]
+    d = np.sign(np.diff(yk))
+    turns = keep[1:-1][d[1:] != d[:-1]] if yk.size > 2 else np.array([], int)
+    ends = np.concatenate([[0], turns, [y.size - 1]])
+    count = 0
+    for j in range(1, ends.size - 1):
+        e = ends[j]
+        if min(abs(y[e] - y[ends[j - 1]]), abs(y[e] - y[ends[j + 1]])) > hw[e]:
+            count += 1
+    return count
