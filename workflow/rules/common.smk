@@ -253,6 +253,18 @@ def figure_inputs(scene):
     return out
 
 
+def figure_options(scene):
+    """Each figure's options from the scene, plus the band's probability (``level``) of the scene's
+    uncertainty for the figures that draw bootstrap samples themselves."""
+    spec = vuncertainty.uncertainty_of(SCENES[scene])
+    out = {}
+    for fig, opts in SCENES[scene].get("figures", {}).items():
+        out[fig] = dict(opts or {})
+        if spec is not None and "material_samples" in vplots.FIGURES[fig][1]:
+            out[fig]["level"] = spec["level"]
+    return out
+
+
 def figure_rule_name(scene):
     name = re.sub(r"\W", "_", scene)
     return f"figures_{name}"

@@ -32,7 +32,7 @@ for _scene, _cfg in SCENES.items():
             scene=_scene,
             figures=_figs,
             plots_code=PLOTS_CODE,
-            options={f: dict(o or {}) for f, o in _cfg["figures"].items()},
+            options=figure_options(_scene),
         script:
             "../scripts/figure.py"
 

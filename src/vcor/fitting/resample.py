@@ -95,8 +95,9 @@ def residuals(raw, full) -> Residuals:
     fr = np.concatenate([s.f * 10.0 ** la for s, la in zip(sets, full.log_aT)])
     es = np.concatenate([s.E_stor for s in sets])
     el = np.concatenate([s.E_loss for s in sets])
+    w = np.concatenate([np.ones(s.f.size) if s.weight is None else s.weight for s in sets])
     e = full.spectrum.complex_modulus(2 * math.pi * fr)
-    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, components=(1.0, dmafit.LOSS_WEIGHT))
+    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dmafit.LOSS_WEIGHT))
     rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
     cut = np.cumsum([s.f.size for s in sets])[:-1]
     return Residuals(sets, np.split(e.real, cut), np.split(e.imag, cut), np.split(rs, cut), np.split(rl, cut))

@@ -529,7 +529,7 @@ def fit_spectrum(f, E_stor, E_loss, *, weight=None, relaxation=None, per_decade=
                        time.perf_counter() - t0, notes)
 
 
-def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, components=(1.0, 1.0, 1.0)):
+def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.0, 1.0, 1.0)):
     r"""Leverages of data points in a spectrum fit: the diagonal of the linearised hat matrix
     :math:`A_\lambda = J (J^\top J + \lambda L^\top L)^{-1} J^\top` at the fit's solution (module
     docstring), for the E' and the E'' residual of every point.
@@ -545,6 +545,8 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, components=(1.0, 1.0, 1.0))
         Frequencies of the points, Hz (reduced, as fitted).
     E_stor, E_loss : array_like
         The data, Pa.
+    weight : array_like, optional
+        Point multiplicities, as in the fit (default 1).
     components : tuple
         Weights a', a'' of the E' and E'' residuals, as in the fit.
 
@@ -556,8 +558,8 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, components=(1.0, 1.0, 1.0))
     f = np.asarray(f, float)
     es, el = np.asarray(E_stor, float), np.asarray(E_loss, float)
     fit_E_inf = fit.E_inf > 0
-    pr = _Problem(2 * math.pi * f, es, el, np.ones(f.size), None, None, fit.tau, _components(components, es, el),
-                  fit_E_inf)
+    w = np.ones(f.size) if weight is None else np.asarray(weight, float)
+    pr = _Problem(2 * math.pi * f, es, el, w, None, None, fit.tau, _components(components, es, el), fit_E_inf)
     th = np.concatenate([[math.log(fit.E_inf) if fit_E_inf else 0.0], np.log(fit.E)])
     J = pr.data_jac(th)
     A = J.T @ J + fit.lam * pr.penalty_matrix()

@@ -18,10 +18,11 @@ a_T). Shift functions (T in deg C, C2 in K, E_a in J/mol):
   adds no extremum of a_T between sets. Shift factors curve in T (WLF): on WLF shifts 15 K apart,
   straight lines between the sets are up to 0.10 decade off, PCHIP 0.02
   (``python -m pytest -s tests/test_superpose.py -k tabulated`` prints both). It is not
-  extrapolated: outside [T_1 - 0.5 K, T_K + 0.5 K] it refuses, naming the range. The 0.5 K (:data:`TABLE_TOLERANCE`) is the scatter of a DMA set's temperature
-  readings about their mean (the set's temperature); within it the end pieces are continued. A measured set's
-  shift function is a table by default: WLF does not describe every material's shifts (pyvisco's
-  example leaves 0.78 decade rms, ``docs/user-guide/dma.md``).
+  extrapolated: outside [T_1 - 0.5 K, T_K + 0.5 K] it refuses, naming the range. The 0.5 K
+  (:data:`TABLE_TOLERANCE`) is the scatter of a DMA set's temperature readings about their mean (the
+  set's temperature); within it the end pieces are continued. A measured set's shift function is a
+  table by default: WLF does not describe every material's shifts (pyvisco's example leaves 0.78
+  decade rms, ``docs/user-guide/dma.md``).
 """
 
 from __future__ import annotations
@@ -37,8 +38,8 @@ import numpy as np
 from ..checks import number, positive
 from .models import Material
 
-__all__ = ["GAS_CONSTANT", "SHIFT_MODELS", "TABLE_TOLERANCE", "ShiftFunction", "at_temperature", "shift_from_file", "table_log_aT", "time_shifted",
-           "wlf_log_aT"]
+__all__ = ["GAS_CONSTANT", "SHIFT_MODELS", "TABLE_TOLERANCE", "ShiftFunction", "at_temperature", "shift_from_file",
+           "table_log_aT", "time_shifted", "wlf_log_aT"]
 
 #: molar gas constant, J/(mol K)
 GAS_CONSTANT = 8.314462618

@@ -101,7 +101,8 @@ def master_curve(fits, samples, opts):
     coloured by the temperature of their set) and the Prony fit, and tan delta, against reduced
     frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta.
     ``samples``: bootstrap samples datasets (vcor.fitting.resample.samples_dataset) of some of the
-    fits (matched by name; empty without an uncertainty band): their 95 % band is shaded."""
+    fits (matched by name; empty without an uncertainty band): their central band of probability
+    ``opts["level"]`` (the scene's uncertainty level, set by the workflow; default 0.95) is shaded."""
     banded = {d.attrs.get("fit_name"): d for d in samples}
     fig, axes = plt.subplots(2, len(fits), figsize=(5.5 * len(fits), 7.0), layout="constrained", sharex="col",
                              squeeze=False)
@@ -135,7 +136,7 @@ def master_curve(fits, samples, opts):
                                                         ("tan delta", "tan_delta_rms")) if k in met)
         name = fit.attrs.get("material_name")
         if name in banded:
-            title += _spectrum_band(ax1, ax2, banded[name], f)
+            title += _spectrum_band(ax1, ax2, banded[name], f, opts.get("level", 0.95))
         ax1.set_title(title, fontsize=8)
     return fig
 
