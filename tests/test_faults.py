@@ -198,7 +198,7 @@ def test_two_runs_at_once_the_second_stops_at_the_project_lock(baseline, tmp_pat
         time.sleep(0.05)
     time.sleep(0.5)
     second = run(path)
-    out, err = first.communicate(timeout=600)
+    _out, err = first.communicate(timeout=600)
     assert first.returncode == 0, err[-3000:]
     assert second.returncode != 0
     assert "another workflow run is active in this project" in second.stderr, second.stderr[-2000:]

@@ -2,6 +2,7 @@
 Prony materials and geometries (hypothesis, derandomised so CI is reproducible)."""
 
 import collections
+import itertools
 import math
 
 import pytest
@@ -125,7 +126,7 @@ def test_stiff_prony_found_by_hypothesis():
     """A case hypothesis found (glassy/rubbery ~ 100, fast relaxation, thin light plate): scipy's
     numerical Jacobian overflowed in Radau; the solution itself is fine and matches direct."""
     m = M.Prony(10421000.0, (999999999.9999999,), (172015.88059577186,))
-    g = dict(r=0.026023144776597902, rho_a=4357.0, rho_b=500.0, h=0.01171875, nu=0.0)
+    g = {"r": 0.026023144776597902, "rho_a": 4357.0, "rho_b": 500.0, "h": 0.01171875, "nu": 0.0}
     d = vcor.simulate(m, 11.0, method="direct", **g)
     i = vcor.simulate(m, 11.0, method="ive", **g)
     assert d.ok and i.ok
@@ -148,5 +149,5 @@ def test_adaptive_error_on_the_stiffest_example_falls_with_step_tol():
     errors = [abs(vcor.simulate(material, v0, step_tol=tol, **geom).cor - ref) for tol in (3e-4, 1e-4, 3e-5, 1e-5)]
     print("\nstep_tol 3e-4, 1e-4, 3e-5, 1e-5: COR error " + ", ".join(f"{e:.2e}" for e in errors))
     assert errors[0] < 1e-5
-    for coarse, fine in zip(errors, errors[1:]):
+    for coarse, fine in itertools.pairwise(errors):
         assert fine < coarse / 2.5

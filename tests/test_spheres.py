@@ -74,7 +74,7 @@ def test_sls_tends_to_kelvin_voigt_when_relaxation_is_fast():
 
 
 def test_dimensional_and_dimensionless_agree():
-    pair = dict(R1=0.01, R2=0.02, m1=0.03, m2=0.05, E=1e7, nu=0.3, A=2e-5)
+    pair = {"R1": 0.01, "R2": 0.02, "m1": 0.03, "m2": 0.05, "E": 1e7, "nu": 0.3, "A": 2e-5}
     for g in (0.5, 5.0):
         b = S.b_group(**pair, g=g)
         # one direct run (2000 steps per contact) against the Richardson-extrapolated eps(b): the gap is
@@ -84,7 +84,7 @@ def test_dimensional_and_dimensionless_agree():
         assert coarse < 1e-6 and fine < coarse / 10, (coarse, fine)
         # the default method (adaptive) is within its default accuracy of the dimensionless eps
         assert abs(S.cor_spheres(**pair, g=g) - S.cor_numeric(b)) < 1e-6
-    wall = dict(R1=0.01, R2=math.inf, m1=0.03, m2=math.inf, E=1e7, nu=0.3, A=2e-5)
+    wall = {"R1": 0.01, "R2": math.inf, "m1": 0.03, "m2": math.inf, "E": 1e7, "nu": 0.3, "A": 2e-5}
     assert abs(S.cor_spheres(**wall, g=2.0, rule="force") - S.cor_numeric(S.b_group(**wall, g=2.0), "force")) < 1e-6
 
 

@@ -134,7 +134,7 @@ def cor_root(b):
 # ----------------------------------------------------------------------------- numerics
 # Unit problem: rho/m_eff = 1 and g = 1, so b = 3A/2. Realised as a rigid target with
 # r = 1 m, nu = 0 (kappa = 4/3), E = 3/4 Pa (k = 1), rho_a = 3/(4 pi) kg/m^3 (m = 1 kg), v0 = 1 m/s.
-_UNIT = dict(r=1.0, nu=0.0, rho_a=3.0 / (4.0 * math.pi), rigid=True)
+_UNIT = {"r": 1.0, "nu": 0.0, "rho_a": 3.0 / (4.0 * math.pi), "rigid": True}
 #: elastic contact time of the unit problem (2.9432 (5/4)^(2/5))
 T_C_UNIT = 2.9432 * 1.25**0.4
 

@@ -102,7 +102,7 @@ def tau_grid(f_min, f_max, per_decade=5.0, margin=1.5):
         raise ValueError(f"need 0 < f_min < f_max (Hz), got {f_min!r}, {f_max!r}")
     lo = math.log10(1.0 / (2 * math.pi * f_max)) - margin
     hi = math.log10(1.0 / (2 * math.pi * f_min)) + margin
-    n = int(round((hi - lo) * per_decade)) + 1
+    n = round((hi - lo) * per_decade) + 1
     return np.logspace(lo, hi, max(n, 3))
 
 
@@ -625,7 +625,8 @@ def reduce_modes(fit: SpectrumFit, per_decade=1.0, *, refit=True, n_dense_per_de
     -------
     ReducedModes
     """
-    n_blocks = min(fit.tau.size, max(1, int(round(np.log10(fit.tau[-1] / fit.tau[0]) * per_decade)) + 1))
+    decades = float(np.log10(fit.tau[-1] / fit.tau[0]))       # a float: numpy < 2 rounds float64 to float64
+    n_blocks = min(fit.tau.size, max(1, round(decades * per_decade) + 1))
     blocks = np.array_split(np.arange(fit.tau.size), n_blocks)
     E = np.array([fit.E[b].sum() for b in blocks])
     tau = np.array([math.exp(float(np.sum(fit.E[b] * np.log(fit.tau[b])) / fit.E[b].sum())) for b in blocks])

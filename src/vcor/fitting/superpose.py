@@ -403,7 +403,7 @@ class _Problem:
         s = self.shifts(d)
         tot = 0.0
         for q in self.quantities:
-            lat, c, g = self.fit(q, s)
+            _lat, c, g = self.fit(q, s)
             W = self.W(q)
             r = self.y[q] - g
             Dc = np.diff(c, 2)
@@ -650,7 +650,7 @@ def global_shifts(raw, T_ref, quantities=("E_stor",), fallback=("tan_delta", "E_
     s_lo, s_hi = pr0.S.clip(max=0) @ ub + pr0.S.clip(min=0) @ lb, pr0.S.clip(min=0) @ ub + pr0.S.clip(max=0) @ lb
     span = (max(st.x.max() + hi_ for st, hi_ in zip(sets, s_hi, strict=True))
             - min(st.x.min() + lo_ for st, lo_ in zip(sets, s_lo, strict=True)))
-    n_pen = int(math.ceil(span * knots_per_decade)) + 8
+    n_pen = math.ceil(span * knots_per_decade) + 8
     stats = {"n_eval": 0, "sweeps": 0}
 
     def refine(d):

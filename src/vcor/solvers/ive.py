@@ -146,7 +146,7 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
         return res
     t0 = float(sol.t_events[0][0])
     y = sol.y_events[0][0]
-    F0, g0, _, J0 = parts(t0, y)
+    _F0, g0, _, J0 = parts(t0, y)
     z0 = v0 - J0 / m
     w_h, w_z = y[2 + nq], y[3 + nq]
     e_in = 0.5 * m * v0**2

@@ -115,5 +115,5 @@ def remove_stale_snakemake_locks(base=".") -> list[str]:
     stale = sorted(folder.glob("*.lock")) if folder.is_dir() else []
     for path in stale:
         path.unlink()
-    return [f"vcor: removed {len(stale)} stale Snakemake lock(s) of an interrupted run (no other run is "
-            f"active in this project)"] if stale else []
+    return [(f"vcor: removed {len(stale)} stale Snakemake lock(s) of an interrupted run (no other run is "
+            f"active in this project)")] if stale else []

@@ -104,7 +104,7 @@ def axis_length(spec) -> int:
                 raise ValueError(f"step must be > 0, got {step}")
             if stop < start:
                 raise ValueError(f"the range is empty: stop {stop} < start {start}")
-            return int(math.floor((stop - start) / step + 1e-9)) + 1
+            return math.floor((stop - start) / step + 1e-9) + 1
         num = spec["num"]
         if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or num < 1:
             raise ValueError(f"num must be an integer >= 1, got {num!r}")
