@@ -9,13 +9,21 @@ The table counts the seeds whose 95 % band (2.5 % .. 97.5 % quantiles) holds the
 and gives the band's median width; a noise-free data set gives the band's width without noise. This
 part is not a timing (the per-seed fit time is printed for information only).
 
+``spread``: for each known material, at T_ref (no shift between the data and the impact), the actual
+scatter of the full-data fit's COR over SEEDS noisy data sets beside the median spread of the samples,
+for three ways of making them: the default wild bootstrap, the Bayesian pairs bootstrap, and a
+parametric bootstrap that draws the true noise law (1 % normal on E' and E'') about the full-data fit.
+A ratio below 1 that the parametric bootstrap shares says the spread depends on the material itself
+(refits of data from the smoother fitted material vary less than those of the true material's data),
+not on the resampling.
+
 ``cost``: the default config's ``pyvisco`` scene (both fits of pyvisco's raw data, 50 bootstrap
 samples, 620 grid points: 31000 impacts) in a fresh copy of the project with an empty numba cache:
 ``snakemake -j2 results/pyvisco/sweep.nc``, wall time, RUNS runs, median (min-max); and the same scene
 without ``uncertainty`` for the ratio. From the banded sweep it also counts the turns of COR(T) that
 are larger than the band (:func:`reversals`).
 
-Run: python benchmarks/bench_uncertainty.py [coverage] [cost] [--seeds 20] [--bootstrap 50] [--runs 2]
+Run: python benchmarks/bench_uncertainty.py [coverage] [spread] [cost] [--seeds 20] [--bootstrap 50] [--runs 2]
      [--quick] [--out FILE]
 """
 
@@ -128,6 +136,53 @@ def coverage(args) -> list[str]:
                           "noise-free data: band width (1)", "noise-free: offset (1)"], rows)]
 
 
+def _parametric(res, rng, noise=0.01):
+    """Data drawn from the true noise law about the full-data fit (sets as vcor.fitting.resample.wild_sample)."""
+    from vcor.fitting.superpose import DMASet
+
+    return [DMASet(s.T, s.f, fs * (1 + noise * rng.standard_normal(s.f.size)),
+                   fl * (1 + noise * rng.standard_normal(s.f.size)), s.label, s.weight)
+            for s, fs, fl in zip(res.sets, res.fit_stor, res.fit_loss)]
+
+
+def spread(args) -> list[str]:
+    import vcor
+    from vcor.fitting import dma, dmafit, resample
+    from vcor.materials import Prony
+
+    seeds = 3 if args.quick else min(args.seeds, 10)
+    n = 5 if args.quick else 30
+    rows = []
+    with tempfile.TemporaryDirectory() as d:
+        for label, params in MATERIALS.items():
+            material = Prony(*params)
+            want = vcor.simulate(material, V0, rigid=True).cor
+            err, sd = [], {"wild": [], "bayesian": [], "parametric": []}
+            for seed in range(seeds):
+                _write_csv(Path(d) / "dma.csv", material, seed, 0.01)
+                raw = dma.read_table(Path(d) / "dma.csv")
+                full = dmafit.fit_dma(raw, WLF[2])
+                err.append(vcor.simulate(full.material(), V0, rigid=True).cor - want)
+                res = resample.residuals(raw, full)
+                rng = np.random.default_rng(seed)
+                draw = {"wild": lambda: resample.wild_sample(res, rng),
+                        "bayesian": lambda: resample.resample(raw, rng, T_ref=WLF[2]),
+                        "parametric": lambda: _parametric(res, rng)}
+                for mode, make in draw.items():
+                    cor = [vcor.simulate(dmafit.fit_dma(make(), WLF[2], smoothing=full.smoothing, start=full).material(),
+                                         V0, rigid=True).cor for _ in range(n)]
+                    sd[mode].append(np.std(cor, ddof=1))
+                print(f"spread {label}, seed {seed}: error {err[-1]:+.4f}", file=sys.stderr, flush=True)
+            actual = float(np.std(err, ddof=1))
+            rows.append([label, f"{actual:.1e}"] + [f"{np.median(sd[m]):.1e} ({np.median(sd[m]) / actual:.2f})"
+                                                    for m in ("wild", "bayesian", "parametric")])
+    return [f"Spread at T_ref = {WLF[2]:g} °C, COR at {V0:g} m/s (rigid target): the sd of the full-data fit's COR "
+            f"error over {seeds} data sets (1 % noise), and the median over those data sets of the sd of {n} "
+            "samples made three ways (in brackets: over the actual sd).",
+            timing.table(["material", "actual sd of the fit's COR (1)", "wild bootstrap sd (1)",
+                          "Bayesian pairs bootstrap sd (1)", "parametric, true noise law, sd (1)"], rows)]
+
+
 def _project(folder: Path, uncertainty: dict | None, quick: bool) -> Path:
     for name in ("Snakefile", "workflow", "profiles", "data"):
         src = ROOT / name
@@ -195,14 +250,14 @@ def cost(args) -> list[str]:
 
 def main() -> None:
     p = timing.parser(__doc__, quick="3 seeds with 10 samples; the cost on a 4-point grid with 4 samples")
-    p.add_argument("parts", nargs="*", choices=["coverage", "cost"], default=[])
+    p.add_argument("parts", nargs="*", choices=["coverage", "spread", "cost"], default=[])
     p.add_argument("--seeds", type=int, default=20)
     p.add_argument("--bootstrap", type=int, default=50)
     args = p.parse_args()
     parts = args.parts or ["coverage", "cost"]
     blocks = []
     for part in parts:
-        blocks += {"coverage": coverage, "cost": cost}[part](args)
+        blocks += {"coverage": coverage, "spread": spread, "cost": cost}[part](args)
     timing.publish(args.out, args.runs, blocks)
 
 
