@@ -5,8 +5,10 @@ the same sets.
 Rows of the main table, each fitted in its own fresh process (``OPENBLAS_NUM_THREADS=1``, an empty
 ``NUMBA_CACHE_DIR``), ``--runs`` times:
 
-* vcor ``method: spectrum`` and ``method: free``: :func:`vcor.fitting.fits.run_fit` on the fit spec
-  ``{model: prony, method: ..., data: {file, T_ref: -5}}`` (the workflow's fit rule);
+* vcor ``method: spectrum`` with ``instrument_lag: true`` (the default config's fit), without it, and
+  ``method: free``: :func:`vcor.fitting.fits.run_fit` on the fit spec
+  ``{model: prony, method: ..., data: {file, T_ref: -5, instrument_lag?}}`` (the workflow's fit rule;
+  with the lag, the master curve is the data with the fitted lag removed);
 * pyvisco: ``master.get_aT`` (its own shifts), ``get_curve``, ``smooth(win=1)``,
   ``prony.discretize(window="round")`` and ``prony.fit(opt=False)``; and the same followed by
   ``opt.nprony(window="min", opt=1.5)``, run with ``/tmp/spec/venv/bin/python`` where it exists;
@@ -45,7 +47,8 @@ PYVISCO = "pyvisco==2.1.3"
 MASTERCURVES = "mastercurves==0.2.3"
 #: method key -> (label, interpreter: "vcor" or "venv")
 METHODS = {
-    "spectrum": ("vcor `method: spectrum` (default)", "vcor"),
+    "spectrum-lag": ("vcor `method: spectrum`, `instrument_lag: true` (the default config's fit)", "vcor"),
+    "spectrum": ("vcor `method: spectrum`, data as measured", "vcor"),
     "free": ("vcor `method: free`", "vcor"),
     "pyvisco-fit": ("pyvisco 2.1.3: `get_aT` + `prony.fit`", "venv"),
     "pyvisco-nprony": ("pyvisco 2.1.3: `get_aT` + `prony.fit` + `opt.nprony`", "venv"),
@@ -61,7 +64,9 @@ def _worker_vcor(method):
     from vcor.fitting import fits
 
     t0 = time.perf_counter()
-    result, data, _ = fits.run_fit({"model": "prony", "method": method, "data": {"file": str(DATA), "T_ref": T_REF}})
+    lag = method == "spectrum-lag"
+    result, data, _ = fits.run_fit({"model": "prony", "method": method.removesuffix("-lag"),
+                                    "data": {"file": str(DATA), "T_ref": T_REF, "instrument_lag": lag}})
     fit_time = time.perf_counter() - t0
     m = result.material
     return {"fit": fit_time, "import": t0 - t_import, "E_inf": m.E_inf, "E": list(m.E), "tau": [1 / b for b in m.beta],
@@ -120,7 +125,7 @@ def _worker_mastercurves(sets_file, variants):
 
 def _worker(argv):
     kind = argv[0]
-    if kind in ("spectrum", "free"):
+    if kind in ("spectrum-lag", "spectrum", "free"):
         return _worker_vcor(kind)
     if kind in ("pyvisco-fit", "pyvisco-nprony"):
         return _worker_pyvisco(kind == "pyvisco-nprony")
@@ -189,39 +194,63 @@ def main_table(runs):
 
 
 def detail_tables(first):
-    """The tables computed once in this process: shifts, shift functions, lambda, merging, weights,
-    the tan delta excess by measured frequency, mastercurves."""
+    """The tables computed once in this process: shifts, the instrument lag, shift functions, lambda,
+    merging, weights, the tan delta excess by measured frequency, mastercurves."""
     import numpy as np
 
     from vcor.fitting import dma, dmafit, spectrum, superpose
 
-    raw = dma.read_table(DATA).columns
+    table = dma.read_table(DATA)
+    raw = table.columns
     sets = superpose.split_sets(raw)
     T = np.array([s.T for s in sets])
-    fit = dmafit.fit_dma(raw, T_REF)
+    fit = dmafit.fit_dma(raw, T_REF, lag=True)          # the default config's fit
+    fit0 = dmafit.fit_dma(raw, T_REF)                   # the data as measured
     s1 = fit.spline_shifts
     blocks = []
+
+    def corrected(fx):
+        """The master curve of a fit's shifts with its lag removed (dma.superpose)."""
+        return dma.superpose(table, T_REF, log_aT=fx.log_aT, lag=fx.lag)
+
+    def merged_metrics(fx):
+        e_inf, e, beta = fx.prony_terms()
+        mc_ = corrected(fx)
+        return spectrum.fit_metrics(e_inf, e, 1 / beta, mc_.f_reduced, mc_.E_stor, mc_.E_loss)
 
     # shifts per set
     pv = first.get("pyvisco-fit")
     mc = _mastercurves_shifts(T, first.get("mastercurves"))
-    head = ["T [°C]", "stage 1 (spline)", "final (joint)", "rms log10 E' of the set about the stage-1 curve",
-            "pyvisco `get_aT`", "mastercurves"]
+    head = ["T [°C]", "stage 1 (spline)", "final (joint, lag fitted)", "final (joint, data as measured)",
+            "rms log10 E' of the set about the stage-1 curve", "pyvisco `get_aT`", "mastercurves"]
     rows = []
     for k in range(T.size):
         rows.append([f"{T[k]:.2f}", f"{s1.log_aT[k]:.2f} ± {s1.log_aT_std[k]:.2f}",
-                     f"{fit.log_aT[k]:.2f} ± {fit.log_aT_std[k]:.2f}", f"{s1.set_rms['E_stor'][k]:.4f}",
+                     f"{fit.log_aT[k]:.2f} ± {fit.log_aT_std[k]:.2f}", f"{fit0.log_aT[k]:.2f} ± {fit0.log_aT_std[k]:.2f}",
+                     f"{s1.set_rms['E_stor'][k]:.4f}",
                      f"{pv['log_aT'][k]:.2f}" if pv else "-",
                      f"{mc['E_stor:0.04']['log_aT'][k]:.2f} ± {mc['E_stor:0.04']['std'][k]:.2f}" if mc else "-"])
     sup = {name: superpose.superposition_rms(raw, la)["E_stor"] for name, la in
-           [("stage 1", s1.log_aT), ("final", fit.log_aT)]
+           [("stage 1", s1.log_aT), ("final, lag fitted", fit.log_aT), ("final, data as measured", fit0.log_aT)]
            + ([("pyvisco `get_aT`", np.asarray(pv["log_aT"]))] if pv else [])
            + ([("mastercurves", mc["E_stor:0.04"]["log_aT"])] if mc else [])}
-    blocks += ["**Shift factors** log10 a_T (decades, 0 at T_ref = -5 °C; ± the linearised standard error; "
-               "mastercurves: its own error, accumulated from the reference set).",
+    blocks += ["**Shift factors** log10 a_T (decades, 0 at T_ref = -5 °C; ± the standard error: the joint fit's "
+               "sandwich covariance; mastercurves: its own error, accumulated from the reference set).",
                timing.table(head, rows),
                "How well each set of shifts superposes E' (rms of log10 E' about one P-spline through all sets, "
                "`superposition_rms`): " + ", ".join(f"{k} {v:.4f}" for k, v in sup.items()) + "."]
+
+    # the instrument lag
+    rows = []
+    for label, fx in (("data as measured", fit0), ("lag fitted (default config)", fit)):
+        m = merged_metrics(fx)
+        rows.append([label, f"{1e6 * fx.lag:.1f} ± {1e6 * fx.lag_std:.1f}" if fx.lag else "-",
+                     f"{2 * math.pi * 100 * fx.lag:.4f}" if fx.lag else "-", _pct(m["E_stor_rms"]),
+                     _pct(m["E_loss_rms"]), _pct(m["tan_delta_rms"]), m["tan_delta_extrema"], fx.reduced.n_modes])
+    blocks += ["**The instrument's time lag** (fitted with the shifts and the spectrum; merged series against its "
+               "own master curve, with the lag removed from the data where it is fitted).",
+               timing.table(["fit", "lag Δt [µs]", "phase at 100 Hz [rad]", "E' rms", "E'' rms", "tan δ rms",
+                             "tan δ extrema", "modes"], rows)]
 
     # shift functions
     rows = [["WLF, all sets", f"C1 = {fit.wlf['C1']:.4g}, C2 = {fit.wlf['C2']:.4g} K", f"{fit.wlf['rms']:.2f}",
@@ -232,27 +261,29 @@ def detail_tables(first):
     w_hot = superpose.wlf_fit(T[hot], fit.log_aT[hot], T_REF, sigma=fit.log_aT_std[hot])
     rows.append([f"WLF, sets at T ≥ T_ref ({hot.sum()})", f"C1 = {w_hot['C1']:.4g}, C2 = {w_hot['C2']:.4g} K",
                  f"{w_hot['rms']:.2f}", f"{np.max(np.abs(w_hot['residual'])):.2f}"])
-    blocks += ["**Shift functions fitted to the final shifts** (weighted by their standard errors; residuals in "
-               "decades; C1 is bounded at 1e4 and C2 at 1e5 K).",
+    blocks += ["**Shift functions fitted to the final shifts** (lag fitted; weighted by their standard errors; "
+               "residuals in decades; C1 is bounded at 1e4 and C2 at 1e5 K).",
                timing.table(["function", "constants", "rms residual", "largest residual"], rows)]
 
     # lambda
-    mcurve = superpose.master_curve(raw, fit.log_aT)
+    mcurve = corrected(fit)
     rows = []
     for lam in ("gcv1se", "gcv", "lcurve", 100.0):
-        sp_ = spectrum.fit_spectrum(mcurve.f_red, mcurve.E_stor, mcurve.E_loss, components=(1.0, dmafit.LOSS_WEIGHT),
-                                    lam=lam)
+        sp_ = spectrum.fit_spectrum(mcurve.f_reduced, mcurve.E_stor, mcurve.E_loss,
+                                    components=(1.0, dmafit.LOSS_WEIGHT), lam=lam)
         m = sp_.metrics
         rows.append([f"`{lam}`" if isinstance(lam, str) else f"fixed {lam:g}", f"{sp_.lam:.3g}",
                      _pct(m["E_stor_rms"]), _pct(m["E_loss_rms"]), m["tan_delta_extrema"]])
-    blocks += ["**Choice of lambda** (the smooth spectrum at the final shifts, 5 modes per decade, before merging).",
+    blocks += [f"**Choice of lambda** (the smooth spectrum at the final shifts, the lag removed from the data, "
+               f"{spectrum.PER_DECADE:g} modes per decade, before merging).",
                timing.table(["lam", "lambda", "E' rms", "E'' rms", "tan δ extrema"], rows)]
 
     # merging, at the final shifts and at the shipped shift factors (given: the spectrum alone)
-    shipped = dma.superpose(dma.read_table(DATA), T_REF, dma.read_table(SHIPPED)).log_aT
+    shipped = dma.superpose(table, T_REF, dma.read_table(SHIPPED)).log_aT
     f_pv = dmafit.fit_dma(raw, T_REF, log_aT=shipped)
     rows = []
-    for label, fx, densities in (("final (joint)", fit, (1.0, 1.5, 2.0, 3.0)), ("pyvisco's shipped", f_pv, (2.0, 3.0))):
+    for label, fx, densities in (("final (joint, lag fitted)", fit, (1.0, 1.5, 2.0, 3.0)),
+                                 ("pyvisco's shipped", f_pv, (2.0, 3.0))):
         rows.append([label, "none (fine grid)", fx.spectrum.n_modes, "-", "-", "-",
                      fx.spectrum.metrics["tan_delta_extrema"]])
         for pd in densities:
@@ -272,30 +303,32 @@ def detail_tables(first):
     for shifts, kk in (("joint (final)", True), ("stage 1 only", False)):
         for label, comp in (("1/100 (default)", (1.0, dmafit.LOSS_WEIGHT)), ("1 (equal)", (1.0, 1.0))):
             f2 = fit if kk and comp[1] == dmafit.LOSS_WEIGHT else dmafit.fit_dma(raw, T_REF, components=comp,
-                                                                                 kk_refine=kk)
-            e_inf, e, beta = f2.prony_terms()
-            mc2 = superpose.master_curve(raw, f2.log_aT)
-            m = spectrum.fit_metrics(e_inf, e, 1 / beta, mc2.f_red, mc2.E_stor, mc2.E_loss)
-            rows.append([shifts, label, _pct(m["E_stor_rms"]), _pct(m["E_loss_rms"]), m["tan_delta_extrema"],
-                         len(f2.joint.at_bound) if f2.joint else "-"])
+                                                                                 kk_refine=kk, lag=True)
+            m = merged_metrics(f2)
+            rows.append([shifts, label, f"{1e6 * f2.lag:.1f}", _pct(m["E_stor_rms"]), _pct(m["E_loss_rms"]),
+                         m["tan_delta_extrema"], len(f2.joint.at_bound) if kk else "-"])
     blocks += ["**Shifts refined with the spectrum, and the weight a'' of the relative E'' residuals** (whole "
-               "chain, merged series, each against its own master curve; stage 1 only: the spectrum fitted at "
-               "the spline shifts, `kk_refine=False`).",
-               timing.table(["shifts", "a''", "E' rms", "E'' rms", "tan δ extrema",
+               "chain with the lag fitted, merged series, each against its own master curve; stage 1 only: the "
+               "spectrum and the lag fitted at the spline shifts, `kk_refine=False`).",
+               timing.table(["shifts", "a''", "lag [µs]", "E' rms", "E'' rms", "tan δ extrema",
                              "joint steps at the overlap bound"], rows)]
 
     # tan delta excess by measured frequency
-    e_inf, e, beta = fit.prony_terms()
     freqs = np.unique(np.round(np.concatenate([s.f for s in sets]), 6))
-    excess = {float(fq): [] for fq in freqs}
-    for s, la in zip(sets, fit.log_aT, strict=True):
-        model = spectrum.complex_modulus(2 * math.pi * s.f * 10**la, e_inf, e, 1 / beta)
-        for fq, d in zip(np.round(s.f, 6), s.E_loss / s.E_stor - model.imag / model.real, strict=True):
-            excess[float(fq)].append(d)
-    rows = [[f"{fq:.3g}", f"{statistics.median(v):+.4f}", f"{min(v):+.4f} .. {max(v):+.4f}"]
-            for fq, v in excess.items()]
-    blocks += ["**Measured tan δ minus the fitted one, by measured frequency** (over the 21 sets; final fit).",
-               timing.table(["measured f [Hz]", "median", "range over the sets"], rows)]
+    excess = {(float(fq), which): [] for fq in freqs for which in (0, 1)}
+    for which, fx in enumerate((fit0, fit)):
+        e_inf, e, beta = fx.prony_terms()
+        for s, la in zip(sets, fx.log_aT, strict=True):
+            model = spectrum.complex_modulus(2 * math.pi * s.f * 10**la, e_inf, e, 1 / beta)
+            model = model * np.exp(2j * math.pi * s.f * fx.lag)        # as the instrument measures it
+            for fq, d in zip(np.round(s.f, 6), s.E_loss / s.E_stor - model.imag / model.real, strict=True):
+                excess[float(fq), which].append(d)
+    rows = [[f"{fq:.3g}"] + [f"{statistics.median(excess[fq, w]):+.4f} ({min(excess[fq, w]):+.4f} .. "
+                             f"{max(excess[fq, w]):+.4f})" for w in (0, 1)] for fq in map(float, freqs)]
+    blocks += ["**Measured tan δ minus the fitted one, by measured frequency** (over the 21 sets: median (range)). "
+               "With the lag fitted, the fit is compared as the instrument measures it (its E* times "
+               "exp(i 2π f Δt)).",
+               timing.table(["measured f [Hz]", "data as measured", "lag fitted"], rows)]
 
     # mastercurves
     if mc:

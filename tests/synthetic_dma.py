@@ -1,6 +1,9 @@
-"""Synthetic DMA data shared by the fitting tests: a known Prony material (5 terms, rates over six
-decades) shifted by WLF (C1 = 8.86, C2 = 101.6 K, T_ref = 20 deg C), five sets at -10..50 deg C, ten
-frequencies 0.1..100 Hz, multiplicative normal noise on E' and E''."""
+"""Synthetic DMA data shared by the fitting tests: a known Prony material shifted by WLF (C1 = 8.86,
+C2 = 101.6 K, T_ref = 20 deg C), five sets at -10..50 deg C, ten frequencies 0.1..100 Hz, multiplicative
+normal noise on E' and E''. Two materials: ``SPARSE`` (5 terms, rates over six decades; its tan delta
+ripples between the terms, which a smooth-spectrum fit does not follow) and ``SMOOTH`` (17 terms, two per
+decade over 1..1e8 1/s, a log-normal spectrum centred at 1e4 1/s, 1.5 decades wide). ``lag`` (s) adds an
+instrument's time lag between force and displacement: every point's E* times exp(i 2 pi f lag)."""
 
 import numpy as np
 
@@ -10,17 +13,24 @@ from vcor.materials.shift import wlf_log_aT
 E_INF = 2e6
 E5 = np.array([5e6, 20e6, 60e6, 150e6, 400e6])
 BETA5 = 10.0 ** np.linspace(1, 7, 5)
+SPARSE = (E_INF, E5, BETA5)
+RATES17 = 10.0 ** np.arange(0.0, 8.01, 0.5)
+_W17 = np.exp(-(np.log10(RATES17) - 4.0) ** 2 / (2 * 1.5**2))
+SMOOTH = (E_INF, 600e6 * _W17 / _W17.sum(), RATES17)
 T_REF, C1, C2 = 20.0, 8.86, 101.6
 TEMPS = np.linspace(-10, 50, 5)
 TRUE = wlf_log_aT(TEMPS, T_REF, C1, C2)
 
 
-def synthetic(seed=0, noise=0.01, temps=TEMPS, f=np.geomspace(0.1, 100, 10)):
-    """Columns f [Hz], E_stor, E_loss [Pa], T [deg C], Set of the known material."""
+def synthetic(seed=0, noise=0.01, temps=TEMPS, f=np.geomspace(0.1, 100, 10), *, material=SPARSE, lag=0.0):
+    """Columns f [Hz], E_stor, E_loss [Pa], T [deg C], Set of the known ``material`` (E_inf [Pa], E [Pa],
+    beta [1/s])."""
     rng = np.random.default_rng(seed)
+    e_inf, e_j, beta = material
     cols = {k: [] for k in ("f", "E_stor", "E_loss", "T", "Set")}
     for k, T in enumerate(temps):
-        e = spectrum.complex_modulus(2 * np.pi * f * 10 ** wlf_log_aT(T, T_REF, C1, C2), E_INF, E5, 1 / BETA5)
+        e = spectrum.complex_modulus(2 * np.pi * f * 10 ** wlf_log_aT(T, T_REF, C1, C2), e_inf, e_j, 1 / beta)
+        e = e * np.exp(2j * np.pi * f * lag)
         n = 1 + noise * rng.standard_normal((2, f.size))
         cols["f"] += list(f)
         cols["E_stor"] += list(e.real * n[0])

@@ -198,6 +198,18 @@ ROWS = [
      ["fits.pyvisco-polymer.data.file", "relative path inside the project"]),
     ("config: DMA file missing", lambda: _validate(_config_with(
         lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="data/pyvisco/none.csv"))), ["none.csv"]),
+    ("fit: instrument_lag not a boolean", lambda: fits.check_fit_spec(
+        {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": -5, "instrument_lag": "yes"}},
+        base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "true or false", "'yes'"]),
+    ("fit: instrument_lag with method free", lambda: fits.check_fit_spec(
+        {"model": "prony", "method": "free", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": -5,
+                                                      "instrument_lag": True}},
+        base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "method: spectrum", "'free'"]),
+    ("fit: instrument_lag on a master curve", lambda: fits.check_fit_spec(
+        {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5, "instrument_lag": True}},
+        base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "master curve", "two or more temperatures"]),
+    ("config: instrument_lag not a boolean", lambda: _validate(_config_with(
+        lambda c: c["fits"]["pyvisco-polymer"]["data"].update(instrument_lag="yes"))), ["instrument_lag"]),
     ("config: option the method ignores",
      lambda: _validate(_config_with(lambda c: c["scenes"]["sls"].update(solver={"method": "ive", "dt": 1e-6}))),
      ["scenes.sls.solver", "dt", "not used by method 'ive'"]),

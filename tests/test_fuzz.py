@@ -112,7 +112,10 @@ def test_api_refuses_or_solves_every_hostile_call():
     check()
     elapsed = time.perf_counter() - start
     print(f"\n{API_CASES} hostile API calls: {counts}, {elapsed:.1f} s")
-    assert sum(counts.values()) >= API_CASES and counts["solved"] > 25 and counts["refused"] > 200
+    # both branches exercised: how many draws are solvable varies with the code, even at a fixed seed
+    # (hypothesis mixes the literal constants of the loaded project modules into its draws; 21 and 41 of
+    # 500 have been seen), so the guard asks for a count far below either
+    assert sum(counts.values()) >= API_CASES and counts["solved"] >= 10 and counts["refused"] > 200
 
 
 # --- configs --------------------------------------------------------------------------------------

@@ -177,10 +177,12 @@ def check_data(raw: DMATable, shifts: DMATable | None = None) -> None:
 
 @threadpool_limits.wrap(limits=1, user_api="blas")  # many small solves (vcor.fitting.dmafit)
 def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None, *, log_aT=None,
-              source: str | None = None) -> Superposition:
+              source: str | None = None, lag: float = 0.0) -> Superposition:
     """Master curve at ``T_ref`` (deg C) from raw sets, with ``shifts`` (a shift-factor table), with
     ``log_aT`` (per set, ascending temperature, decades; ``source`` says where they come from) or with
-    shift factors found from the data pairwise (module docstring)."""
+    shift factors found from the data pairwise (module docstring). ``lag`` (s): an instrument's time lag
+    between force and displacement, removed from every point, E* exp(-i 2 pi f lag) with f the measured
+    frequency (:func:`vcor.fitting.spectrum.fit_with_shifts` fits it)."""
     sets = set_arrays(raw)
     T = np.array([s[0] for s in sets])
     notes = []
@@ -218,6 +220,13 @@ def superpose(raw: DMATable, T_ref: float, shifts: DMATable | None = None, *, lo
         source = "found from the data (E' overlaps of adjacent sets)"
     fr, es, el, tp, mism = [], [], [], [], []
     for (t, f, e1, e2), la in zip(sets, log_aT):
+        if lag:
+            e = (e1 + 1j * e2) * np.exp(-2j * math.pi * f * lag)
+            if np.any(e.imag <= 0):
+                raise ValueError(f"{raw.path}: the set at {t:.4g} deg C has a loss angle below the instrument lag's "
+                                 f"phase (2 pi f x {lag:.3g} s) at {f[e.imag <= 0].min():.4g} Hz: the lag does not "
+                                 f"describe these data")
+            e1, e2 = e.real, e.imag
         fr.append(f * 10.0**la)
         es.append(e1)
         el.append(e2)

@@ -7,7 +7,7 @@ r"""Raw DMA sets to a Prony material and its shift factors: the measured-data fi
 2. the shifts refined together with a smooth relaxation spectrum
    (:func:`vcor.fitting.spectrum.fit_with_shifts`): the master curve is then the Prony model itself, so
    E' *and* E'' at the shifts are those of one linear viscoelastic material;
-3. the smooth spectrum at the final shifts (relaxation times on a fixed log grid, 5 per decade,
+3. the smooth spectrum at the final shifts (relaxation times on a fixed log grid, 4 per decade,
    log-spectrum roughness penalty, lambda by GCV with the one-standard-error rule), merged to
    ``modes_per_decade`` modes per decade (:func:`vcor.fitting.spectrum.reduce_modes`) with the change
    in E* reported;
@@ -68,7 +68,8 @@ class DMAFit:
     spline_shifts : ShiftResult or None
         Stage 1 (None with given shifts).
     joint : JointFit or None
-        Stage 2 (None with given shifts or ``kk_refine=False``).
+        Stage 2 (None with given shifts or ``kk_refine=False``, unless an instrument lag is fitted: then
+        the joint solve with the shifts held).
     spectrum : SpectrumFit
         The smooth spectrum at the final shifts.
     reduced : ReducedModes
@@ -78,6 +79,9 @@ class DMAFit:
     times : dict
         Wall time per stage, s.
     notes : list of str
+    lag, lag_std : float
+        The instrument's time lag between force and displacement (s; 0 when not fitted) and its
+        linearised standard error (s).
     """
 
     T: np.ndarray
@@ -92,6 +96,8 @@ class DMAFit:
     arrhenius: dict
     times: dict
     notes: list = field(default_factory=list)
+    lag: float = 0.0
+    lag_std: float = 0.0
 
     @property
     def smoothing(self) -> dict:
@@ -131,8 +137,8 @@ def _check_size(n_points: int, n_modes: int, where: str) -> None:
 
 
 @threadpool_limits.wrap(limits=1, user_api="blas")
-def fit_dma(raw, T_ref, *, log_aT=None, kk_refine=True, components=(1.0, LOSS_WEIGHT), per_decade=5.0,
-            margin=1.5, modes_per_decade=MODES_PER_DECADE, smoothing=None, start=None) -> DMAFit:
+def fit_dma(raw, T_ref, *, log_aT=None, kk_refine=True, components=(1.0, LOSS_WEIGHT), per_decade=_spectrum.PER_DECADE,
+            margin=_spectrum.MARGIN, modes_per_decade=MODES_PER_DECADE, smoothing=None, start=None, lag=False) -> DMAFit:
     """Shifts, smooth spectrum, merged Prony series and shift functions of raw DMA sets (module docstring).
 
     Parameters
@@ -156,6 +162,10 @@ def fit_dma(raw, T_ref, *, log_aT=None, kk_refine=True, components=(1.0, LOSS_WE
         instead of chosen by GCV.
     start : DMAFit, optional
         Warm start of the spectrum (with ``smoothing``: no lambda scans).
+    lag : bool
+        Fit the instrument's time lag between force and displacement together with the shifts and the
+        spectrum (:func:`vcor.fitting.spectrum.fit_with_shifts`; with given shifts or
+        ``kk_refine=False`` the shifts are held).
 
     Returns
     -------
@@ -177,13 +187,16 @@ def fit_dma(raw, T_ref, *, log_aT=None, kk_refine=True, components=(1.0, LOSS_WE
         sh = _superpose.global_shifts(sets, T_ref, mu=sm.get("mu"))
         times["spline_shifts"] = time.perf_counter() - t0
         notes += sh.notes
-    if log_aT is None and kk_refine:
+    if lag or (log_aT is None and kk_refine):
         t1 = time.perf_counter()
-        joint = _spectrum.fit_with_shifts(sets, T_ref, sh.log_aT, components=components, per_decade=per_decade,
-                                          margin=margin, lam=sm.get("lam_joint"), final_lam=sm.get("lam", "gcv1se"),
-                                          start_spectrum=start_spec)
+        free = log_aT is None and kk_refine
+        joint = _spectrum.fit_with_shifts(sets, T_ref, sh.log_aT if log_aT is None else np.asarray(log_aT, float),
+                                          components=components, per_decade=per_decade, margin=margin,
+                                          lam=sm.get("lam_joint"), final_lam=sm.get("lam", "gcv1se"),
+                                          start_spectrum=start_spec, lag=lag, free_shifts=free)
         times["joint"] = time.perf_counter() - t1
-        log_aT, std, spec = joint.log_aT, joint.log_aT_std, joint.spectrum
+        std = joint.log_aT_std if free else (sh.log_aT_std if sh is not None else np.zeros(len(sets)))
+        log_aT, spec = joint.log_aT, joint.spectrum
         notes += joint.notes
     else:
         t1 = time.perf_counter()
@@ -202,11 +215,12 @@ def fit_dma(raw, T_ref, *, log_aT=None, kk_refine=True, components=(1.0, LOSS_WE
     wlf = _superpose.wlf_fit(T, log_aT, T_ref, sigma=np.where(std > 0, std, 0.01))
     arr = _superpose.arrhenius_fit(T, log_aT, T_ref, sigma=np.where(std > 0, std, 0.01))
     times["total"] = time.perf_counter() - t0
+    lag_s, lag_std = (joint.lag, joint.lag_std) if joint is not None else (0.0, 0.0)
     return DMAFit(T, np.asarray(log_aT, float), np.asarray(std, float), float(T_ref), sh, joint, spec, reduced, wlf,
-                  arr, times, notes)
+                  arr, times, notes, lag_s, lag_std)
 
 
-def fit_curve(f, E_stor, E_loss, *, per_decade=5.0, margin=1.5, modes_per_decade=MODES_PER_DECADE):
+def fit_curve(f, E_stor, E_loss, *, per_decade=_spectrum.PER_DECADE, margin=_spectrum.MARGIN, modes_per_decade=MODES_PER_DECADE):
     """(SpectrumFit, ReducedModes) of a master curve as given (no temperature sets): f [Hz], E', E'' [Pa],
     E'' weighted :data:`LOSS_WEIGHT`."""
     spec = _spectrum.fit_spectrum(f, E_stor, E_loss, per_decade=per_decade, margin=margin,

@@ -3,7 +3,7 @@ record (residual curves, metrics), and the fit-metrics table of a scene.
 
 Specs: ``{model: prony | cerf, n_terms: int | auto, tol, n_max, domain}`` on the built-in
 Bagley-Torvik data (the fractional law of Green Eq. 23 on the paper's band), or
-``{model: prony, method?, data: {file, T_ref, shift_file?, shift_model?}}`` on measured DMA data
+``{model: prony, method?, data: {file, T_ref, shift_file?, shift_model?, instrument_lag?}}`` on measured DMA data
 (:mod:`vcor.fitting.dma`). A name containing ``{n}`` with a list ``n_terms`` expands to one fit per N.
 
 Measured data are fitted by one of two methods (``method``):
@@ -19,6 +19,11 @@ Measured data are fitted by one of two methods (``method``):
 ``shift_model`` (default ``table``) is the shift function stored with the material: ``table`` (the
 per-set log10 a_T, PCHIP in T between the sets, not extrapolated beyond them), ``wlf`` or ``arrhenius`` (fitted
 to the per-set shifts).
+
+``instrument_lag: true`` (method ``spectrum``, raw sets; default false) fits a time lag between the
+instrument's force and displacement signals together with the shifts and the spectrum
+(:func:`vcor.fitting.spectrum.fit_with_shifts`): the material is then that of the data with the lag
+removed, and the fit's record holds the lag, its standard error and the corrected master curve.
 """
 
 from __future__ import annotations
@@ -62,7 +67,7 @@ def expand_fits(fits: dict, where: str = "fits") -> dict:
 #: the models a fit may have (the scalar parameters of each: vcor.materials.catalogue.FIT_SCALARS)
 FIT_MODELS = tuple(FIT_SCALARS)
 #: keys of a measured-data fit's ``data`` mapping
-DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model"}
+DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model", "instrument_lag"}
 #: methods of a measured-data fit (module docstring); the first is the default
 FIT_METHODS = ("spectrum", "free")
 #: shift functions a measured-data fit may store; the first is the default
@@ -87,6 +92,7 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     _check_method(spec, where)
     if d.get("shift_model", SHIFT_MODELS[0]) not in SHIFT_MODELS:
         raise ValueError(f"{where}.data.shift_model must be one of {list(SHIFT_MODELS)}, got {d['shift_model']!r}")
+    _check_lag(spec, where)
     try:
         T_ref = float(d["T_ref"])
     except (TypeError, ValueError):
@@ -96,12 +102,26 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     raw = dma.read_table(Path(base_dir) / d["file"])
     shifts = dma.read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
     dma.check_data(raw, shifts)
+    if d.get("instrument_lag") and not raw.is_raw:
+        raise ValueError(f"{where}.data.instrument_lag: {raw.path} is a master curve (no T, Set columns); the lag is "
+                         f"told from the material by superposing sets at two or more temperatures")
     if raw.is_raw and d.get("shift_model", SHIFT_MODELS[0]) == "table" and "shift_file" not in d:
         T = np.array([t for t, *_ in dma.set_arrays(raw)])
         if not T.min() <= T_ref <= T.max():
             raise ValueError(f"{where}.data.T_ref: {T_ref:g} deg C lies outside the sets' {T.min():.4g}..{T.max():.4g} "
                              f"deg C: a tabulated shift function (shift_model: table) needs T_ref inside; "
                              f"use shift_model wlf or arrhenius")
+
+
+def _check_lag(spec: dict, where: str) -> bool:
+    """The fit's ``data.instrument_lag`` (module docstring); ValueError naming the key."""
+    lag = (spec.get("data") or {}).get("instrument_lag", False)
+    if not isinstance(lag, bool):
+        raise ValueError(f"{where}.data.instrument_lag: true or false, got {lag!r}")
+    if lag and spec.get("method", FIT_METHODS[0]) != "spectrum":
+        raise ValueError(f"{where}.data.instrument_lag: the lag is fitted with the spectrum (method: spectrum), "
+                         f"not by method {spec.get('method')!r}")
+    return lag
 
 
 def _check_method(spec: dict, where: str) -> str:
@@ -134,6 +154,7 @@ def run_fit(spec: dict, base_dir="."):
     if spec.get("model") != "prony":
         raise ValueError(f"a fit to measured data is a Prony fit (model: prony), got {spec.get('model')!r}")
     method = _check_method(spec, "fit")
+    _check_lag(spec, "fit")
     shift_model = d.get("shift_model", SHIFT_MODELS[0])
     if shift_model not in SHIFT_MODELS:
         raise ValueError(f"fit data.shift_model must be one of {list(SHIFT_MODELS)}, got {shift_model!r}")
@@ -171,9 +192,10 @@ def _run_spectrum(spec, raw, shifts, T_ref, shift_model):
         result, data = _measured_result(material, sp, d, settings, t_start)
         return result, data, {}
     given = dma.superpose(raw, T_ref, shifts).log_aT if shifts is not None else None
-    fitted = dmafit.fit_dma(raw, T_ref, log_aT=given)
+    lag = bool(d.get("instrument_lag", False))
+    fitted = dmafit.fit_dma(raw, T_ref, log_aT=given, lag=lag)
     shift = dmafit.shift_function(fitted, shift_model)
-    sp = dma.superpose(raw, T_ref, log_aT=fitted.log_aT,
+    sp = dma.superpose(raw, T_ref, log_aT=fitted.log_aT, lag=fitted.lag,
                        source=f"given ({shifts.path}), PCHIP in T, zero at T_ref" if shifts is not None else
                        "global superposition of all sets, refined with the spectrum (vcor.fitting.dmafit)")
     material = fitted.material()
@@ -181,12 +203,16 @@ def _run_spectrum(spec, raw, shifts, T_ref, shift_model):
                 "modes_fine": fitted.spectrum.n_modes, "merge_change": fitted.reduced.change,
                 "components": [1.0, dmafit.LOSS_WEIGHT], "notes": fitted.notes,
                 "times": {k: round(v, 3) for k, v in fitted.times.items()}}
+    if lag:
+        settings["instrument_lag"] = {"lag_s": fitted.lag, "lag_std_s": fitted.lag_std,
+                                      "data": "the master curve is the measured data times exp(-i 2 pi f lag)"}
     result, data = _measured_result(material, sp, d, settings, t_start)
     residual = np.array([shift.log_aT(float(t)) for t in fitted.T]) - fitted.log_aT
     attrs = {"shift": json.dumps(shift.to_dict()), "superposition": json.dumps({
         "T_degC": fitted.T.tolist(), "log_aT": fitted.log_aT.tolist(), "log_aT_std": fitted.log_aT_std.tolist(),
         "shift_fit_residual": residual.tolist(), "shift_model": shift_model, "source": sp.source,
-        "overlap_rms_log10_E_stor": sp.overlap_rms,
+        "overlap_rms_log10_E_stor": sp.overlap_rms, "instrument_lag_s": fitted.lag,
+        "instrument_lag_std_s": fitted.lag_std,
         "wlf": {k: fitted.wlf[k] for k in ("C1", "C2", "C1_std", "C2_std", "rms")},
         "arrhenius": {k: fitted.arrhenius[k] for k in ("E_a", "E_a_std", "rms")}}, default=float)}
     return result, data, attrs

@@ -6,7 +6,8 @@ full-data fit's residuals. Every point keeps its frequency and its set; its modu
 .. math:: E^{*}_{ki} = \hat E_{ki}\, \exp\!\big(v_k\, \bar\rho_k + v_{ki}\,(\rho_{ki} - \bar\rho_k)\big),
           \qquad \rho_{ki} = \frac{\ln(E_{ki} / \hat E_{ki})}{1 - h_{ki}},
 
-separately for E' and E'' (:math:`\hat E` the full-data spectrum at the point's reduced frequency,
+separately for E' and E'' (:math:`\hat E` the full-data spectrum at the point's reduced frequency, as
+the instrument measures it when the fit has an instrument lag,
 :math:`h` its leverage in that fit, :func:`vcor.fitting.spectrum.leverage`; :math:`\bar\rho_k` the
 set's mean, a per-set modulus scale error such as a geometry or clamping error), with independent
 weights :math:`v_k` per set and :math:`v_{ki}` per point, drawn from Webb's six-point distribution
@@ -96,8 +97,10 @@ def residuals(raw, full) -> Residuals:
     es = np.concatenate([s.E_stor for s in sets])
     el = np.concatenate([s.E_loss for s in sets])
     w = np.concatenate([np.ones(s.f.size) if s.weight is None else s.weight for s in sets])
-    e = full.spectrum.complex_modulus(2 * math.pi * fr)
-    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dmafit.LOSS_WEIGHT))
+    phase = 2 * math.pi * np.concatenate([s.f for s in sets]) * full.lag     # the instrument's lag, if fitted
+    e = full.spectrum.complex_modulus(2 * math.pi * fr) * np.exp(1j * phase)
+    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dmafit.LOSS_WEIGHT),
+                                phase=phase if full.lag else None)
     rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
     cut = np.cumsum([s.f.size for s in sets])[:-1]
     return Residuals(sets, np.split(e.real, cut), np.split(e.imag, cut), np.split(rs, cut), np.split(rl, cut))
@@ -181,7 +184,7 @@ def resample(raw, rng, *, T_ref=None, mode="bayesian", min_sets=2):
 
 
 @threadpool_limits.wrap(limits=1, user_api="blas")
-def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=None):
+def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=None, lag=False):
     """The full-data fit and ``n`` refits of resampled data (module docstring).
 
     Parameters
@@ -200,6 +203,9 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
         Given shift factors per set (decades): only the spectrum is refitted.
     max_failures : int, optional
         Samples that cannot be superposed are redrawn; more than this many (default ``n``) raise.
+    lag : bool
+        Fit the instrument's time lag in the full-data fit and in every sample
+        (:func:`vcor.fitting.dmafit.fit_dma`).
 
     Returns
     -------
@@ -212,7 +218,7 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
         raise ValueError(f"the number of bootstrap samples must be an integer >= 1, got {n!r}")
     if mode not in MODES:
         raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
-    full = dmafit.fit_dma(raw, T_ref, log_aT=log_aT)
+    full = dmafit.fit_dma(raw, T_ref, log_aT=log_aT, lag=lag)
     res = residuals(raw, full) if mode == "wild" else None
     rng = np.random.default_rng(seed)
     samples, fails, times = [], [], []
@@ -221,7 +227,7 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
         data = wild_sample(res, rng) if res is not None else resample(raw, rng, T_ref=T_ref, mode=mode)
         t0 = time.perf_counter()
         try:
-            samples.append(dmafit.fit_dma(data, T_ref, log_aT=log_aT, smoothing=full.smoothing, start=full))
+            samples.append(dmafit.fit_dma(data, T_ref, log_aT=log_aT, smoothing=full.smoothing, start=full, lag=lag))
             times.append(time.perf_counter() - t0)
         except ValueError as exc:
             fails.append(str(exc))
@@ -238,7 +244,8 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
     name : str
         The fit's name (``fits.<name>`` in the config; used in errors and attributes).
     spec : dict
-        The fit spec, ``{model: prony, method?: spectrum, data: {file, T_ref, shift_file?, shift_model?}}``
+        The fit spec, ``{model: prony, method?: spectrum, data: {file, T_ref, shift_file?, shift_model?,
+        instrument_lag?}}``
         (:mod:`vcor.fitting.fits`); the data must be raw multi-temperature sets.
     n : int
         Number of bootstrap samples.
@@ -255,10 +262,12 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         ``beta`` (sample, mode) [Pa, 1/s], ``n_modes`` (sample): a sample with fewer terms than
         ``mode`` is padded at the end with E = 0 and beta = NaN (terms sorted by rate, padding last);
         ``log_aT`` (sample, T_set) [decades, 0 at T_ref]; ``wlf_C1``, ``wlf_C2`` [K],
-        ``arrhenius_E_a`` [J/mol] (sample) fitted to each sample's shifts; ``log_aT_full`` and
+        ``arrhenius_E_a`` [J/mol] (sample) fitted to each sample's shifts; ``lag`` (sample) [s], the
+        instrument lag of each sample's fit (0 when not fitted); ``log_aT_full`` and
         ``log_aT_std`` (T_set): the full-data shifts and their linearised standard errors.
         Attributes: ``spec``, ``n``, ``seed``, ``mode`` (resampling), ``T_ref``, ``shift_model``,
-        ``fit_name``, ``smoothing`` (held fixed), ``failures``, and ``material`` and ``shift`` of the
+        ``fit_name``, ``smoothing`` (held fixed), ``instrument_lag_full_s`` and its standard error (the
+        full-data fit's lag, s), ``failures``, and ``material`` and ``shift`` of the
         full-data fit (so the file reads as a material file, :func:`vcor.materials.from_file`).
 
     Raises
@@ -287,7 +296,7 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
     if "shift_file" in d:
         given = dma.superpose(raw, T_ref, dma.read_table(Path(base_dir) / d["shift_file"])).log_aT
     try:
-        full, samples, info = bootstrap(raw, T_ref, n, seed, log_aT=given)
+        full, samples, info = bootstrap(raw, T_ref, n, seed, log_aT=given, lag=bool(d.get("instrument_lag", False)))
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
     terms = [s.prony_terms() for s in samples]
@@ -308,6 +317,8 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
          "wlf_C2": ("sample", np.array([s.wlf["C2"] for s in samples]), {"units": "K", "long_name": "WLF C2"}),
          "arrhenius_E_a": ("sample", np.array([s.arrhenius["E_a"] for s in samples]),
                            {"units": "J mol-1", "long_name": "Arrhenius activation energy"}),
+         "lag": ("sample", np.array([s.lag for s in samples]),
+                 {"units": "s", "long_name": "instrument time lag between force and displacement (0: not fitted)"}),
          "log_aT_full": ("T_set", full.log_aT, {"units": "1", "long_name": "log10 a_T of the full-data fit"}),
          "log_aT_std": ("T_set", full.log_aT_std,
                         {"units": "1", "long_name": "linearised standard error of log10 a_T (full data)"})},
@@ -318,6 +329,7 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         "fit_name": name, "spec": json.dumps(spec, sort_keys=True), "n": int(n), "seed": int(seed),
         "mode": MODES[0], "T_ref": T_ref, "shift_model": shift_model,
         "smoothing": json.dumps(full.smoothing, sort_keys=True, default=float),
+        "instrument_lag_full_s": float(full.lag), "instrument_lag_std_full_s": float(full.lag_std),
         "failures": json.dumps(info["failures"]),
         "material": json.dumps(full.material().to_dict()),
         "shift": json.dumps(dmafit.shift_function(full, shift_model).to_dict()),
