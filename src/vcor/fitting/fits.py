@@ -242,6 +242,8 @@ def _run_free(spec, raw, shifts, T_ref, shift_model):
     n = spec.get("n_terms", "auto")
     result = dma.fit_master(sp, None if n == "auto" else int(n))
     result.settings["method"] = "free"
+    result.metrics["tan_delta_extrema"] = dmafit.tan_delta_extrema(result.material, float(sp.f_reduced.min()),
+                                                                   float(sp.f_reduced.max()))
     data = FitData(omega=2 * math.pi * sp.f_reduced, E_star=sp.E_stor + 1j * sp.E_loss, name=str(d["file"]),
                    measured=True, T_point=sp.T_point)
     return result, data, attrs
