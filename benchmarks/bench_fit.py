@@ -1,6 +1,7 @@
 """Fit benchmark: the time of each fit of the Bagley–Torvik data (automatic Prony, CERF, Prony with
-N = 3, 7, 9, 12) and of the fit to pyvisco's raw DMA example (superposition, WLF, a Prony series with
-one term per decade), with each fit's worst relative error.
+N = 3, 7, 9, 12) and of the default config's fit of pyvisco's raw DMA example (``fits.pyvisco-polymer``:
+global shifts and the instrument lag refined with a smooth spectrum, merged to two Prony terms per
+decade, WLF and Arrhenius fitted to the shifts), with each fit's worst relative error.
 
 Each run is a fresh process with an empty numba cache; each time is the median of CALLS warm calls
 after one untimed call; cells give the median over runs (min–max).
@@ -11,10 +12,9 @@ Run: python benchmarks/bench_fit.py [--runs 2] [--calls 3] [--quick] [--out FILE
 from __future__ import annotations
 
 import timing
+import yaml
 
 from vcor.fitting import fits, prony
-
-RAW = "data/pyvisco/freq_user_raw.csv"  # relative to the repository (base_dir of the fit)
 
 
 def measure(args):
@@ -23,8 +23,8 @@ def measure(args):
     cases = [("Prony, automatic N, tol 1 %", lambda: prony.fit_prony(data, None, tol=0.01)),
              ("CERF", lambda: prony.fit_cerf(data))]
     cases += [(f"Prony, N = {n}", lambda n=n: prony.fit_prony(data, n)) for n in ((3, 7) if args.quick else (3, 7, 9, 12))]
-    spec = {"model": "prony", "data": {"file": RAW, "T_ref": -5.0}}
-    cases.append(("pyvisco raw DMA: superposition + WLF + Prony", lambda: fits.run_fit(spec, timing.ROOT)[0]))
+    spec = yaml.safe_load((timing.ROOT / "config.yaml").read_text())["fits"]["pyvisco-polymer"]
+    cases.append(("pyvisco raw DMA (`fits.pyvisco-polymer`): shifts + lag + spectrum", lambda: fits.run_fit(spec, timing.ROOT)[0]))
     out = {}
     for name, fn in cases:
         t, res = timing.warm_timed(fn, calls)

@@ -6,9 +6,9 @@ import json
 
 import numpy as np
 import pytest
-from synthetic_dma import T_REF, TEMPS, TRUE, synthetic, write_csv
+from synthetic_dma import SMOOTH, T_REF, TEMPS, TRUE, synthetic, write_csv
 
-from vcor.fitting import resample
+from vcor.fitting import dmafit, resample
 from vcor.io.netcdf import scalar_dataset_check
 from vcor.materials.files import from_file
 from vcor.materials.shift import shift_from_file
@@ -63,6 +63,29 @@ def test_leverage_is_the_fits_response_to_its_own_point(fitted):
         response = (moved.complex_modulus(2 * np.pi * fr[i]).real / base.complex_modulus(2 * np.pi * fr[i]).real - 1) / 1e-3
         print(f"point {i}: response {response:.3f}, h with curvature {hs[i]:.3f}, Gauss-Newton h {gs[i]:.3f}")
         assert response == pytest.approx(hs[i], rel=0.03)
+
+
+def test_fitted_shifts_and_lag_add_their_leverage():
+    """The shifts and the instrument lag a fit refines are parameters: with them in the hat matrix every
+    point's leverage grows, and the leverages' sum (the fit's degrees of freedom) grows by their number,
+    four shifts (the set nearest T_ref is held) and one lag, within 0.15."""
+    from vcor.fitting import spectrum, superpose
+
+    data = synthetic(0, 0.01, material=SMOOTH, lag=20e-6)
+    full = dmafit.fit_dma(data, T_REF, lag=True)
+    sets = superpose.split_sets(data)
+    fr = np.concatenate([s.f * 10.0 ** la for s, la in zip(sets, full.log_aT)])
+    es, el = np.concatenate([s.E_stor for s in sets]), np.concatenate([s.E_loss for s in sets])
+    f_meas = np.concatenate([s.f for s in sets])
+    index = np.concatenate([np.full(s.f.size, [0, 1, -1, 2, 3][k]) for k, s in enumerate(sets)])
+    alone = spectrum.leverage(full.spectrum, fr, es, el, components=(1.0, 0.01), lag=(f_meas, full.lag, False))
+    both = spectrum.leverage(full.spectrum, fr, es, el, components=(1.0, 0.01), lag=(f_meas, full.lag, True),
+                             shift_index=index)
+    for a, b in zip(alone, both):
+        assert np.all(b >= a - 1e-9) and np.all(b < 1)
+    added = sum(b.sum() - a.sum() for a, b in zip(alone, both))
+    print(f"\nleverage sum: spectrum alone {sum(a.sum() for a in alone):.2f}, with 4 shifts and the lag +{added:.2f}")
+    assert abs(added - 5) < 0.15
 
 
 def test_wild_sample_keeps_the_design_and_the_residuals_second_moment(fitted):

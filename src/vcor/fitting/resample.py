@@ -8,7 +8,8 @@ full-data fit's residuals. Every point keeps its frequency and its set; its modu
 
 separately for E' and E'' (:math:`\hat E` the full-data spectrum at the point's reduced frequency, as
 the instrument measures it when the fit has an instrument lag,
-:math:`h` its leverage in that fit, :func:`vcor.fitting.spectrum.leverage`; :math:`\bar\rho_k` the
+:math:`h` its leverage in that fit, with the fitted shifts and lag among the parameters,
+:func:`vcor.fitting.spectrum.leverage`; :math:`\bar\rho_k` the
 set's mean, a per-set modulus scale error such as a geometry or clamping error), with independent
 weights :math:`v_k` per set and :math:`v_{ki}` per point, drawn from Webb's six-point distribution
 (:math:`\pm\sqrt{1/2}, \pm 1, \pm\sqrt{3/2}`, mean 0, variance 1; Webb 2016, for few clusters; the
@@ -97,10 +98,18 @@ def residuals(raw, full) -> Residuals:
     es = np.concatenate([s.E_stor for s in sets])
     el = np.concatenate([s.E_loss for s in sets])
     w = np.concatenate([np.ones(s.f.size) if s.weight is None else s.weight for s in sets])
-    phase = 2 * math.pi * np.concatenate([s.f for s in sets]) * full.lag     # the instrument's lag, if fitted
-    e = full.spectrum.complex_modulus(2 * math.pi * fr) * np.exp(1j * phase)
-    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dmafit.LOSS_WEIGHT),
-                                phase=phase if full.lag else None)
+    f_meas = np.concatenate([s.f for s in sets])
+    e = full.spectrum.complex_modulus(2 * math.pi * fr) * np.exp(2j * math.pi * f_meas * full.lag)  # as measured
+    joint = full.joint
+    shift_index = None
+    if joint is not None and joint.free_shifts:
+        # the fitted shifts are parameters too: every set's but the one held during the solve (nearest T_ref)
+        k_held = int(np.argmin(np.abs(full.T - full.T_ref)))
+        index = np.array([k - (k > k_held) if k != k_held else -1 for k in range(len(sets))])
+        shift_index = np.concatenate([np.full(s.f.size, index[k]) for k, s in enumerate(sets)])
+    lag = (f_meas, full.lag, True) if joint is not None and joint.lag_fitted else None
+    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dmafit.LOSS_WEIGHT), lag=lag,
+                                shift_index=shift_index)
     rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
     cut = np.cumsum([s.f.size for s in sets])[:-1]
     return Residuals(sets, np.split(e.real, cut), np.split(e.imag, cut), np.split(rs, cut), np.split(rl, cut))

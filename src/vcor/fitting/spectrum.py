@@ -568,23 +568,29 @@ def fit_spectrum(f, E_stor, E_loss, *, weight=None, relaxation=None, per_decade=
                        time.perf_counter() - t0, notes)
 
 
-def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.0, 1.0, 1.0), phase=None,
-             curvature=False):
+def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.0, 1.0, 1.0), lag=None,
+             shift_index=None, curvature=False):
     r"""Leverages of data points in a spectrum fit: the diagonal of the linearised hat matrix
     :math:`A_\lambda = J (J^\top J + \lambda L^\top L)^{-1} J^\top` at the fit's solution (module
     docstring), for the E' and the E'' residual of every point; in [0, 1).
 
-    With ``curvature`` the residuals' curvature :math:`\sum_i r_i \nabla^2 r_i` joins the Gauss-Newton
-    matrix, :math:`J (J^\top J + \mathrm{diag}(J^\top r) + \lambda L^\top L)^{-1} J^\top` (exact for
+    A point of leverage :math:`h` pulls the fit towards itself: its fitted residual is about
+    :math:`(1 - h)` times its error, so residuals alone understate the scatter where few points
+    decide the fit (the ends of the data). Scale-free (the row weights cancel).
+
+    The parameters are those of the spectrum, and with ``shift_index`` the shift of every set that was
+    fitted too (:func:`fit_with_shifts`: a shift is one more parameter that each of its set's points
+    informs, so a set's residuals shrink by more than the spectrum alone explains), and with ``lag``
+    the instrument's time lag, fitted or held.
+
+    With ``curvature`` (the spectrum's own parameters only) the residuals' curvature
+    :math:`\sum_i r_i \nabla^2 r_i` joins the Gauss-Newton matrix,
+    :math:`J (J^\top J + \mathrm{diag}(J^\top r) + \lambda L^\top L)^{-1} J^\top` (exact for
     moduli :math:`e^{H_j}`: each residual's second derivative in :math:`H_j` equals its first): the
     linear response of the fitted value to its own data value, which a refit follows within a few per
     cent where the Gauss-Newton value is up to 18 % off (``tests/test_resample.py``); it is not bounded
     by 1 where the fit is barely determined, so the bootstrap's residual correction takes the
     Gauss-Newton value, the one that correction is defined with.
-
-    A point of leverage :math:`h` pulls the fit towards itself: its fitted residual is about
-    :math:`(1 - h)` times its error, so residuals alone understate the scatter where few points
-    decide the fit (the ends of the data). Scale-free (the row weights cancel).
 
     Parameters
     ----------
@@ -597,8 +603,12 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.
         Point multiplicities, as in the fit (default 1).
     components : tuple
         Weights a', a'' of the E' and E'' residuals, as in the fit.
-    phase : array_like, optional
-        The instrument's phase error at every point, rad, as in the fit (:func:`fit_spectrum`).
+    lag : (array_like, float, bool), optional
+        (measured frequency of every point [Hz], the instrument's time lag [s], whether it was fitted):
+        the model is compared as measured (:func:`fit_spectrum`, ``phase``); a fitted lag is a parameter.
+    shift_index : array_like of int, optional
+        For every point the index (0, 1, ...) of its set's shift among the fitted shifts, -1 where the
+        shift was held (the reference set, given shifts).
     curvature : bool
         Include the residuals' curvature (above).
 
@@ -609,13 +619,35 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.
     """
     f = np.asarray(f, float)
     es, el = np.asarray(E_stor, float), np.asarray(E_loss, float)
+    n = f.size
     fit_E_inf = fit.E_inf > 0
-    w = np.ones(f.size) if weight is None else np.asarray(weight, float)
-    ph = None if phase is None else np.broadcast_to(np.asarray(phase, float), f.shape)
+    w = np.ones(n) if weight is None else np.asarray(weight, float)
+    f_meas, dt, lag_fitted = (None, 0.0, False) if lag is None else (np.asarray(lag[0], float), float(lag[1]), lag[2])
+    ph = None if lag is None else 2 * math.pi * f_meas * dt
+    if curvature and (shift_index is not None or lag_fitted):
+        raise ValueError("curvature is exact for the spectrum's own parameters only: give no shift_index or fitted lag")
     pr = _Problem(2 * math.pi * f, es, el, w, None, None, fit.tau, _components(components, es, el), fit_E_inf, ph)
     th = np.concatenate([[math.log(fit.E_inf) if fit_E_inf else 0.0], np.log(fit.E)])
-    J = pr.data_jac(th)
-    A = J.T @ J + fit.lam * pr.penalty_matrix()
+    cols = [pr.data_jac(th)]
+    cp, sn = (np.ones(n), np.zeros(n)) if ph is None else (np.cos(ph), np.sin(ph))
+    if shift_index is not None:
+        k = np.asarray(shift_index, int)
+        wt = np.multiply.outer(2 * math.pi * f, fit.tau)
+        q = 1 + wt**2
+        d1 = math.log(10) * ((2 * wt**2 / q**2) @ fit.E)            # d E' / d log10 a_T
+        d2 = math.log(10) * ((wt * (1 - wt**2) / q**2) @ fit.E)     # d E'' / d log10 a_T
+        Js = np.zeros((2 * n, max(int(k.max()) + 1, 0)))
+        rows = np.flatnonzero(k >= 0)
+        Js[rows, k[rows]] = (pr.cs * (cp * d1 - sn * d2))[rows]
+        Js[n + rows, k[rows]] = (pr.cl * (sn * d1 + cp * d2))[rows]
+        cols.append(Js)
+    if lag_fitted:
+        e = fit.complex_modulus(2 * math.pi * f) * np.exp(1j * ph)  # as measured
+        g = f_meas / f_meas.max()                                  # d phase / d (phase at the top frequency)
+        cols.append(np.concatenate([pr.cs * (-g * e.imag), pr.cl * (g * e.real)])[:, None])
+    J = np.hstack(cols)
+    A = J.T @ J
+    A[:fit.tau.size + 1, :fit.tau.size + 1] += fit.lam * pr.penalty_matrix()
     if curvature:
         # sum_i r_i d2r_i: for moduli e^theta diagonal and equal to J^T r (d2 r_i / d theta_j^2 = d r_i / d theta_j)
         A += np.diag(J.T @ pr.data_residual(th))
@@ -625,7 +657,7 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.
     h = np.einsum("ij,ji->i", J, np.linalg.solve(A, J.T))
     if not curvature:
         h = np.clip(h, 0.0, 1.0 - 1e-9)
-    return h[:f.size], h[f.size:]
+    return h[:n], h[n:]
 
 
 @dataclass
@@ -749,6 +781,8 @@ class JointFit:
     lag, lag_std : float
         The instrument's time lag between force and displacement (s; 0 when not fitted) and its
         linearised standard error (s).
+    lag_fitted, free_shifts : bool
+        Whether the lag and the shifts were fitted (not held).
     """
 
     T: np.ndarray
@@ -765,6 +799,8 @@ class JointFit:
     notes: list = field(default_factory=list)
     lag: float = 0.0
     lag_std: float = 0.0
+    lag_fitted: bool = False
+    free_shifts: bool = True
 
     @property
     def smoothing(self) -> dict:
@@ -972,4 +1008,4 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, 0.01), per_de
                         start=start_spectrum if not isinstance(final_lam, str) else None,
                         phase=2 * math.pi * f * lag_s if lag else None)
     return JointFit(T, log_aT, np.sqrt(np.maximum(np.diag(cov), 0)), at_bound, (a1, a2), lam_j, spec, float(r @ r),
-                    int(nfev), time.perf_counter() - t0, cov, notes, lag_s, lag_std)
+                    int(nfev), time.perf_counter() - t0, cov, notes, lag_s, lag_std, bool(lag), bool(free_shifts))
