@@ -106,10 +106,10 @@ def test_significant_reversals_count_the_turns_the_band_supports():
 
 
 def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
-    """A fit to synthetic DMA data with 4 bootstrap samples: the samples file, the sample axis in the
-    shards, the reduced sweep (median, band, samples; every sample's COR is vcor.simulate of that
-    sample's material at its own shift), the band in the figure's title, and extending the grid solves
-    only the new points."""
+    """A fit to synthetic DMA data (the instrument lag fitted) with 4 bootstrap samples: the samples file
+    (with every sample's lag), the sample axis in the shards, the reduced sweep (median, band, samples;
+    every sample's COR is vcor.simulate of that sample's material at its own shift), the band and the
+    lag in the figure's title, and extending the grid solves only the new points."""
     import yaml
     from test_dma import _synthetic
     from test_workflow import make_project, smk
@@ -119,7 +119,8 @@ def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
     from vcor.materials import shift as tts
 
     cfg = {"shard_size": 100, "material_dir": "results/materials",
-           "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": 20.0}}},
+           "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": 20.0,
+                                                            "instrument_lag": True}}},
            "scenes": {"band": {"materials": ["measured"], "grid": {"v0": [1.0, 3.0], "T": [0.0, 40.0]},
                                "geometry": {"rigid": True}, "uncertainty": {"bootstrap": 4, "seed": 2},
                                "figures": {"cor_temperature": {}, "master_curve": {"materials": ["measured"]}}}}}
@@ -130,6 +131,8 @@ def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
     samples = xr.open_dataset(path / "results/materials/samples/measured-b4-s2.nc")
     mats = sample_materials(samples)
     assert len(mats) == 4
+    assert samples["lag"].attrs["units"] == "s" and np.all(np.isfinite(samples["lag"].values))
+    assert np.unique(samples["lag"].values).size == 4          # refitted in every sample
     ds = xr.open_dataset(path / "results/band/sweep.nc")
     assert ds["cor"].dims == ("material", "v0", "T") and ds["cor_samples"].dims == ("material", "v0", "T", "sample")
     assert (ds["status"] == 0).all() and (ds["samples_ok"] == 4).all()
@@ -150,6 +153,7 @@ def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
     fig = plots.draw("master_curve", {"material_fit": [fit], "material_samples": [samples]}, {})
     top, bottom = fig.axes[0], fig.axes[1]
     assert "95 % band over 4 bootstrap samples" in top.get_title()
+    assert "instrument lag" in top.get_title() and "removed" in top.get_title()
     assert sum(isinstance(c, PolyCollection) for c in top.collections) == 2
     assert sum(isinstance(c, PolyCollection) for c in bottom.collections) == 1
     plain = plots.draw("master_curve", {"material_fit": [fit], "material_samples": []}, {})

@@ -99,7 +99,8 @@ def _spectrum_band(ax1, ax2, samples, f, level=0.95):
 def master_curve(fits, samples, opts):
     """Measured-data fits' master curves at T_ref, a column per fit: the shifted data (E', E''
     coloured by the temperature of their set) and the Prony fit, and tan delta, against reduced
-    frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta.
+    frequency f a_T (Hz); the title gives the fit's rms relative errors of E', E'' and tan delta, and a
+    fitted instrument lag (the data are then shown with it removed, as fitted).
     ``samples``: bootstrap samples datasets (vcor.fitting.resample.samples_dataset) of some of the
     fits (matched by name; empty without an uncertainty band): their central band of probability
     ``opts["level"]`` (the scene's uncertainty level, set by the workflow; default 0.95) is shaded."""
@@ -131,6 +132,9 @@ def master_curve(fits, samples, opts):
         spec = json.loads(fit.attrs.get("fit_spec", "{}")).get("data", {})
         shifts = "shift factors given with the data" if "shift_file" in spec else "shift factors found from the data"
         title = f"{fit.attrs.get('material_name', 'fit')}: {shifts}, T_ref = {shift.get('T_ref', '?')} °C"
+        lag = json.loads(fit.attrs.get("fit_settings", "{}")).get("instrument_lag")
+        if lag:
+            title += f"\ndata shown with the fitted instrument lag {1e6 * lag['lag_s']:.1f} µs removed"
         title += "\nrms relative error: " + ", ".join(
             f"{lab} {100 * met[k]:.1f} %" for lab, k in (("E'", "storage_rms"), ("E''", "loss_rms"),
                                                         ("tan delta", "tan_delta_rms")) if k in met)
