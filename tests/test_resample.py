@@ -52,7 +52,7 @@ def test_leverage_is_the_fits_response_to_its_own_point(fitted):
     sets = resample.residuals(data, full).sets
     fr = np.concatenate([s.f * 10.0 ** la for s, la in zip(sets, full.log_aT)])
     es, el = np.concatenate([s.E_stor for s in sets]), np.concatenate([s.E_loss for s in sets])
-    hs, hl = spectrum.leverage(sp, fr, es, el, components=(1.0, 0.01), curvature=True)
+    hs, _ = spectrum.leverage(sp, fr, es, el, components=(1.0, 0.01), curvature=True)
     gs, gl = spectrum.leverage(sp, fr, es, el, components=(1.0, 0.01))
     assert np.all((gs >= 0) & (gs < 1) & (gl >= 0) & (gl < 1))
     base = spectrum.fit_spectrum(fr, es, el, lam=sp.lam, components=(1.0, 0.01), start=sp)

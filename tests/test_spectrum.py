@@ -14,11 +14,10 @@ import numpy as np
 import pytest
 from synthetic_dma import SMOOTH, T_REF, TRUE, synthetic
 
-from vcor.materials.shift import wlf_log_aT
-
 from vcor.fitting import dmafit
 from vcor.fitting import spectrum as spc
 from vcor.fitting import superpose as sp
+from vcor.materials.shift import wlf_log_aT
 
 RAW = Path(__file__).resolve().parents[1] / "data/pyvisco/freq_user_raw.csv"
 

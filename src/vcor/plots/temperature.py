@@ -93,7 +93,7 @@ def _spectrum_band(ax1, ax2, samples, f, level=0.95):
     for y, ax in ((e.real, ax1), (e.imag, ax1), (e.imag / e.real, ax2)):
         lo, hi = np.quantile(y, q, axis=0)
         ax.fill_between(fd, lo, hi, color="0.6", alpha=0.4, lw=0)
-    return f"; shaded: {100 * level:g} % band over {samples.sizes['sample']} bootstrap samples"
+    return f"\nshaded: {100 * level:g} % band over {samples.sizes['sample']} bootstrap samples"
 
 
 def master_curve(fits, samples, opts):
