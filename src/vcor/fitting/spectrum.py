@@ -94,8 +94,8 @@ __all__ = ["GCV_GAMMA", "LAM_GRID", "MARGIN", "MAX_LAG_PHASE", "PER_DECADE", "Jo
 LAM_GRID = np.logspace(5, -5, 21)
 #: relaxation times per decade of the fixed grid: twice the merged series' two modes per decade
 #: (vcor.fitting.dmafit.MODES_PER_DECADE), so that every merged mode is a block of two fine ones (with 5
-#: per decade the blocks alternate 3, 2, 3, ... and the merged tan delta gains ripple at the data's ends:
-#: 0.48 % against 0.14 % on pyvisco's example, benchmarks/bench_dma.py)
+#: per decade the blocks alternate 3, 2, 3, ..., the merged modes are unevenly spaced and their tan delta
+#: ripples more; the merging table of benchmarks/bench_dma.py gives the change the merge makes)
 PER_DECADE = 4.0
 #: decades (below the data's lowest frequency, above its highest) that the relaxation-time grid reaches
 #: beyond the data. Within a margin the log-spectrum continues the data's trend as a power law (zero second
