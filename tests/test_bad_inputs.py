@@ -13,7 +13,7 @@ import yaml
 import vcor
 from vcor import materials as M
 from vcor import spheres as S
-from vcor.fitting import fits
+from vcor.fitting import dma, fits
 from vcor.fitting import prony as fit
 from vcor.study import scene
 from vcor.study.config import load_project
@@ -208,6 +208,9 @@ ROWS = [
     ("fit: instrument_lag on a master curve", lambda: fits.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5, "instrument_lag": True}},
         base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "master curve", "two or more temperatures"]),
+    ("dma: a lag beyond the measured loss angle", lambda: dma.superpose(
+        dma.read_table(ROOT / "data/pyvisco/freq_user_raw.csv"), -5.0, log_aT=np.zeros(21), lag=1e-3),
+     ["freq_user_raw.csv", "loss angle below the instrument lag's phase", "deg C", "Hz", "does not describe"]),
     ("config: instrument_lag not a boolean", lambda: _validate(_config_with(
         lambda c: c["fits"]["pyvisco-polymer"]["data"].update(instrument_lag="yes"))), ["instrument_lag"]),
     ("config: option the method ignores",
