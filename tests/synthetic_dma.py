@@ -20,9 +20,10 @@ SMOOTH = (E_INF, 600e6 * _W17 / _W17.sum(), RATES17)
 T_REF, C1, C2 = 20.0, 8.86, 101.6
 TEMPS = np.linspace(-10, 50, 5)
 TRUE = wlf_log_aT(TEMPS, T_REF, C1, C2)
+FREQ = np.geomspace(0.1, 100, 10)  # Hz
 
 
-def synthetic(seed=0, noise=0.01, temps=TEMPS, f=np.geomspace(0.1, 100, 10), *, material=SPARSE, lag=0.0):
+def synthetic(seed=0, noise=0.01, temps=TEMPS, f=FREQ, *, material=SPARSE, lag=0.0):
     """Columns f [Hz], E_stor, E_loss [Pa], T [deg C], Set of the known ``material`` (E_inf [Pa], E [Pa],
     beta [1/s])."""
     rng = np.random.default_rng(seed)

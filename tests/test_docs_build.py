@@ -17,7 +17,7 @@ DOCS = ROOT / "docs"
 def test_docs_build_without_warnings(tmp_path):
     """The test extra installs the documentation packages, so the build is never skipped."""
     out = subprocess.run([sys.executable, "-m", "sphinx", "-W", "-b", "html", "-q", str(DOCS), str(tmp_path / "html")],
-                         cwd=ROOT, capture_output=True, text=True, timeout=900)
+                         cwd=ROOT, capture_output=True, text=True, timeout=900, check=False)
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-6000:]
     assert (tmp_path / "html" / "index.html").is_file()
 

@@ -35,7 +35,7 @@ KEPT = ("results/s/sweep.nc", "results/materials/my-sls.nc", "results/materials/
 def run(path, *args, timeout=600):
     """Plain ``snakemake`` in the project folder: the default profile (2 cores, rerun-incomplete,
     keep-going) is found by Snakemake itself."""
-    return subprocess.run(SNAKEMAKE + list(args), cwd=path, capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(SNAKEMAKE + list(args), cwd=path, capture_output=True, text=True, timeout=timeout, check=False)
 
 
 def values(path) -> dict:
@@ -209,7 +209,7 @@ def _mount_tmpfs(where: Path, size: str) -> bool:
     where.mkdir(parents=True, exist_ok=True)
     try:
         done = subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", str(where)],
-                              capture_output=True, timeout=30)
+                              capture_output=True, timeout=30, check=False)
     except (OSError, subprocess.SubprocessError):
         return False
     return done.returncode == 0
@@ -241,4 +241,4 @@ def test_full_disk_fails_loudly_and_the_next_run_completes(baseline, tmp_path):
         assert out.returncode == 0, out.stderr[-3000:]
         assert_restored(path, baseline)
     finally:
-        subprocess.run(["umount", "-l", str(mnt)], capture_output=True, timeout=30)
+        subprocess.run(["umount", "-l", str(mnt)], capture_output=True, timeout=30, check=False)

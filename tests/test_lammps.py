@@ -53,7 +53,7 @@ def test_lammps_reproduces_the_fitted_laws(lmp, tmp_path, material, target):
         for i, v0 in enumerate(SPEEDS):
             out = subprocess.run([str(lmp), "-in", deck.name, "-var", "v0", repr(float(v0)), "-var", "model", model,
                                   "-screen", "none", "-log", "none"], cwd=tmp_path, capture_output=True, text=True,
-                                 timeout=120)
+                                 timeout=120, check=False)
             lines = [x for x in out.stdout.splitlines() if x.startswith("COR = ")]
             assert out.returncode == 0 and len(lines) == 1, out.stdout[-2000:] + out.stderr[-2000:]
             got = float(lines[0].split("=")[1])

@@ -84,12 +84,12 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
         labels.append(f"{material}/{method}")
         status.append(res.status if res is not None else name)
         message.append(res.message if res is not None else text)
-        for k in scal:
-            scal[k].append(getattr(res, k) if res is not None else np.nan)
+        for k, values in scal.items():
+            values.append(getattr(res, k) if res is not None else np.nan)
         h = res.history if res is not None else None
         if res is None or not res.ok or h is None:
-            for k in cols:
-                cols[k].append(np.zeros(n_samples, bool) if k == "ghost" else np.full(n_samples, np.nan))
+            for k, values in cols.items():
+                values.append(np.zeros(n_samples, bool) if k == "ghost" else np.full(n_samples, np.nan))
             continue
         t_end = h.t[-1]
         tt = np.linspace(0.0, t_end, n_samples)
