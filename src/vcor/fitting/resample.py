@@ -103,8 +103,8 @@ def residuals(raw, full) -> Residuals:
     joint = full.joint
     shift_index = None
     if joint is not None and joint.free_shifts:
-        # the fitted shifts are parameters too: every set's but the one held during the solve (nearest T_ref)
-        k_held = int(np.argmin(np.abs(full.T - full.T_ref)))
+        # the fitted shifts are parameters too: every set's but the one held during the solve
+        k_held = joint.held_set
         index = np.array([k - (k > k_held) if k != k_held else -1 for k in range(len(sets))])
         shift_index = np.concatenate([np.full(s.f.size, index[k]) for k, s in enumerate(sets)])
     lag = (f_meas, full.lag, True) if joint is not None and joint.lag_fitted else None

@@ -88,7 +88,7 @@ from scipy.optimize import nnls
 from .superpose import anchor_matrix
 
 __all__ = ["GCV_GAMMA", "LAM_GRID", "MARGIN", "MAX_LAG_PHASE", "PER_DECADE", "JointFit", "ReducedModes", "SpectrumFit", "complex_modulus", "count_extrema", "fit_metrics",
-           "fit_spectrum", "fit_with_shifts", "leverage", "loss_weights", "reduce_modes", "relaxation_modulus", "tau_grid"]
+           "fit_spectrum", "fit_with_shifts", "leverage", "loss_weights", "reduce_modes", "relaxation_modulus", "shift_derivative", "tau_grid"]
 
 #: candidates of the regularisation parameter lambda, scanned from large to small
 LAM_GRID = np.logspace(5, -5, 21)
@@ -135,6 +135,14 @@ def complex_modulus(omega, E_inf, E, tau):
     (omega rad/s, moduli Pa, tau s)."""
     iwt = 1j * np.multiply.outer(np.asarray(omega, float), np.asarray(tau, float))
     return E_inf + (iwt / (1 + iwt)) @ np.asarray(E, float)
+
+
+def shift_derivative(wt, E):
+    r"""(dE'/ds, dE''/ds) of a Prony model at kernel arguments ``wt`` (:math:`\omega\tau`, points x modes)
+    for a shift :math:`s = \log_{10} a_T` of the frequency, :math:`\ln 10\;\omega\,\partial E^*/\partial\omega`
+    (Pa; moduli ``E`` in Pa)."""
+    q = 1 + wt**2
+    return math.log(10) * ((2 * wt**2 / q**2) @ E), math.log(10) * ((wt * (1 - wt**2) / q**2) @ E)
 
 
 def relaxation_modulus(t, E_inf, E, tau):
@@ -632,10 +640,7 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.
     cp, sn = (np.ones(n), np.zeros(n)) if ph is None else (np.cos(ph), np.sin(ph))
     if shift_index is not None:
         k = np.asarray(shift_index, int)
-        wt = np.multiply.outer(2 * math.pi * f, fit.tau)
-        q = 1 + wt**2
-        d1 = math.log(10) * ((2 * wt**2 / q**2) @ fit.E)            # d E' / d log10 a_T
-        d2 = math.log(10) * ((wt * (1 - wt**2) / q**2) @ fit.E)     # d E'' / d log10 a_T
+        d1, d2 = shift_derivative(np.multiply.outer(2 * math.pi * f, fit.tau), fit.E)
         Js = np.zeros((2 * n, max(int(k.max()) + 1, 0)))
         rows = np.flatnonzero(k >= 0)
         Js[rows, k[rows]] = (pr.cs * (cp * d1 - sn * d2))[rows]
@@ -783,6 +788,9 @@ class JointFit:
         linearised standard error (s).
     lag_fitted, free_shifts : bool
         Whether the lag and the shifts were fitted (not held).
+    held_set : int
+        With free shifts, the set held at 0 during the solve (nearest T_ref): every other set's shift is
+        a parameter of the fit; -1 when all shifts are held.
     """
 
     T: np.ndarray
@@ -801,6 +809,7 @@ class JointFit:
     lag_std: float = 0.0
     lag_fitted: bool = False
     free_shifts: bool = True
+    held_set: int = -1
 
     @property
     def smoothing(self) -> dict:
@@ -948,7 +957,7 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, 0.01), per_de
         Ks, Kl = wt**2 / q, wt / q
         J = np.zeros((2 * n + nt - 2, p.size))
         if free_shifts:
-            ds1, ds2 = math.log(10) * ((2 * wt**2 / q**2) @ E), math.log(10) * ((wt * (1 - wt**2) / q**2) @ E)
+            ds1, ds2 = shift_derivative(wt, E)
             Js = np.zeros((2 * n, K))
             Js[np.arange(n), idx] = r1 * (cp * ds1 - sp * ds2)
             Js[n + np.arange(n), idx] = r2 * (sp * ds1 + cp * ds2)
@@ -1008,4 +1017,5 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, 0.01), per_de
                         start=start_spectrum if not isinstance(final_lam, str) else None,
                         phase=2 * math.pi * f * lag_s if lag else None)
     return JointFit(T, log_aT, np.sqrt(np.maximum(np.diag(cov), 0)), at_bound, (a1, a2), lam_j, spec, float(r @ r),
-                    int(nfev), time.perf_counter() - t0, cov, notes, lag_s, lag_std, bool(lag), bool(free_shifts))
+                    int(nfev), time.perf_counter() - t0, cov, notes, lag_s, lag_std, bool(lag), bool(free_shifts),
+                    k_ref if free_shifts else -1)
