@@ -1,6 +1,6 @@
 """The implicit trapezoidal step every march shares, and the book-keeping after a step.
 
-First-order form of Green's Eq. 2 (DESIGN 1.1):
+First-order form of Green's Eq. 2 (docs/theory.md, "The model"):
 
 .. math:: s' = g = v_0 - J/m - \\alpha'(t) J - \\alpha(t) F, \\qquad J' = F,
 

@@ -1,6 +1,6 @@
 """Direct (full-history) solver, numba, any kernel; and the paper-like explicit baseline.
 
-See ``_kernels`` for the discretisation. This module prepares the weights (exact kernel step
+See ``_fixed_kernels`` for the discretisation. This module prepares the weights (exact kernel step
 integrals and first moments) and runs the march through :mod:`.march` (T_max extension, ghost
 continuation, post-processing).
 """
@@ -43,7 +43,7 @@ def solve_paper(impact, options, tc, history):
 
 
 def kernel_weights(impact, dt, n):
-    """Folded weights (wt, v) of the quadratic product integration (see ``_kernels``), N m^-1.5."""
+    """Folded weights (wt, v) of the quadratic product integration (see ``_fixed_kernels``), N m^-1.5."""
     return folded_weights(impact.material, impact.kappa, dt, n)
 
 

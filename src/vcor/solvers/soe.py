@@ -1,7 +1,7 @@
 """The ``soe`` method: the direct scheme's numbers at internal-variable cost, for every kernel.
 
 The hereditary force is the direct scheme's product integration (quadratic u, second order for
-every kernel, ``_kernels``) split in two: the last ``N_LOCAL`` + 1 steps use the exact kernel's step
+every kernel, ``_fixed_kernels``) split in two: the last ``N_LOCAL`` + 1 steps use the exact kernel's step
 integrals (the local part, which holds the t^-1/2 singularity of the fractional law); older history
 uses the weights of the kernel's exponential sum (:func:`vcor.materials.expsums.soe` on
 [(N_LOCAL + 1) dt, budget], relative error <= ``tol``), one recursive variable per exponential.
