@@ -3,7 +3,9 @@
 ``FIGURES[name] = (function, needs)`` where ``needs`` names the datasets the function takes
 (``sweep``, ``moduli``, ``histories``, ...), so the workflow builds only those. Every function takes
 ``opts`` (the scene's figure options). Points whose status is not ok are drawn as red crosses on
-the axis and counted in the title, never silently dropped.
+the axis and counted in the title, never silently dropped. Ok points outside the model's stated range
+(a non-zero ``validity`` flag, :mod:`vcor.solvers.validity`) are drawn open, on dashed segments, with a
+legend entry naming the reasons and a count in the title (:func:`vcor.plots.common.sweep_line`).
 """
 
 from __future__ import annotations

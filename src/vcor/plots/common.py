@@ -1,14 +1,17 @@
-"""What every figure shares: pyplot on first use, failed points drawn as red crosses, selections of a
-sweep, saving (PNG for the report, PDF for print)."""
+"""What every figure shares: pyplot on first use, failed points drawn as red crosses, points outside the
+model's stated range drawn open on a dashed segment, selections of a sweep, saving (PNG for the report,
+PDF for print)."""
 
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["axis_label", "cor_line", "fixed_axes", "json_materials", "mark_failed", "plt", "point", "run_label", "save",
-           "solver_label", "status_name", "unit_label", "v0_line"]
+__all__ = ["FLAGGED_STYLE", "Drawn", "axis_label", "cor_line", "fixed_axes", "flag_legend", "flag_reasons",
+           "flagged_label", "json_materials", "mark_failed", "plt", "point", "run_label", "save", "solver_label",
+           "status_name", "sweep_line", "unit_label", "v0_line", "validity_of"]
 
 #: UDUNITS strings of the datasets -> the one unit style of the figures
 _UNIT_LABELS = {"m s-1": "m/s", "kg m-3": "kg/m³", "s-1": "1/s", "rad s-1": "rad/s", "degC": "°C", "s-1/2": "1/√s",
@@ -65,11 +68,102 @@ plt = _Pyplot()
 
 
 def mark_failed(ax, x, ok, label="not ok"):
+    """Points that are not ok (``~ok``) as red crosses on the x axis, labelled with their count.
+    Returns the count."""
     bad = ~ok
     if np.any(bad):
         ax.plot(x[bad], np.zeros(bad.sum()), "x", color="red", ms=7, clip_on=False, transform=ax.get_xaxis_transform(),
                 label=f"{label} ({bad.sum()})")
     return int(bad.sum())
+
+
+#: how an ok point outside the model's stated range is drawn, in every figure: an open marker, and a
+#: dashed segment to each neighbour (a valid point has a filled marker on a solid line)
+FLAGGED_STYLE = {"marker": "o", "mfc": "none", "ls": "--"}
+
+
+@dataclass(frozen=True)
+class Drawn:
+    """What :func:`sweep_line` drew: the line's colour, how many points were not ok (red crosses),
+    how many were ok but flagged (open markers), and the union of their validity flags."""
+
+    color: str
+    not_ok: int
+    flagged: int
+    flags: int
+
+    @classmethod
+    def total(cls, drawn) -> Drawn:
+        """The counts and flags of several :class:`Drawn` together (no colour)."""
+        drawn = list(drawn)
+        return cls("", sum(d.not_ok for d in drawn), sum(d.flagged for d in drawn),
+                   int(np.bitwise_or.reduce([d.flags for d in drawn], initial=0)))
+
+    def note(self) -> str:
+        """The counts for a title: " (2 not ok, 5 outside the model's range)", or "" when all are valid."""
+        parts = []
+        if self.not_ok:
+            parts.append(f"{self.not_ok} not ok")
+        if self.flagged:
+            parts.append(f"{self.flagged} outside the model's range")
+        return f" ({', '.join(parts)})" if parts else ""
+
+
+def validity_of(d) -> np.ndarray:
+    """The validity flags (:mod:`vcor.solvers.validity`) of the points of ``d`` (a Dataset with
+    ``status``), shaped like its status; zeros for a dataset without a ``validity`` variable."""
+    if "validity" in d:
+        return np.asarray(d["validity"].values, dtype=np.int64)
+    return np.zeros(np.shape(d["status"].values), dtype=np.int64)
+
+
+def flag_reasons(flags: int) -> str:
+    """The reasons of a union of validity flags in a few words, with the limits of
+    :mod:`vcor.solvers.validity` (e.g. ``s_max/r > 0.1; fast impact, v0 > 0.1 c``); "" for 0."""
+    from ..solvers import validity as V  # the limits' one source; imported when a figure is drawn
+
+    words = {"large_indentation": f"s_max/r > {V.MAX_INDENTATION:g}",
+             "fast_impact": f"fast impact, v0 > {V.MAX_SPEED_FRACTION:g} c",
+             "energy_residual": f"energy balance off by > {V.MAX_ENERGY_RESIDUAL:g}",
+             "under_resolved": "damping under-resolved by the fixed step"}
+    out = [words.get(name, name.replace("_", " ")) for name, mask in V.FLAGS.items() if flags & mask]
+    known = sum(V.FLAGS.values())
+    if flags & ~known:
+        out.append(f"flag bits {flags & ~known}")
+    return "; ".join(out)
+
+
+def flagged_label(flags: int) -> str:
+    """The legend text of the flagged style for the union ``flags`` of the points drawn."""
+    return f"outside the model's range ({flag_reasons(flags)})"
+
+
+def flag_legend(ax, flags: int) -> None:
+    """Add the legend entry of the flagged style (grey open marker on a dashed line) to ``ax`` when
+    ``flags`` is not 0; call it before ``ax.legend()``."""
+    if flags:
+        ax.plot([], [], color="0.35", ms=4, label=flagged_label(int(flags)), **FLAGGED_STYLE)
+
+
+def sweep_line(ax, x, y, status, validity=None, *, label=None, color=None, ms=3.0) -> Drawn:
+    """``y`` against ``x`` for the ok points (status 0), joined in order: valid points filled on a solid
+    line, flagged points (validity != 0) open with dashed segments to their neighbours, in the same
+    colour; points not ok as red crosses on the axis. Returns what was drawn (:class:`Drawn`)."""
+    x, y, status = np.asarray(x, float), np.asarray(y, float), np.asarray(status)
+    validity = np.zeros(status.shape, np.int64) if validity is None else np.asarray(validity, np.int64)
+    ok = status == 0
+    xs, ys, flagged = x[ok], y[ok], validity[ok] != 0
+    line, = ax.plot(xs, np.where(flagged, np.nan, ys), "o-", ms=ms, color=color, label=label)
+    color = line.get_color()
+    if flagged.any():
+        ax.plot(xs[flagged], ys[flagged], ls="none", marker="o", mfc="none", ms=ms + 1, color=color)
+        seg = [i for i in range(xs.size - 1) if flagged[i] or flagged[i + 1]]
+        if seg:
+            px = np.concatenate([[xs[i], xs[i + 1], np.nan] for i in seg])
+            py = np.concatenate([[ys[i], ys[i + 1], np.nan] for i in seg])
+            ax.plot(px, py, ls="--", color=color, lw=line.get_linewidth())
+    not_ok = mark_failed(ax, x, ok)
+    return Drawn(color, not_ok, int(flagged.sum()), int(np.bitwise_or.reduce(validity[ok], initial=0)))
 
 
 def status_name(var) -> str:
@@ -86,13 +180,13 @@ def v0_line(sweep, material):
     return d
 
 
-def cor_line(ax, d, label):
-    """COR against v0 for the ok points; the others as red crosses. Returns how many were not ok."""
-    ok = d["status"].values == 0
-    ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, label=label)
+def cor_line(ax, d, label) -> Drawn:
+    """COR against v0 of the line ``d`` (:func:`sweep_line`: flagged points open and dashed, points not
+    ok as red crosses)."""
+    drawn = sweep_line(ax, d["v0"].values, d["cor"].values, d["status"].values, validity_of(d), label=label)
     ax.set_xlabel("v0 [m/s]")
     ax.set_ylabel("COR [-]")
-    return mark_failed(ax, d["v0"].values, ok)
+    return drawn
 
 
 def point(sweep, material, v0, **sel):

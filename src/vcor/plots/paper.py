@@ -8,14 +8,18 @@ import math
 import numpy as np
 
 from .common import (
+    Drawn,
     cor_line,
+    flag_legend,
+    flag_reasons,
     json_materials,
-    mark_failed,
     plt,
     point,
     run_label,
     status_name,
+    sweep_line,
     v0_line,
+    validity_of,
 )
 
 __all__ = ["fig1", "fig2", "fig3", "fig4", "fig5", "fig6", "fig7", "fig8", "fig9", "prony_terms"]
@@ -67,8 +71,15 @@ def fig1(sweep, moduli, opts):
     p = point(sweep, mat, opts["v0"], beta=opts["beta"])
     fig = plt.figure(figsize=(10, 4), layout="constrained")
     moduli_axes(fig, moduli, [mat], [(float(p["t0"]), float(p["omega_min"]), f"v0={float(p['v0']):g} m/s")])
-    fig.suptitle(f"Fig. 1: relaxation and dynamic moduli of {mat}")
+    fig.suptitle(f"Fig. 1: relaxation and dynamic moduli of {mat}" + _marked_note(p))
     return fig
+
+
+def _run_flag(h) -> str:
+    """"; outside the model's range (reasons)" for an ok history run with validity flags (histories
+    datasets that carry ``validity``), else ""."""
+    flags = int(validity_of(h))
+    return f"; outside the model's range ({flag_reasons(flags)})" if flags else ""
 
 
 def responses(hist, runs, title):
@@ -104,7 +115,7 @@ def responses(hist, runs, title):
         t0 = float(h["t0"]) * 1e3
         ax.axvline(t0, color="k", lw=0.8, ls="-" if i == 0 else ":")
         notes.append(f"{name}: t0 = {t0:.4g} ms, COR = {float(h['cor']):.4f}, residual interference "
-                     f"s/s_max = {float(h['s_residual'] / h['s_max']):.4f}")
+                     f"s/s_max = {float(h['s_residual'] / h['s_max']):.4f}" + _run_flag(h))
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("t [ms]")
     ax.set_ylabel("normalised response")
@@ -142,7 +153,7 @@ def fig3(hist, opts):
         ghost = h["ghost"].values.astype(bool)
         ax.plot(h["s"].values[~ghost] * 1e3, h["F"].values[~ghost],
                 label=f"{run_label(run)}: F_max = {float(h['f_max']):.1f} N, s_max = {float(h['s_max']) * 1e3:.3g} mm, "
-                      f"W_h = {float(h['w_h']):.3f} J")
+                      f"W_h = {float(h['w_h']):.3f} J" + _run_flag(h))
     ax.set_xlabel("s [mm]")
     ax.set_ylabel("F [N]")
     ax.set_title(f"Fig. 3: hysteresis loops up to separation, v0 = {hist.attrs['v0']:g} m/s")
@@ -155,11 +166,9 @@ def fig4(sweep, opts):
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
     mat = opts.get("material", str(sweep["material"].values[0]))
     ds = sweep.sel(material=mat)
-    nbad = 0
-    for b in ds["beta"].values:
-        nbad += cor_line(ax, ds.sel(beta=b), f"β = {b:g} 1/s")
-    ax.set_title(f"Fig. 4: COR against impact speed, {mat}, a line per decay rate β"
-                 + (f" ({nbad} points not ok)" if nbad else ""), fontsize=10)
+    drawn = Drawn.total(cor_line(ax, ds.sel(beta=b), f"β = {b:g} 1/s") for b in ds["beta"].values)
+    ax.set_title(f"Fig. 4: COR against impact speed, {mat}, a line per decay rate β" + drawn.note(), fontsize=10)
+    flag_legend(ax, drawn.flags)
     ax.legend(fontsize=7)
     return fig
 
@@ -172,7 +181,7 @@ def fig5(sweep, moduli, opts):
     fig = plt.figure(figsize=(11, 4.5), layout="constrained")
     inset = 4e-4
     moduli_axes(fig, moduli, mats, [(float(p["t0"]), float(p["omega_min"]), ref)], inset_tmax=inset)
-    fig.suptitle(f"Fig. 5: moduli of {', '.join(mats)} (inset: t <= {inset * 1e3:g} ms)")
+    fig.suptitle(f"Fig. 5: moduli of {', '.join(mats)} (inset: t <= {inset * 1e3:g} ms)" + _marked_note(p))
     return fig
 
 
@@ -191,12 +200,10 @@ def fig7(hist, opts):
 def fig8(sweep, opts):
     """COR vs v0 for the Butyl models."""
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
-    nbad = 0
-    for m in sweep["material"].values:
-        nbad += cor_line(ax, v0_line(sweep, m), str(m))
     mats = [str(m) for m in sweep["material"].values]
-    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + (f" ({nbad} not ok)" if nbad else ""),
-                 fontsize=10)
+    drawn = Drawn.total(cor_line(ax, v0_line(sweep, m), m) for m in mats)
+    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + drawn.note(), fontsize=10)
+    flag_legend(ax, drawn.flags)
     ax.legend(fontsize=8)
     return fig
 
@@ -205,17 +212,33 @@ def fig9(sweep, opts):
     """t0, omega_min, s_max, F_max and W_h vs v0 for one material (default: the fractional law)."""
     mat = opts["material"]
     d = v0_line(sweep, mat)
-    ok = d["status"].values == 0
     fig, axes = plt.subplots(1, 5, figsize=(16, 3.5), layout="constrained")
     specs = [("t0", 1e3, "t0 [ms]"), ("omega_min", 1.0, "ω_min [rad/s]"), ("s_max", 1e3, "s_max [mm]"),
              ("f_max", 1.0, "F_max [N]"), ("w_h", 1.0, "W_h [J]")]
     for ax, (var, scale, lab) in zip(axes, specs):
-        ax.plot(d["v0"].values[ok], d[var].values[ok] * scale, "o-", ms=3)
-        mark_failed(ax, d["v0"].values, ok)
+        drawn = sweep_line(ax, d["v0"].values, d[var].values * scale, d["status"].values, validity_of(d),
+                           color="C0")
         ax.set_xlabel("v0 [m/s]")
         ax.set_ylabel(lab)
-    fig.suptitle(f"Fig. 9: effect of the impact speed, {mat}")
+    if drawn.flags or drawn.not_ok:
+        flag_legend(axes[0], drawn.flags)
+        fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", fontsize=8, frameon=False)
+    fig.suptitle(f"Fig. 9: effect of the impact speed, {mat}" + drawn.note())
     return fig
+
+
+def _flag_note(p) -> str:
+    """", outside the model's range" for an ok point ``p`` with validity flags, else ""."""
+    return ", outside the model's range" if int(validity_of(p)) and int(p["status"]) == 0 else ""
+
+
+def _marked_note(p) -> str:
+    """A title line saying that the impact whose t0 and omega_min are marked is outside the model's range
+    (and why), when it is; else ""."""
+    if not _flag_note(p):
+        return ""
+    return (f"\nthe marked impact (v0 = {float(p['v0']):g} m/s) is outside the model's range: "
+            f"{flag_reasons(int(validity_of(p)))}")
 
 
 def prony_terms(sweep, opts):
@@ -229,17 +252,22 @@ def prony_terms(sweep, opts):
     mats = [str(m) for m in sweep["material"].values]
     ns = sorted((int(pat.match(m).group(1)), m) for m in mats if pat.match(m))
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 4.5), layout="constrained")
-    c_ref = float(point(sweep, ref, v0)["cor"])
-    cors = [float(point(sweep, m, v0)["cor"]) for _, m in ns]
-    ax.plot([n for n, _ in ns], cors, "o-", label="Prony fit with N terms")
-    ax.axhline(c_ref, color="k", label=f"{ref} (solved directly): {c_ref:.4f}")
+    at = {m: point(sweep, m, v0) for m in [ref, *mats]}
+    c_ref = float(at[ref]["cor"])
+    cors = [float(at[m]["cor"]) for _, m in ns]
+    drawn = [sweep_line(ax, [n for n, _ in ns], cors, [int(at[m]["status"]) for _, m in ns],
+                        [int(validity_of(at[m])) for _, m in ns], label="Prony fit with N terms")]
+    ax.axhline(c_ref, color="k", label=f"{ref} (solved directly): {c_ref:.4f}" + _flag_note(at[ref]))
     for other, style in (("butyl-prony3", "s"), ("butyl-prony-fit", "D")):
         if other in mats:
             n_other = len(json_materials(sweep)[other]["material"]["E"])
-            ax.plot([n_other], [float(point(sweep, other, v0)["cor"])], style, ms=8, label=f"{other} (N = {n_other})")
+            ax.plot([n_other], [float(at[other]["cor"])], style, ms=8, mfc="none" if validity_of(at[other]) else None,
+                    label=f"{other} (N = {n_other})" + _flag_note(at[other]))
     for other, style in (("butyl-cerf", "--"), ("butyl-cerf-fit", ":")):
         if other in mats:
-            ax.axhline(float(point(sweep, other, v0)["cor"]), ls=style, color="grey", label=other)
+            ax.axhline(float(at[other]["cor"]), ls=style, color="grey", label=other + _flag_note(at[other]))
+    flags = int(np.bitwise_or.reduce([int(validity_of(at[m])) for m in at if int(at[m]["status"]) == 0]))
+    flag_legend(ax, flags)
     ax.set_xlabel("number of Prony terms N")
     ax.set_ylabel(f"COR at v0 = {v0:g} m/s [-]")
     ax.legend(fontsize=7, loc="lower right")
@@ -248,8 +276,8 @@ def prony_terms(sweep, opts):
     ax_in.set_title("|COR/COR_ref - 1|", fontsize=7)
     ax_in.tick_params(labelsize=6)
     show = [ref] + [m for m in ("butyl-prony3", "butyl-prony-fit") if m in mats] + [m for n, m in ns if n in (3, 12)]
-    for m in show:
-        cor_line(ax2, v0_line(sweep, m), m)
+    drawn += [cor_line(ax2, v0_line(sweep, m), m) for m in show]
+    flag_legend(ax2, Drawn.total(drawn[1:]).flags)
     ax2.legend(fontsize=7)
     fig.suptitle("Prony class or 3-term fit? COR against the number of Prony terms")
     return fig

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import axis_label, plt, solver_label
+from .common import Drawn, axis_label, flag_legend, flagged_label, plt, solver_label, sweep_line, validity_of
 
 __all__ = ["stability_map", "work_precision"]
 
@@ -38,42 +38,73 @@ def work_precision(conv, opts):
     return fig
 
 
+def _flag_rings(ax, cols, rows, label=None):
+    """Open rings (white, outlined black: visible on any colour of the map) at the map cells of ok
+    points outside the model's range."""
+    from matplotlib import patheffects
+
+    ax.plot(cols, rows, ls="none", marker="o", mfc="none", mec="w", mew=1.2, ms=9, label=label,
+            path_effects=[patheffects.withStroke(linewidth=2.6, foreground="k")])
+
+
+def _stability_line(ax, d, name, codes):
+    """The estimated COR error along one axis: ok points (flagged ones open, dashed), the others
+    named in red at their abscissa. Returns what was drawn."""
+    err = d["cor_err"] if "cor_err" in d else d["energy_residual"]
+    x, st = d[name].values, d["status"].values
+    ok = st == 0
+    drawn = sweep_line(ax, x[ok], np.maximum(err.values[ok], 1e-17), st[ok], validity_of(d)[ok],
+                       label="estimated COR error (ok points)")
+    for xx, code in zip(x[~ok], st[~ok]):
+        ax.annotate(codes.get(int(code), "?"), (xx, 1e-4), color="red", fontsize=7, rotation=90)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.axhline(1e-4, color="red", lw=0.5, ls=":")
+    ax.set_xlabel(axis_label(d, name))
+    ax.set_ylabel("estimated COR error")
+    flag_legend(ax, drawn.flags)
+    ax.legend(fontsize=7)
+    return Drawn(drawn.color, int((~ok).sum()), drawn.flagged, drawn.flags)
+
+
+def _stability_grid(fig, ax, d, a, b, codes):
+    """The estimated COR error over two axes as a map: points not ok named in red in their cell, ok
+    points outside the model's range ringed. Returns what was drawn."""
+    err = d["cor_err"] if "cor_err" in d else d["energy_residual"]
+    z = np.log10(np.maximum(err.transpose(a, b).values, 1e-17))
+    st = d["status"].transpose(a, b).values
+    flags = np.where(st == 0, validity_of(d.transpose(a, b)), 0)
+    z = np.where(st == 0, z, np.nan)
+    im = ax.pcolormesh(np.arange(d.sizes[b] + 1), np.arange(d.sizes[a] + 1), z, vmin=-12, vmax=-3, cmap="viridis")
+    for ia, ib in zip(*np.nonzero(st != 0)):
+        ax.text(ib + 0.5, ia + 0.5, codes.get(int(st[ia, ib]), "?").replace("_", "\n"), ha="center", va="center",
+                fontsize=6, color="red")
+    union = int(np.bitwise_or.reduce(flags.ravel(), initial=0))
+    if union:
+        rows, cols = np.nonzero(flags)
+        _flag_rings(ax, cols + 0.5, rows + 0.5, label=flagged_label(union))
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22), fontsize=7, frameon=False)
+    ax.set_xticks(np.arange(d.sizes[b]) + 0.5, [f"{x:.3g}" for x in d[b].values], rotation=45, fontsize=7)
+    ax.set_yticks(np.arange(d.sizes[a]) + 0.5, [f"{x:.3g}" for x in d[a].values], fontsize=7)
+    ax.set_xlabel(axis_label(d, b))
+    ax.set_ylabel(axis_label(d, a))
+    fig.colorbar(im, ax=ax, label="estimated COR error, log10 (ok points)")
+    return Drawn("", int((st != 0).sum()), int((flags != 0).sum()), union)
+
+
 def stability_map(sweep, opts):
-    """Status and Richardson error estimate over a stability grid (v0 against one other axis)."""
+    """Status and Richardson error estimate over a stability grid (v0 against one other axis); ok points
+    outside the model's range open (a line) or ringed (a map)."""
     axes_names = [d for d in sweep["cor"].dims if d != "material"]
     mats = sweep["material"].values
     fig, axs = plt.subplots(1, len(mats), figsize=(5.5 * len(mats), 4.5), layout="constrained", squeeze=False)
     codes = {int(v): n for v, n in zip(sweep["status"].attrs["flag_values"], sweep["status"].attrs["flag_meanings"].split())}
     for ax, m in zip(axs[0], mats):
         d = sweep.sel(material=m)
-        err = d["cor_err"] if "cor_err" in d else d["energy_residual"]
         if len(axes_names) == 1:
-            x = d[axes_names[0]].values
-            ok = d["status"].values == 0
-            ax.loglog(x[ok], np.maximum(err.values[ok], 1e-17), "o-", label="estimated COR error (ok points)")
-            for xx, st in zip(x[~ok], d["status"].values[~ok]):
-                ax.annotate(codes.get(int(st), "?"), (xx, 1e-4), color="red", fontsize=7, rotation=90)
-            ax.axhline(1e-4, color="red", lw=0.5, ls=":")
-            ax.set_xlabel(axis_label(d, axes_names[0]))
-            ax.set_ylabel("estimated COR error")
+            drawn = _stability_line(ax, d, axes_names[0], codes)
         else:
-            a, b = axes_names[0], axes_names[1]
-            z = np.log10(np.maximum(err.transpose(a, b).values, 1e-17))
-            st = d["status"].transpose(a, b).values
-            z = np.where(st == 0, z, np.nan)
-            im = ax.pcolormesh(np.arange(d.sizes[b] + 1), np.arange(d.sizes[a] + 1), z, vmin=-12, vmax=-3,
-                               cmap="viridis")
-            for ia in range(d.sizes[a]):
-                for ib in range(d.sizes[b]):
-                    if st[ia, ib] != 0:
-                        ax.text(ib + 0.5, ia + 0.5, codes.get(int(st[ia, ib]), "?").replace("_", "\n"), ha="center",
-                                va="center", fontsize=6, color="red")
-            ax.set_xticks(np.arange(d.sizes[b]) + 0.5, [f"{x:.3g}" for x in d[b].values], rotation=45, fontsize=7)
-            ax.set_yticks(np.arange(d.sizes[a]) + 0.5, [f"{x:.3g}" for x in d[a].values], fontsize=7)
-            ax.set_xlabel(axis_label(d, b))
-            ax.set_ylabel(axis_label(d, a))
-            fig.colorbar(im, ax=ax, label="estimated COR error, log10 (ok points)")
-        ax.set_title(str(m))
+            drawn = _stability_grid(fig, ax, d, axes_names[0], axes_names[1], codes)
+        ax.set_title(str(m) + drawn.note(), fontsize=9)
     fig.suptitle(opts["title"])
     return fig
-

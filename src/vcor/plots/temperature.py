@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 
-from .common import fixed_axes, mark_failed, plt
+from .common import Drawn, fixed_axes, flag_legend, plt, sweep_line, validity_of
 
 __all__ = ["cor_temperature", "cor_v0_temperature", "master_curve"]
 
@@ -29,24 +29,25 @@ def _band_note(sweep) -> str:
 
 def cor_temperature(sweep, opts):
     """COR against temperature T (deg C), one line per material and impact speed v0; any other
-    axis at the value the options name (e.g. ``nu: 0.5``) or its first; points not ok as red crosses."""
+    axis at the value the options name (e.g. ``nu: 0.5``) or its first; points not ok as red crosses, ok
+    points outside the model's range open on dashed segments (:func:`~vcor.plots.common.sweep_line`)."""
     if "T" not in sweep.dims:
         raise ValueError("figure cor_temperature needs a sweep with a temperature axis T (deg C)")
     fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
-    nbad = 0
+    drawn = []
     sel, fixed = fixed_axes(sweep, opts, ("material", "T", "v0"))
     v0s = opts.get("v0s", list(sweep["v0"].values))
     for m in sweep["material"].values:
         for v0 in v0s:
             d = sweep.sel(material=m, v0=v0, **sel)
-            ok = d["status"].values == 0
-            line, = ax.plot(d["T"].values[ok], d["cor"].values[ok], "o-", ms=3, label=f"{m}, v0 = {v0:g} m/s")
-            _band(ax, d, "T", ok, line.get_color())
-            nbad += mark_failed(ax, d["T"].values, ok)
+            drawn.append(sweep_line(ax, d["T"].values, d["cor"].values, d["status"].values, validity_of(d),
+                                    label=f"{m}, v0 = {v0:g} m/s"))
+            _band(ax, d, "T", d["status"].values == 0, drawn[-1].color)
+    total = Drawn.total(drawn)
     ax.set_xlabel("temperature T [°C]")
     ax.set_ylabel("COR")
-    ax.set_title("COR against temperature" + fixed + (f", {nbad} not ok" if nbad else "") + _band_note(sweep),
-                 fontsize=9)
+    ax.set_title("COR against temperature" + fixed + total.note() + _band_note(sweep), fontsize=9)
+    flag_legend(ax, total.flags)
     ax.legend(fontsize=7)
     return fig
 
@@ -67,17 +68,18 @@ def cor_v0_temperature(sweep, opts):
     fig, axes = plt.subplots(1, len(mats), figsize=(5.0 * len(mats), 4.2), layout="constrained", squeeze=False)
     colors = plt.cm.coolwarm(np.linspace(0, 1, len(chosen)))
     for ax, m in zip(axes[0], mats):
-        nbad = 0
+        drawn = []
         for c, t in zip(colors, chosen):
             d = sweep.sel(material=m, T=t, **sel)
-            ok = d["status"].values == 0
-            ax.plot(d["v0"].values[ok], d["cor"].values[ok], "o-", ms=3, color=c, label=f"T = {t:g} °C")
-            _band(ax, d, "v0", ok, c)
-            nbad += mark_failed(ax, d["v0"].values, ok)
+            drawn.append(sweep_line(ax, d["v0"].values, d["cor"].values, d["status"].values, validity_of(d),
+                                    label=f"T = {t:g} °C", color=c))
+            _band(ax, d, "v0", d["status"].values == 0, c)
+        total = Drawn.total(drawn)
         ax.set_xscale("log")
         ax.set_xlabel("impact speed v0 [m/s]")
         ax.set_ylabel("COR")
-        ax.set_title(f"{m}" + (f" ({nbad} not ok)" if nbad else ""), fontsize=9)
+        ax.set_title(f"{m}" + total.note(), fontsize=9)
+        flag_legend(ax, total.flags)
         ax.legend(fontsize=7)
     fig.suptitle("COR against impact speed at several temperatures" + fixed + _band_note(sweep), fontsize=10)
     return fig
