@@ -99,14 +99,17 @@ class Drawn:
         return cls("", sum(d.not_ok for d in drawn), sum(d.flagged for d in drawn),
                    int(np.bitwise_or.reduce([d.flags for d in drawn], initial=0)))
 
-    def note(self) -> str:
-        """The counts for a title: " (2 not ok, 5 outside the model's range)", or "" when all are valid."""
+    def note(self, newline=False) -> str:
+        """The counts for a title: " (2 not ok, 5 outside the model's range)" (on a line of its own with
+        ``newline``), or "" when all are ok and valid."""
         parts = []
         if self.not_ok:
             parts.append(f"{self.not_ok} not ok")
         if self.flagged:
             parts.append(f"{self.flagged} outside the model's range")
-        return f" ({', '.join(parts)})" if parts else ""
+        if not parts:
+            return ""
+        return ("\n" if newline else " ") + f"({', '.join(parts)})"
 
 
 def validity_of(d) -> np.ndarray:
@@ -119,11 +122,11 @@ def validity_of(d) -> np.ndarray:
 
 def flag_reasons(flags: int) -> str:
     """The reasons of a union of validity flags in a few words, with the limits of
-    :mod:`vcor.solvers.validity` (e.g. ``s_max/r > 0.1; fast impact, v0 > 0.1 c``); "" for 0."""
+    :mod:`vcor.solvers.validity` (e.g. ``s_max/r > 0.1; fast impact, v0 > 0.1 c (wave speed)``); "" for 0."""
     from ..solvers import validity as V  # the limits' one source; imported when a figure is drawn
 
     words = {"large_indentation": f"s_max/r > {V.MAX_INDENTATION:g}",
-             "fast_impact": f"fast impact, v0 > {V.MAX_SPEED_FRACTION:g} c",
+             "fast_impact": f"fast impact, v0 > {V.MAX_SPEED_FRACTION:g} c (wave speed)",
              "energy_residual": f"energy balance off by > {V.MAX_ENERGY_RESIDUAL:g}",
              "under_resolved": "damping under-resolved by the fixed step"}
     out = [words.get(name, name.replace("_", " ")) for name, mask in V.FLAGS.items() if flags & mask]
@@ -134,8 +137,10 @@ def flag_reasons(flags: int) -> str:
 
 
 def flagged_label(flags: int) -> str:
-    """The legend text of the flagged style for the union ``flags`` of the points drawn."""
-    return f"outside the model's range ({flag_reasons(flags)})"
+    """The legend text of the flagged style for the union ``flags`` of the points drawn (the reasons on a
+    second line when they are long, to keep legends narrow)."""
+    reasons = flag_reasons(flags)
+    return f"outside the model's range{chr(10) if len(reasons) > 24 else ' '}({reasons})"
 
 
 def flag_legend(ax, flags: int) -> None:

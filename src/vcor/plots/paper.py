@@ -167,7 +167,7 @@ def fig4(sweep, opts):
     mat = opts.get("material", str(sweep["material"].values[0]))
     ds = sweep.sel(material=mat)
     drawn = Drawn.total(cor_line(ax, ds.sel(beta=b), f"β = {b:g} 1/s") for b in ds["beta"].values)
-    ax.set_title(f"Fig. 4: COR against impact speed, {mat}, a line per decay rate β" + drawn.note(), fontsize=10)
+    ax.set_title(f"Fig. 4: COR against impact speed, {mat}, a line per decay rate β" + drawn.note(True), fontsize=10)
     flag_legend(ax, drawn.flags)
     ax.legend(fontsize=7)
     return fig
@@ -202,7 +202,7 @@ def fig8(sweep, opts):
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
     mats = [str(m) for m in sweep["material"].values]
     drawn = Drawn.total(cor_line(ax, v0_line(sweep, m), m) for m in mats)
-    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + drawn.note(), fontsize=10)
+    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + drawn.note(True), fontsize=10)
     flag_legend(ax, drawn.flags)
     ax.legend(fontsize=8)
     return fig

@@ -46,7 +46,7 @@ def cor_temperature(sweep, opts):
     total = Drawn.total(drawn)
     ax.set_xlabel("temperature T [°C]")
     ax.set_ylabel("COR")
-    ax.set_title("COR against temperature" + fixed + total.note() + _band_note(sweep), fontsize=9)
+    ax.set_title("COR against temperature" + fixed + total.note(True) + _band_note(sweep), fontsize=9)
     flag_legend(ax, total.flags)
     ax.legend(fontsize=7)
     return fig
