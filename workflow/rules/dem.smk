@@ -1,5 +1,12 @@
-# DEM bridge (vcor.dem): one collision's COR, each DEM law fitted to it, the COR table, the LAMMPS
-# deck and the figure, per entry of the config's dem: block.
+# DEM bridge (vcor.dem): one collision's COR, each DEM law fitted to it, the COR table, the parameters
+# file, the LAMMPS deck, the Yade script and the figure, per entry of the config's dem: block;
+# results/dem/<name>/MANIFEST.txt requires them all (the one target that builds an entry).
+
+
+def get_dem_targets(wildcards):
+    """Every output of a dem: entry (the manifest's inputs)."""
+    return PROJECT.dem_targets(wildcards.dem)
+
 
 
 rule dem:
@@ -8,6 +15,7 @@ rule dem:
     output:
         nc="results/dem/{dem}.nc",
         table="results/dem/{dem}/table.csv",
+        parameters="results/dem/{dem}/parameters.csv",
     log:
         "results/dem/logs/{dem}.log",
     benchmark:
@@ -36,6 +44,34 @@ rule dem_deck:
         code=CODE,
     script:
         "../scripts/dem_deck.py"
+
+
+rule dem_yade:
+    input:
+        "results/dem/{dem}.nc",
+    output:
+        "results/dem/{dem}/yade/collision.py",
+    log:
+        "results/dem/logs/{dem}.yade.log",
+    wildcard_constraints:
+        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+    params:
+        code=CODE,
+    script:
+        "../scripts/dem_yade.py"
+
+
+rule dem_manifest:
+    input:
+        get_dem_targets,
+    output:
+        "results/dem/{dem}/MANIFEST.txt",
+    log:
+        "results/dem/logs/{dem}.manifest.log",
+    wildcard_constraints:
+        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+    script:
+        "../scripts/dem_manifest.py"
 
 
 rule dem_figure:

@@ -1,5 +1,5 @@
 """One dem: entry (thin: vcor.study.dem and vcor.dem): the collision's COR, the DEM laws fitted to it,
-the dataset and the COR table."""
+the dataset, the COR table and the parameters file."""
 
 from vcor.dem import export
 from vcor.io import netcdf
@@ -14,3 +14,4 @@ with job_log(smk):
     ds = export.dem_dataset(name, collisions, fits, temps, config=spec)
     netcdf.write_dataset(ds, smk.output.nc, title=f"vcor DEM parameters, {name}", command="snakemake rule dem")
     export.table_csv(smk.output.table, collisions, temps)
+    export.parameters_csv(smk.output.parameters, ds)

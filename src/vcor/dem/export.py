@@ -7,25 +7,37 @@ The dataset (CF attributes as every vcor dataset) has the dimensions ``model`` (
 * ``cor_model(model, v0[, T])`` and ``error = cor_model - cor``;
 * ``max_abs_error(model[, T])`` over the speeds, and ``v0_within_lo``, ``v0_within_hi``: the widest
   run of consecutive speeds on which ``abs(error) <= WITHIN`` (NaN when there is none);
-* each law's parameters (``eta_n0``, ``E_lammps``, ``e``, ``A``, ``E_eff``, ``en``, ``vn``), with
-  units and the model they belong to, per temperature;
+* ``opposite_trend(model[, T])``: 1 where the law's COR changes with speed in the opposite sense to
+  vcor's over the range (:mod:`vcor.dem.trend`), and the attribute ``trend_warning`` saying so in
+  words (empty when no law does), pointing to the COR table;
+* each law's parameters (``eta_n0``, ``E_lammps``, ``e``, ``A``, ``E_eff``, ``en``, ``vn``,
+  ``young``), with units and the model they belong to, per temperature;
 * the contact (``m_eff``, ``r_eff``, ``nu``, kind), the collision's config and each law's formula
-  source and separation in the attributes.
+  source, separation and required code version (``models``; ``yade_version_required``) in the
+  attributes.
 
 The table is CSV with a header and a units row: ``v0,cor`` (and ``T`` first for a temperature sweep).
+The parameters file (:func:`parameters_csv`) lists every law's parameters with units, the contact
+they hold for and the code version each law needs.
 """
 
 from __future__ import annotations
 
+import csv
+import io
 import json
 
 import numpy as np
 
 from ..io.receipts import atomic_text
 from ..status import cf_attrs, code
-from .laws import PARAMETERS, SOURCES
+from . import trend
+from .laws import PARAMETERS, REQUIRES, SOURCES
 
-__all__ = ["WITHIN", "dem_dataset", "table_csv", "within_range"]
+__all__ = ["WITHIN", "YADE_VERSION", "dem_dataset", "parameters_csv", "table_csv", "within_range"]
+
+#: the oldest Yade whose Ip2_FrictMat_FrictMat_MindlinPhys has vn (the velocity-dependent COR)
+YADE_VERSION = "2024.02a"
 
 #: the error bound of the sub-range a dataset reports for each law (COR, absolute)
 WITHIN = 0.01
@@ -71,6 +83,10 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     status = np.array([[code(s) for s in c.status] for c in collisions], dtype=np.int8)
     message = np.array([[str(m) for m in c.message] for c in collisions])
     validity = np.array([c.validity for c in collisions], dtype=np.int8)
+    ok = status == code("ok")
+    opposed = np.array([trend.opposite(cor[t], cor_model[t], ok[t]) for t in range(nt)], dtype=np.int8)
+    prefix = [f"At T = {float(T):g} degC: " if with_t else "" for T in (temperatures if with_t else [None])]
+    warnings = [trend.warning(v0, cor[t], cor_model[t], ok[t], models, prefix[t]) for t in range(nt)]
 
     def squeeze(dims, arr):
         return (dims, arr) if with_t else (dims[1:], arr[0])
@@ -85,6 +101,7 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
         "max_abs_error": squeeze(("T", "model"), max_err),
         "v0_within_lo": squeeze(("T", "model"), within[..., 0]),
         "v0_within_hi": squeeze(("T", "model"), within[..., 1]),
+        "opposite_trend": squeeze(("T", "model"), opposed),
     }
     params = {}
     for model in models:
@@ -99,13 +116,15 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
         coords["T"] = ("T", np.asarray(temperatures, dtype=float))
     ds = xr.Dataset(data, coords=coords)
     units = {"cor": "1", "cor_model": "1", "error": "1", "max_abs_error": "1", "v0_within_lo": "m s-1",
-             "v0_within_hi": "m s-1", "validity": "1"}
+             "v0_within_hi": "m s-1", "validity": "1", "opposite_trend": "1"}
     names = {"cor": "vcor's COR (hereditary contact, the contact ends where the force vanishes)",
              "cor_model": "the DEM law's COR with its fitted parameters", "error": "cor_model - cor",
              "max_abs_error": "largest abs(error) over the speeds",
              "v0_within_lo": f"lowest speed of the widest run of speeds with abs(error) <= {WITHIN}",
              "v0_within_hi": f"highest speed of the widest run of speeds with abs(error) <= {WITHIN}",
-             "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)"}
+             "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)",
+             "opposite_trend": "1 where the law's COR changes with speed in the opposite sense to vcor's over the "
+                               "range (vcor.dem.trend): no value of its parameters follows the curve"}
     for v, text in names.items():
         ds[v].attrs["long_name"] = text
         if v in units:
@@ -126,10 +145,14 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
                                "densities_kg_m-3": list(contact.densities)}),
         "E_eff_note": "E_eff: vcor's contact stiffness at a quarter of its contact time at the reference speed "
                       "(vcor.dem.fit); it sets a DEM contact's duration, not its COR",
-        "models": json.dumps({m: {"source": SOURCES[m], "separation": SEPARATION[m],
+        "models": json.dumps({m: {"source": SOURCES[m], "separation": SEPARATION[m], "requires": REQUIRES[m],
                                   "parameters": {p: u for p, (u, _) in PARAMETERS[m].items()}} for m in models}),
         "v_ref_m_s": collisions[0].v_ref,
+        "trend_warning": " ".join(w for w in warnings if w),
     })
+    if "yade-mindlin" in models:
+        ds.attrs["yade_version_required"] = YADE_VERSION
+        ds.attrs["yade_version_note"] = REQUIRES["yade-mindlin"]
     return ds
 
 
@@ -145,3 +168,41 @@ def table_csv(path, collisions: list, temperatures=None) -> None:
             lines.append(f"{float(temperatures[i]):.10g},{row}" if temperatures is not None else row)
     atomic_text(path, "\n".join(lines) + "\n")
 
+
+
+def _parameter_rows(ds) -> list[str]:
+    """model,parameter,T,value,unit,meaning rows of every law's parameters and of the contact."""
+    has_t = "T" in ds.dims
+    temps = [float(t) for t in ds["T"].values] if has_t else [None]
+    rows = []
+    for key, var in ds.data_vars.items():
+        if "model" not in var.attrs:
+            continue
+        name = key.removesuffix(f"_{var.attrs['model']}")
+        for i, T in enumerate(temps):
+            value = float(var.values[i] if has_t else var.values)
+            rows.append([var.attrs["model"], name, "" if T is None else f"{T:.10g}", f"{value:.12g}",
+                         var.attrs["units"], var.attrs["long_name"]])
+    contact = json.loads(ds.attrs["contact"])
+    for name, unit, value in [("m_eff", "kg", contact["m_eff_kg"]), ("r_eff", "m", contact["r_eff_m"]),
+                              ("nu", "1", contact["nu"])]:
+        rows.append(["contact", name, "", f"{value:.12g}", unit, f"the contact's {name} ({contact['kind']})"])
+    for i, (r, rho) in enumerate(zip(contact["radii_m"], contact["densities_kg_m-3"]), start=1):
+        rows.append(["contact", f"radius_{i}", "", f"{r:.12g}", "m", f"radius of sphere {i}"])
+        rows.append(["contact", f"density_{i}", "", f"{rho:.12g}", "kg m-3", f"density of sphere {i}"])
+    return rows
+
+
+def parameters_csv(path, ds) -> None:
+    """Every law's parameters of the DEM dataset ``ds`` (:func:`dem_dataset`) as CSV, written atomically:
+    ``#`` lines first (the entry, the code version each law needs), then the header
+    ``model,parameter,T,value,unit,meaning`` (T in deg C, empty without a temperature sweep), then one
+    row per law, parameter and temperature, and the contact's (``model`` = ``contact``)."""
+    models = json.loads(ds.attrs["models"])
+    lines = [f"# vcor DEM parameters of entry {ds.attrs['dem']} (dataset results/dem/{ds.attrs['dem']}.nc)"]
+    lines += [f"# {m} requires: {info['requires']}" for m, info in models.items()]
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(["model", "parameter", "T", "value", "unit", "meaning"])
+    writer.writerows(_parameter_rows(ds))
+    atomic_text(path, "\n".join(lines) + "\n" + out.getvalue())

@@ -30,7 +30,7 @@ from ..contact.bodies import body_from_spec
 from ..contact.impact import make_impact
 from ..contact.pair import target_inputs, twin_defaults
 from ..solvers.simulate import simulate
-from .laws import MODELS, Contact, brilliantov_cor, eta_n0, lammps_modulus, yade_en
+from .laws import MODELS, Contact, brilliantov_cor, eta_n0, lammps_modulus, yade_en, yade_young
 
 __all__ = ["B_RANGE", "Collision", "collision", "fit_laws"]
 
@@ -129,7 +129,8 @@ def fit_laws(col: Collision, models=MODELS) -> dict:
         elif model == "mercurydpm-bshp":
             out[model] = {"cor": curve, "A": A, "E_eff": contact.e_eff}
         elif model == "yade-mindlin":
-            out[model] = {"cor": curve, "en": yade_en(contact, A, col.v_ref), "vn": col.v_ref}
+            out[model] = {"cor": curve, "en": yade_en(contact, A, col.v_ref), "vn": col.v_ref,
+                          "young": yade_young(contact)}
         elif model == "lammps-coeff-restitution":
             e = float(np.mean(c))
             out[model] = {"cor": np.full(col.v0.shape, e), "e": e, "E_lammps": lammps_modulus(contact)}

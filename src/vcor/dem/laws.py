@@ -19,9 +19,13 @@ wall. The laws (formulas as each code's documentation and source give them):
     zero, with the dissipation A (s) set by ``setDissipation`` and E* = E_eff by
     ``setEffectiveElasticModulus``.
 ``yade-mindlin``
-    Yade's Hertz-Mindlin law with a velocity-dependent COR (``en`` at the speed ``vn``): Yade finds
-    v* from the Mueller & Poeschel Pade e(v*) = en and A = 2/3 v*^2 (m_eff/K)^(2/5) vn^(-1/5), and
-    applies the same clipped law as BSHP.
+    Yade's Hertz-Mindlin law with a velocity-dependent COR (``en`` at the speed ``vn``,
+    ``Ip2_FrictMat_FrictMat_MindlinPhys``, Yade >= 2024.02a): Yade finds v* from the Mueller &
+    Poeschel Pade e(v*) = en, beta = v*^2 vn^(-1/5) and A = 2/3 beta (K/m_eff)^(-2/5), and applies
+    the same clipped law as BSHP. Yade combines two ``FrictMat`` bodies as
+    E* = E_a E_b / ((1 - nu_a^2) E_b + (1 - nu_b^2) E_a), so ``young`` = 2 (1 - nu^2) E_eff for both
+    bodies (a wall's material too) gives vcor's K; a wall needs ``Ig2_Wall_Sphere_ScGeom(hertzian=True)``
+    (the wall's radius 1e8 R), or Yade's contact radius is R/2.
 ``table``
     The COR against speed itself, for codes that read a table.
 
@@ -39,7 +43,8 @@ import numpy as np
 
 from ..spheres import cor_numeric, cor_pade_force
 
-__all__ = ["MODELS", "PARAMETERS", "SOURCES", "Contact", "brilliantov_cor", "eta_n0", "lammps_modulus", "yade_en"]
+__all__ = ["MODELS", "PARAMETERS", "REQUIRES", "SOURCES", "Contact", "brilliantov_cor", "eta_n0", "lammps_modulus",
+           "yade_en", "yade_young"]
 
 #: the DEM models, in the order of the datasets' ``model`` dimension
 MODELS = ("lammps-viscoelastic", "lammps-coeff-restitution", "mercurydpm-bshp", "yade-mindlin", "table")
@@ -51,9 +56,22 @@ SOURCES = {
                                 "Antypov & Elliott (2011), EPL 94, 50004",
     "mercurydpm-bshp": "MercuryDPM HertzianBSHPViscoelasticInteraction::computeNormalForce; Brilliantov et al. "
                        "(1996), Phys. Rev. E 53, 5382",
-    "yade-mindlin": "Yade Ip2_FrictMat_FrictMat_MindlinPhys (en, vn) and Law2_ScGeom_MindlinPhys_Mindlin; "
-                    "Mueller & Poeschel (2011), Phys. Rev. E 84, 021302",
+    "yade-mindlin": "Yade pkg/dem/HertzMindlin.cpp: Ip2_FrictMat_FrictMat_MindlinPhys (en, vn) and "
+                    "Law2_ScGeom_MindlinPhys_Mindlin; Mueller & Poeschel (2011), Phys. Rev. E 84, 021302",
     "table": "the vcor COR itself, one value per speed",
+}
+#: the version of each code that the exported parameters need, and why
+REQUIRES = {
+    "lammps-viscoelastic": "LAMMPS with the GRANULAR package and limit_damping (added in 2021); "
+                           "without limit_damping the dashpot pulls and the COR is not the fitted one",
+    "lammps-coeff-restitution": "LAMMPS whose pair_style granular accepts damping coeff_restitution (a recent "
+                                "release; an older build stops at the pair_coeff line, it runs no other law)",
+    "mercurydpm-bshp": "MercuryDPM with HertzianBSHPViscoelasticNormalSpecies (setEffectiveElasticModulus, "
+                       "setDissipation)",
+    "yade-mindlin": "Yade >= 2024.02a: Ip2_FrictMat_FrictMat_MindlinPhys.vn was added there; an older Yade has no "
+                    "vn (AttributeError), and en alone gives Thornton's constant-COR damping (the COR is en at "
+                    "every speed)",
+    "table": "any code that reads a COR against speed (Aspherix hertz/vel_dependent, cor_lookup)",
 }
 #: each model's parameters: name -> (unit, meaning)
 PARAMETERS = {
@@ -63,7 +81,9 @@ PARAMETERS = {
                                  "E_lammps": ("Pa", "hertz/material Young's modulus E")},
     "mercurydpm-bshp": {"A": ("s", "setDissipation: the dissipative constant A"),
                         "E_eff": ("Pa", "setEffectiveElasticModulus: E*")},
-    "yade-mindlin": {"en": ("1", "the COR en at the speed vn"), "vn": ("m s-1", "the speed vn of en")},
+    "yade-mindlin": {"en": ("1", "Ip2_FrictMat_FrictMat_MindlinPhys.en: the COR at the speed vn"),
+                     "vn": ("m s-1", "Ip2_FrictMat_FrictMat_MindlinPhys.vn: the speed of en"),
+                     "young": ("Pa", "FrictMat.young of both bodies (and of a wall): 2 (1 - nu^2) E_eff")},
     "table": {},
 }
 
@@ -105,6 +125,12 @@ def eta_n0(contact: Contact, A: float) -> float:
 def lammps_modulus(contact: Contact) -> float:
     """The E (Pa) to give ``hertz/material`` so that LAMMPS's E_eff is the contact's:
     2 (1 - nu^2) E_eff (a pair of one atom type, or a wall)."""
+    return 2.0 * (1.0 - contact.nu**2) * contact.e_eff
+
+
+def yade_young(contact: Contact) -> float:
+    """The ``FrictMat.young`` (Pa) to give both Yade bodies (and a wall) so that Yade's
+    E* = E_a E_b / ((1 - nu_a^2) E_b + (1 - nu_b^2) E_a) is the contact's E_eff: 2 (1 - nu^2) E_eff."""
     return 2.0 * (1.0 - contact.nu**2) * contact.e_eff
 
 

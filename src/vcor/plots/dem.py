@@ -22,9 +22,22 @@ def _columns(ds):
     return sorted({int(i) for i in np.linspace(0, n - 1, min(4, n)).round()})
 
 
+def _trend_note(sel, models) -> str:
+    """A note naming the laws whose COR changes with speed the other way from vcor's (the dataset's
+    ``opposite_trend``); empty when there is none."""
+    if "opposite_trend" not in sel:
+        return ""
+    bad = [m for m in models if int(sel["opposite_trend"].sel(model=m)) == 1]
+    if not bad:
+        return ""
+    return ("\nno fitted law follows this curve:\n" + ", ".join(bad) + "\nchange with speed the other way: "
+            "use the COR table\n(table.csv; Aspherix cor_lookup)")
+
+
 def dem(ds):
     """vcor's COR (black) and each DEM law's curve against v0 (top), law minus vcor (bottom), one
-    column per temperature (up to four); the titles give each law's largest error."""
+    column per temperature (up to four); the titles give each law's largest error, and a note names
+    the laws whose COR changes with speed the other way from vcor's."""
     cols = _columns(ds)
     fig, axes = plt.subplots(2, len(cols), figsize=(4.2 * len(cols) + 1.0, 6.0), layout="constrained",
                              sharex=True, squeeze=False, gridspec_kw={"height_ratios": [3, 2]})
@@ -57,8 +70,9 @@ def dem(ds):
         bottom.set_xlabel("impact speed v0 [m/s]")
         if v0.max() / v0.min() > 5:
             bottom.set_xscale("log")
-        top.set_title(f"T = {float(ds['T'].values[it]):g} °C" if it is not None else ds.attrs.get("dem", ""),
-                      fontsize=9)
+        note = _trend_note(sel, models)
+        top.set_title((f"T = {float(ds['T'].values[it]):g} °C" if it is not None else ds.attrs.get("dem", "")) + note,
+                      fontsize=8 if note else 9, color="C3" if note else "black")
         if j == 0:
             top.legend(fontsize=7, loc="lower left")
     contact = json.loads(ds.attrs.get("contact", "{}"))

@@ -1,0 +1,67 @@
+"""Where no fitted DEM law can follow the hereditary curve: the sense in which the COR changes with speed.
+
+The trend of a COR curve is the sign of its change from the lowest to the highest speed whose vcor
+result is ``ok``; a change of at most :data:`FLAT` (absolute COR) counts as flat. A law whose trend is
+the opposite of vcor's (one rises with speed where the other falls) follows the curve with no value
+of its parameters: the fit can only trade the error at one end of the range for the other. A COR
+table (``table.csv``; in Aspherix ``hertz/vel_dependent`` with ``cor_lookup``) is then the route that
+follows vcor's curve. A constant law (``lammps-coeff-restitution``) is flat and never opposite.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["FLAT", "TABLE_ROUTE", "opposite", "trend", "warning"]
+
+#: a change of the COR over the range at most this large (absolute) is no trend
+FLAT = 0.01
+#: the route that follows the hereditary curve where no fitted law does
+TABLE_ROUTE = "the COR table (table.csv; Aspherix hertz/vel_dependent with cor_lookup)"
+
+
+def _ends(values, ok) -> tuple[float, float]:
+    idx = np.flatnonzero(ok & np.isfinite(values))
+    return (float(values[idx[0]]), float(values[idx[-1]])) if len(idx) >= 2 else (np.nan, np.nan)
+
+
+def trend(values, ok) -> int:
+    """+1 if ``values`` rises from the lowest to the highest ok speed by more than :data:`FLAT`, -1
+    if it falls by more, 0 otherwise (flat, or fewer than two ok speeds)."""
+    lo, hi = _ends(np.asarray(values, dtype=float), np.asarray(ok, dtype=bool))
+    change = hi - lo
+    return 0 if not np.isfinite(change) or abs(change) <= FLAT else int(np.sign(change))
+
+
+def opposite(cor, cor_model, ok) -> np.ndarray:
+    """Per law (rows of ``cor_model``): True where its trend and that of ``cor`` are non-zero and of
+    opposite sign (module docstring)."""
+    ref = trend(cor, ok)
+    return np.array([ref != 0 and trend(row, ok) == -ref for row in np.atleast_2d(cor_model)], dtype=bool)
+
+
+def _words(sign: int, many: bool = False) -> str:
+    if many:
+        return "rise" if sign > 0 else "fall"
+    return "rises" if sign > 0 else "falls"
+
+
+def warning(v0, cor, cor_model, ok, models, prefix: str = "") -> str:
+    """One sentence naming the laws whose trend opposes vcor's at these speeds (m/s), with both
+    curves' end values; empty when there is none. Laws with the same curve are named together."""
+    v0, cor, ok = np.asarray(v0, dtype=float), np.asarray(cor, dtype=float), np.asarray(ok, dtype=bool)
+    cor_model = np.atleast_2d(np.asarray(cor_model, dtype=float))
+    bad = opposite(cor, cor_model, ok)
+    if not bad.any():
+        return ""
+    idx = np.flatnonzero(ok & np.isfinite(cor))
+    v_lo, v_hi = v0[idx[0]], v0[idx[-1]]
+    c_lo, c_hi = _ends(cor, ok)
+    groups: dict[tuple, list] = {}
+    for k in np.flatnonzero(bad):
+        groups.setdefault(tuple(np.round(_ends(cor_model[k], ok), 4)), []).append(str(models[k]))
+    laws = "; ".join(f"{', '.join(names)} {_words(-trend(cor, ok), len(names) > 1)} ({lo:.2f} to {hi:.2f})"
+                     for (lo, hi), names in groups.items())
+    return (f"{prefix}vcor's COR {_words(trend(cor, ok))} with speed ({c_lo:.2f} at {v_lo:g} m/s to {c_hi:.2f} "
+            f"at {v_hi:g} m/s) while {laws}: no value of these laws' parameters follows the curve; "
+            f"{TABLE_ROUTE} does.")
