@@ -14,12 +14,90 @@ ROOT = next(p for p in Path(__file__).resolve().parents if (p / "docs" / "conf.p
 DOCS = ROOT / "docs"
 
 
-def test_docs_build_without_warnings(tmp_path):
-    """The test extra installs the documentation packages, so the build is never skipped."""
-    out = subprocess.run([sys.executable, "-m", "sphinx", "-W", "-b", "html", "-q", str(DOCS), str(tmp_path / "html")],
+#: MathJax from a CDN (the manual must render formulas offline)
+CDN_MATHJAX = re.compile(r"(?i)(cdn\.jsdelivr\.net|cdnjs\.cloudflare\.com|unpkg\.com|cdn\.mathjax\.org)[^\"']*mathjax")
+#: images that are not figures of the manual's content (the landing figure, gallery thumbnails, the theme's)
+NOT_FIGURES = re.compile(r"overview\.svg|thumb|_static/")
+
+
+@pytest.fixture(scope="module")
+def built_site(tmp_path_factory):
+    """The manual built once with warnings as errors (the test extra installs the documentation
+    packages, so the build is never skipped): the HTML folder."""
+    html = tmp_path_factory.mktemp("docs") / "html"
+    out = subprocess.run([sys.executable, "-m", "sphinx", "-W", "-b", "html", "-q", str(DOCS), str(html)],
                          cwd=ROOT, capture_output=True, text=True, timeout=900, check=False)
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-6000:]
-    assert (tmp_path / "html" / "index.html").is_file()
+    return html
+
+
+@pytest.mark.slow
+def test_docs_build_without_warnings(built_site):
+    assert (built_site / "index.html").is_file()
+
+
+@pytest.mark.slow
+def test_gallery_runs_every_example_and_shows_its_output(built_site):
+    """Each example of examples/ has a page with its printed output and at least one figure, drawn
+    by this build."""
+    examples = sorted(p.stem for p in (ROOT / "examples").glob("plot_*.py"))
+    assert len(examples) >= 6, examples
+    for name in examples:
+        page = built_site / "gallery" / f"{name}.html"
+        assert page.is_file(), f"no gallery page for examples/{name}.py"
+        text = page.read_text(encoding="utf-8")
+        assert "sphx-glr-script-out" in text, f"{name}: no printed output on its page"
+        assert re.search(rf'src="[^"]*sphx_glr_{name}_\d+\.png"', text), f"{name}: no figure on its page"
+
+
+def _figures(html: Path) -> set[str]:
+    """Image files shown by the pages, less those :data:`NOT_FIGURES` names."""
+    shown = set()
+    for page in html.rglob("*.html"):
+        for src in re.findall(r'<img[^>]+src="([^"]+)"', page.read_text(encoding="utf-8")):
+            name = Path(src).name
+            if not NOT_FIGURES.search(src) and (html / "_images" / name).is_file():
+                shown.add(name)
+    return shown
+
+
+@pytest.mark.slow
+def test_the_manual_shows_at_least_ten_figures_besides_the_landing_one(built_site):
+    figures = _figures(built_site)
+    assert len(figures) >= 10, sorted(figures)
+
+
+@pytest.mark.slow
+def test_user_guide_pages_show_gallery_figures(built_site):
+    """The pages the examples belong to show their figures (not only the gallery)."""
+    for page in ("user-guide/materials", "user-guide/dma", "user-guide/uncertainty", "user-guide/calibration",
+                 "validation", "benchmarks", "getting-started"):
+        text = (built_site / f"{page}.html").read_text(encoding="utf-8")
+        assert re.search(r'<img[^>]+src="[^"]*sphx_glr_plot_\w+\.png"', text), f"{page}: no gallery figure"
+
+
+@pytest.mark.slow
+def test_mathjax_is_served_with_the_site(built_site):
+    """No page loads MathJax from a CDN; the pages with formulas load the copy in _static."""
+    entry = built_site / "_static" / "mathjax" / "tex-chtml.js"
+    assert entry.is_file() and entry.stat().st_size > 100_000, entry
+    assert (built_site / "_static" / "mathjax" / "output" / "chtml" / "fonts" / "woff-v2").is_dir()
+    pages = sorted(built_site.rglob("*.html"))
+    cdn = [str(p.relative_to(built_site)) for p in pages if CDN_MATHJAX.search(p.read_text(encoding="utf-8"))]
+    assert not cdn, f"MathJax from a CDN in {cdn[:10]}"
+    theory = (built_site / "theory.html").read_text(encoding="utf-8")
+    assert re.search(r'<script[^>]+src="_static/mathjax/tex-chtml\.js', theory), "theory.html loads no MathJax"
+
+
+@pytest.mark.slow
+def test_api_module_tables_are_not_reprs(built_site):
+    """Module tables of the API reference show names and summaries, not Python reprs."""
+    bad = []
+    for page in (built_site / "api").glob("*.html"):
+        text = page.read_text(encoding="utf-8")
+        if re.search(r"&lt;(module|function|class) |object at 0x", text):
+            bad.append(page.name)
+    assert not bad, bad
 
 
 # ----------------------------------------------------------------------------- history words
