@@ -1,6 +1,8 @@
 """The DEM bridge (docs, "DEM codes"): particle-particle collisions, each DEM law fitted to vcor's
 COR with its error, the dataset and table, and bad dem: entries refused before any job."""
 
+import csv
+import json
 import math
 
 import numpy as np
@@ -9,7 +11,7 @@ import yaml
 
 import vcor
 from vcor import materials as M
-from vcor.dem import export, fit, laws
+from vcor.dem import export, fit, laws, trend
 from vcor.study.config import load_project
 
 KV = M.KelvinVoigt(15e6, 1e-4)
@@ -83,6 +85,25 @@ def test_a_hereditary_curve_the_one_parameter_laws_cannot_follow():
     assert errs["lammps-viscoelastic"] == errs["mercurydpm-bshp"] == errs["yade-mindlin"] > 0.05
     assert 0.0 < errs["lammps-coeff-restitution"] < errs["lammps-viscoelastic"]
     assert laws_["lammps-coeff-restitution"]["e"] == pytest.approx(float(np.mean(col.cor)))
+    # the Brilliantov laws fall where vcor rises: flagged per law, said in words, the table named
+    opposed = {m: int(ds["opposite_trend"].sel(model=m)) for m in laws.MODELS}
+    assert opposed == {"lammps-viscoelastic": 1, "lammps-coeff-restitution": 0, "mercurydpm-bshp": 1,
+                       "yade-mindlin": 1, "table": 0}
+    note = ds.attrs["trend_warning"]
+    print(note)
+    for words in ("vcor's COR rises", "lammps-viscoelastic, mercurydpm-bshp, yade-mindlin fall", "cor_lookup",
+                  f"{col.cor[0]:.2f} at 0.1 m/s"):
+        assert words in note, words
+
+
+def test_no_trend_warning_where_the_law_follows():
+    """A Kelvin-Voigt pair: vcor's COR and the Brilliantov law fall together; nothing is flagged."""
+    col = fit.collision(KV, np.geomspace(0.1, 10.0, 7), sphere={"r": 0.005, "rho": 1200.0, "nu": 0.45},
+                        target={"sphere": {}})
+    ds = export.dem_dataset("kv", [col], [fit.fit_laws(col)])
+    assert not ds["opposite_trend"].values.any() and ds.attrs["trend_warning"] == ""
+    assert trend.trend(col.cor, np.isfinite(col.cor)) == -1
+    assert trend.trend([0.5, 0.505], [True, True]) == 0  # within FLAT: no trend
 
 
 def test_dataset_layout_units_and_the_within_range():
@@ -92,8 +113,14 @@ def test_dataset_layout_units_and_the_within_range():
     assert list(ds["model"].values) == list(laws.MODELS)
     assert ds["cor_model"].dims == ("model", "v0") and ds["cor"].dims == ("v0",)
     for var, unit in [("cor", "1"), ("eta_n0", "m-1 s-1"), ("A", "s"), ("e", "1"), ("vn", "m s-1"), ("E_lammps", "Pa"),
-                      ("v0_within_lo", "m s-1"), ("v0", "m s-1")]:
+                      ("v0_within_lo", "m s-1"), ("v0", "m s-1"), ("young", "Pa"), ("E_eff", "Pa"),
+                      ("opposite_trend", "1")]:
         assert ds[var].attrs["units"] == unit, var
+    # Yade's young: both bodies of this modulus give Yade's E* = E_eff
+    young, nu = float(ds["young"]), col.contact.nu
+    assert young * young / (2 * (1 - nu**2) * young) == pytest.approx(float(ds["E_eff"]), rel=1e-12)
+    assert ds.attrs["yade_version_required"] == "2024.02a"
+    assert "2024.02a" in json.loads(ds.attrs["models"])["yade-mindlin"]["requires"]
     np.testing.assert_array_equal(ds["error"].values, ds["cor_model"].values - ds["cor"].values[None, :])
     assert export.within_range(np.arange(6.0), np.array([0.02, 0.0, 0.005, 0.02, 0.0, 0.0])) == (1.0, 2.0)
     assert all(math.isnan(x) for x in export.within_range(np.arange(2.0), np.array([0.5, 0.5])))
@@ -128,6 +155,26 @@ def test_bad_dem_entries_are_refused_before_any_job(cfg, words):
         load_project(cfg, ".")
     for w in words:
         assert w in str(err.value), (w, str(err.value))
+
+
+def test_the_parameters_file_lists_every_law_with_units(tmp_path):
+    """parameters.csv: the code versions as comments, then every law's parameters with units (the
+    modulus each code takes among them) and the contact; values equal to the dataset's."""
+    col = fit.collision("sls", np.geomspace(0.1, 10.0, 5), sphere={"r": 0.005}, target="rigid")
+    ds = export.dem_dataset("t", [col], [fit.fit_laws(col)])
+    path = tmp_path / "parameters.csv"
+    export.parameters_csv(path, ds)
+    text = path.read_text()
+    assert "# yade-mindlin requires: Yade >= 2024.02a" in text
+    rows = list(csv.DictReader(line for line in text.splitlines() if not line.startswith("#")))
+    got = {(r["model"], r["parameter"]): (float(r["value"]), r["unit"]) for r in rows}
+    for model, params in laws.PARAMETERS.items():
+        for p, (unit, _) in params.items():
+            assert got[(model, p)][1] == unit
+    assert got[("yade-mindlin", "young")] == (pytest.approx(float(ds["young"]), rel=1e-11), "Pa")
+    assert got[("mercurydpm-bshp", "E_eff")][0] == pytest.approx(float(ds["E_eff"]), rel=1e-11)
+    assert got[("lammps-coeff-restitution", "E_lammps")][0] == pytest.approx(float(ds["E_lammps"]), rel=1e-11)
+    assert got[("contact", "density_1")] == (1100.0, "kg m-3")
 
 
 def test_a_temperature_entry_fits_every_law_per_temperature():
