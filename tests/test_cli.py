@@ -1,9 +1,12 @@
-"""The ``vcor`` command line: impact (text and JSON with units, errors, statuses that say what to do),
-materials, export, --version, and every option's help naming its unit."""
+"""The ``vcor`` command line: impact (text with units and significant digits, JSON with full precision,
+validity in words, wall time without kernel loading, the compile notice), bad numbers refused before
+any work, materials with units, formulas and sources, export, ``python -m vcor``, --version, and every
+option's help naming its unit."""
 
 import csv
 import io
 import json
+import os
 import subprocess
 import sys
 
@@ -11,31 +14,188 @@ import pytest
 
 import vcor
 from vcor import cli
+from vcor.contact.impact import RANGES
 from vcor.io.netcdf import write_dataset
-from vcor.materials import Catalogue
+from vcor.materials.models import Material
+from vcor.solvers.common import UNITS
+from vcor.solvers.validity import FLAGS
 from vcor.study import aggregation, runner, scene
 
+PYTHON_M_VCOR = [sys.executable, "-m", "vcor"]
 
-def test_json_output_has_units_and_matches_api(capsys):
+
+def _run(*args, env=None):
+    return subprocess.run([*PYTHON_M_VCOR, *args], capture_output=True, text=True, check=False, env=env)
+
+
+def _text_rows(text: str) -> dict:
+    """{name: (value, unit)} of the numeric lines of ``vcor impact``'s text output."""
+    rows = {}
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) >= 3 and parts[2].startswith("["):
+            rows[parts[0]] = (parts[1], parts[2].strip("[]"))
+    return rows
+
+
+def _significant_digits(text: str) -> int:
+    mantissa = text.lstrip("-").split("e")[0].replace(".", "").lstrip("0")
+    return len(mantissa)
+
+
+# ----------------------------------------------------------------------------- impact: output
+def test_json_output_has_units_full_precision_and_matches_api(capsys):
     assert cli.main(["impact", "--material", "sls", "--v0", "10", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
+    api = vcor.simulate("sls", 10.0)
     assert out["cor"]["units"] == "1" and out["t0"]["units"] == "s" and out["f_max"]["units"] == "N"
-    assert out["cor"]["value"] == vcor.simulate("sls", 10.0).cor
+    for key in ("cor", "t0", "s_max", "f_max", "w_h", "energy_residual"):
+        assert out[key]["value"] == getattr(api, key), key  # full precision: the same float
     assert out["status"] == "ok" and out["method"] == "adaptive"  # the default method, as in the API
+    assert out["kernel_load_time"]["units"] == "s" and out["kernel_load_time"]["value"] >= 0
 
 
-def test_text_output_and_ive(capsys):
+def test_text_output_has_significant_digits_and_units(capsys):
+    assert cli.main(["impact", "--material", "sls", "--v0", "10"]) == 0
+    rows = _text_rows(capsys.readouterr().out)
+    api = vcor.simulate("sls", 10.0)
+    for key in ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity"):
+        value, unit = rows[key]
+        assert _significant_digits(value) <= 5, (key, value)
+        assert float(value) == pytest.approx(getattr(api, key), rel=5e-5), (key, value)  # rounded, not changed
+        assert unit == cli._TEXT_UNITS.get(UNITS[key], UNITS[key]), (key, unit)
+    assert rows["cor"] == (f"{api.cor:.5g}", "1")
+    assert "e-" in rows["t0"][0] and rows["t0"][1] == "s"  # 1.3415e-3 s: a small number in powers of ten
+    assert _significant_digits(rows["energy_residual"][0]) <= 2
+    assert rows["steps"] == (str(api.steps), "1")
+    assert rows["wall_time"][1] == "s" and rows["kernel_load_time"][1] == "s"
+
+
+def test_text_output_of_ive(capsys):
     assert cli.main(["impact", "--material", "butyl-prony3", "--v0", "10", "--method", "ive"]) == 0
     text = capsys.readouterr().out
-    assert "cor" in text and " s\n" in text and "ive-Radau" in text
+    assert "ive-Radau" in text and _text_rows(text)["t0"][1] == "s"
 
 
-def test_bad_input_exit_code():
-    out = subprocess.run([sys.executable, "-m", "vcor.cli", "impact", "--material", "sls", "--v0", "-1"],
-                         capture_output=True, text=True, check=False)
-    assert out.returncode == 2 and "v0 must be in [1e-09, 100000] m/s" in out.stderr
+# ----------------------------------------------------------------------------- impact: validity in words
+def test_validity_flags_decode_every_mask():
+    for mask in range(2 ** len(FLAGS)):
+        names = cli.validity_flags(mask)
+        assert sum(FLAGS[n] for n in names) == mask and list(names) == [n for n in FLAGS if n in names]
 
 
+@pytest.mark.parametrize("v0, expected", [(1.0, []), (10.0, ["large_indentation"]),
+                                          (50.0, ["large_indentation", "fast_impact"])])
+def test_validity_in_words_in_text_and_json(v0, expected, capsys):
+    api = vcor.simulate("sls", v0)
+    assert cli.main(["impact", "--material", "sls", "--v0", str(v0), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["validity_flags"] == expected and out["validity"]["value"] == api.validity
+    assert cli.main(["impact", "--material", "sls", "--v0", str(v0)]) == 0
+    line = next(l for l in capsys.readouterr().out.splitlines() if l.startswith("validity"))
+    if expected:
+        assert line.split(None, 1)[1].startswith(", ".join(expected)) and api.validity_message in line
+    else:
+        assert "inside the model's stated range" in line
+
+
+def test_a_status_other_than_ok_says_what_to_change(capsys):
+    # a thin plate with the fixed-step reference method: it ends at its step budget
+    code = cli.main(["impact", "--material", "sls", "--v0", "10", "--h", "0.001", "--method", "direct",
+                     "--steps-per-contact", "200"])
+    captured = capsys.readouterr()
+    assert code == 1 and "status step-budget" in captured.err and "use method adaptive" in captured.err
+    assert "validity" not in captured.out  # no validity verdict on a result without one
+
+
+# ----------------------------------------------------------------------------- impact: times
+def test_wall_time_is_the_solve_alone_in_a_fresh_process():
+    """A fresh process loads the kernels from numba's cache (or compiles them) on first use: that time
+    is kernel_load_time, and wall_time is the solve's (some 0.1 ms here, against ~0.1-1 s of loading)."""
+    out = _run("impact", "--material", "sls", "--v0", "10", "--json")
+    assert out.returncode == 0, out.stderr
+    res = json.loads(out.stdout)
+    assert res["kernel_load_time"]["value"] > 0
+    assert res["wall_time"]["value"] < res["kernel_load_time"]["value"]
+    assert res["cor"]["value"] == vcor.simulate("sls", 10.0).cor  # the reported run is the same impact
+
+
+def test_kernels_already_loaded_are_not_timed_again(capsys):
+    vcor.simulate("sls", 10.0)  # this process has the kernels
+    assert cli.main(["impact", "--material", "sls", "--v0", "10", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["kernel_load_time"]["value"] == 0
+
+
+@pytest.mark.slow
+def test_compile_notice_on_a_cold_cache_only(tmp_path):
+    """With an empty numba cache the kernels compile (~10 s): one notice on standard error, naming the
+    cache; wall_time stays the solve's. The next run loads them: no notice."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba-cache")}
+    cold = _run("impact", "--material", "sls", "--v0", "10", "--json", env=env)
+    assert cold.returncode == 0, cold.stderr
+    notices = [l for l in cold.stderr.splitlines() if l.startswith("vcor: compiling the solver kernels")]
+    assert len(notices) == 1 and str(tmp_path / "numba-cache") in notices[0]
+    res = json.loads(cold.stdout)
+    assert res["kernel_load_time"]["value"] > 1.0  # compiling, not loading
+    assert res["wall_time"]["value"] < 0.1 * res["kernel_load_time"]["value"]
+    warm = _run("impact", "--material", "sls", "--v0", "10", "--json", env=env)
+    assert warm.returncode == 0 and "compiling" not in warm.stderr
+    assert json.loads(warm.stdout)["cor"] == res["cor"]
+
+
+# ----------------------------------------------------------------------------- impact: bad numbers
+@pytest.mark.parametrize("args, flag, words", [
+    (["--v0", "abc"], "--v0", ["'abc' is not a number", "[1e-09, 100000] m/s", "unit m/s"]),
+    (["--v0", "-1"], "--v0", ["[1e-09, 100000] m/s", "got -1.0", "unit m/s"]),
+    (["--v0", "10", "--r", "0"], "--r", ["[1e-09, 1000] m", "got 0.0", "sphere radius", "unit m"]),
+    (["--v0", "10", "--nu", "0.7"], "--nu", ["(-1, 0.5]", "no unit"]),
+    (["--v0", "10", "--step-tol", "1"], "--step-tol", ["(0, 0.01)", "no unit"]),
+    (["--v0", "10", "--max-steps", "1.5"], "--max-steps", ["not an integer", ">= 100"]),
+    (["--v0", "10", "--dt", "x"], "--dt", ["(0, inf) s", "unit s"]),
+    (["--v0", "10", "--case", "5"], "--case", ["1, 2, 3, 4"]),
+])
+def test_bad_numbers_are_refused_naming_option_unit_and_range(args, flag, words):
+    out = _run("impact", "--material", "sls", *args)
+    assert out.returncode == 2 and out.stdout == ""
+    assert f"argument {flag}" in out.stderr
+    for w in words:
+        assert w in out.stderr, (w, out.stderr)
+    assert "compiling" not in out.stderr  # refused before any work
+
+
+def test_bad_numbers_are_refused_before_any_work(monkeypatch, capsys):
+    from vcor.solvers import simulate as front_end
+
+    monkeypatch.setattr(front_end, "simulate", lambda *a, **k: pytest.fail("solved a refused input"))
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["impact", "--material", "sls", "--v0", "abc"])
+    assert stop.value.code == 2 and "--v0" in capsys.readouterr().err
+
+
+def test_every_numeric_flag_checks_like_the_library(capsys):
+    """Each numeric flag takes what the library takes and refuses, at parsing, what it refuses."""
+    parser = cli.build_parser()
+    base = ["impact", "--material", "sls", "--v0", "1"]
+    for name in ("r", "rho_a", "rho_b", "h", "E_plate"):
+        lo, hi = RANGES[name]
+        flag = "--" + name.replace("_", "-")
+        for ok in (lo, hi):
+            assert getattr(parser.parse_args([*base, flag, repr(ok)]), name) == ok
+        for bad in (lo / 2, hi * 2, "nan", "zero"):
+            with pytest.raises(SystemExit):
+                parser.parse_args([*base, flag, str(bad)])
+            err = capsys.readouterr().err
+            assert f"argument {flag}" in err and f"[{lo:g}, {hi:g}]" in err and "unit" in err, err
+    for name in ("steps_per_contact", "max_steps", "max_adaptive_steps", "step_tol", "rtol", "soe_tol", "dt", "c2"):
+        flag = "--" + name.replace("_", "-")
+        with pytest.raises(SystemExit):
+            parser.parse_args([*base, flag, "abc"])
+        err = capsys.readouterr().err
+        assert f"argument {flag}" in err and "is not a number" in err and "must be" in err, err
+        assert "unit" in err, err
+
+
+# ----------------------------------------------------------------------------- impact: other errors
 def test_material_is_required_and_checked():
     with pytest.raises(SystemExit):
         cli.build_parser().parse_args(["impact", "--v0", "1"])
@@ -44,21 +204,28 @@ def test_material_is_required_and_checked():
     assert out.returncode == 2 and "--material" in out.stderr and "sls" in out.stderr
 
 
-def test_a_status_other_than_ok_says_what_to_change(capsys):
-    # a thin plate with the fixed-step reference method: it ends at its step budget
-    code = cli.main(["impact", "--material", "sls", "--v0", "10", "--h", "0.001", "--method", "direct",
-                     "--steps-per-contact", "200"])
-    err = capsys.readouterr().err
-    assert code == 1 and "status step-budget" in err and "use method adaptive" in err
+# ----------------------------------------------------------------------------- entry points
+def test_console_script_python_m_vcor_and_version():
+    args = ["impact", "--v0", "5", "--rigid", "--material", "elastic", "--json"]
+    script = subprocess.run(["vcor", *args], capture_output=True, text=True, check=False)
+    module = _run(*args)
+    assert script.returncode == 0 and module.returncode == 0, module.stderr
+    assert abs(json.loads(script.stdout)["cor"]["value"] - 1.0) < 1e-6
+    assert json.loads(module.stdout)["cor"] == json.loads(script.stdout)["cor"]
+    for command in (["vcor"], PYTHON_M_VCOR):
+        version = subprocess.run([*command, "--version"], capture_output=True, text=True, check=False)
+        assert version.returncode == 0 and version.stdout.strip() == f"vcor {vcor.__version__}"
+    usage = _run()
+    assert usage.returncode == 2 and usage.stderr.startswith("usage: vcor ")
 
 
-def test_console_script_and_version():
-    out = subprocess.run(["vcor", "impact", "--v0", "5", "--rigid", "--material", "elastic", "--json"],
-                         capture_output=True, text=True, check=False)
-    assert out.returncode == 0
-    assert abs(json.loads(out.stdout)["cor"]["value"] - 1.0) < 1e-6
-    version = subprocess.run(["vcor", "--version"], capture_output=True, text=True, check=False)
-    assert version.returncode == 0 and version.stdout.strip() == f"vcor {vcor.__version__}"
+def test_a_reader_that_stops_early_is_not_an_error():
+    proc = subprocess.Popen([*PYTHON_M_VCOR, "materials", "--json"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc.stdout.readline()
+    proc.stdout.close()
+    err = proc.stderr.read().decode()
+    proc.stderr.close()
+    assert proc.wait() == 0 and "Traceback" not in err, err
 
 
 def test_every_option_of_impact_names_its_unit_or_says_it_has_none():
@@ -81,28 +248,68 @@ def test_flags_are_spelt_with_dashes_and_the_old_spellings_still_work():
             assert "_" not in action.option_strings[0], action.option_strings  # the first spelling: dashes
 
 
-def test_materials_lists_presets_and_a_configs_materials(tmp_path, capsys):
+# ----------------------------------------------------------------------------- materials
+def _kinds(cls=Material):
+    for sub in cls.__subclasses__():
+        yield sub
+        yield from _kinds(sub)
+
+
+def test_every_model_has_a_formula_and_every_parameter_a_unit():
+    kinds = {getattr(c, "kind", None) for c in _kinds()} - {"eq1", None}  # eq1: two bodies, never by name
+    kinds |= {vcor.materials.get(name).kind for name in vcor.materials.PRESETS}
+    assert kinds <= set(cli.MODEL_FORMULAS), kinds - set(cli.MODEL_FORMULAS)
+    for name in vcor.materials.PRESETS:
+        material = vcor.materials.get(name)
+        names = [p for p, _ in cli.MODEL_FORMULAS[material.kind][2]]
+        assert sorted(names) == sorted(material.params()), name
+        assert name in cli.PRESET_REFERENCES
+
+
+def test_materials_text_has_units_formulas_and_sources(capsys):
     assert cli.main(["materials"]) == 0
     text = capsys.readouterr().out
     for name in vcor.materials.PRESETS:
-        assert name in text
+        material = vcor.materials.get(name)
+        assert f"{name}  (preset: {cli.PRESET_REFERENCES[name]})" in text
+        formula_name, formula, params = cli.MODEL_FORMULAS[material.kind]
+        block = text.split(f"{name}  (preset")[1]
+        assert formula_name in block and formula in block
+        lines = block.splitlines()[3: 3 + len(params)]
+        assert [l.split()[0] for l in lines] == [p for p, _ in params]  # the formula's order
+        for line, (_, unit) in zip(lines, params):
+            assert line.endswith(f" [{cli._TEXT_UNITS.get(unit, unit)}]"), line
+    assert "Green 2026, Eq. 14" in text and "Eq. 26" in text and "[Pa s^0.5]" in text
+
+
+def test_materials_json_and_a_configs_materials(tmp_path, capsys):
     config = tmp_path / "config.yaml"
-    config.write_text("materials:\n  my-sls: {model: sls, E_glassy: 2.0e+7, alpha: 100, beta: 1000}\nscenes: {}\n")
+    config.write_text("materials:\n  my-sls: {model: sls, E_glassy: 2.0e+7, alpha: 100, beta: 1000,\n"
+                      "           shift: {model: wlf, C1: 8.86, C2: 101.6, T_ref: 25}}\n")
     assert cli.main(["materials", "--config", str(config), "--json"]) == 0
     rows = {r["name"]: r for r in json.loads(capsys.readouterr().out)}
-    assert rows["my-sls"]["source"] == "config" and rows["my-sls"]["parameters"]["E_glassy"] == 2e7
-    assert rows["sls"]["source"] == "preset"
+    mine = rows["my-sls"]
+    assert mine["source"] == "config" and mine["reference"].endswith("materials.my-sls")
+    assert list(mine["parameters"]) == ["E_glassy", "alpha", "beta"]
+    assert mine["parameters"]["E_glassy"] == {"value": 2e7, "units": "Pa"}
+    assert mine["parameters"]["alpha"]["units"] == "s-1"
+    assert mine["shift"]["model"] == "wlf" and mine["shift"]["parameters"]["C2"] == {"value": 101.6, "units": "K"}
+    prony = rows["butyl-prony3"]
+    assert prony["source"] == "preset" and prony["reference"] == cli.PRESET_REFERENCES["butyl-prony3"]
+    assert list(prony["parameters"]) == ["E_inf", "E", "beta"]
+    assert prony["parameters"]["E"]["value"] == list(vcor.materials.get("butyl-prony3").E)  # full precision
     config.write_text("materials:\n  my-sls: {model: sls, E_glassy: -1, alpha: 100, beta: 1000}\n")
     assert cli.main(["materials", "--config", str(config)]) == 2
     assert "materials.my-sls" in capsys.readouterr().err
 
 
+# ----------------------------------------------------------------------------- export
 def test_export_writes_a_tidy_table_with_units(tmp_path, capsys):
     sc = {"materials": ["sls", "butyl-prony3"], "grid": {"v0": [1.0, 10.0], "h": [0.02, 0.005]}}
-    ids = {m: Catalogue().identity(m) for m in sc["materials"]}
-    shard = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
+    points = scene.scene_points(sc)
+    shard = runner.run_points(points, scene.settings_of(sc))
     shard.attrs["code_fingerprint"] = vcor.provenance.code_fingerprint()
-    ds = aggregation.aggregate([_with_ids(shard, ids)], sc, ids)
+    ds = aggregation.aggregate([shard], [list(range(len(points)))], scene.grid_of(sc), sc)
     path = write_dataset(ds, tmp_path / "sweep.nc", title="t")
     out = tmp_path / "sweep.csv"
     assert cli.main(["export", str(path), "--csv", str(out)]) == 0
@@ -119,9 +326,3 @@ def test_export_writes_a_tidy_table_with_units(tmp_path, capsys):
                                                               h=float(first["h [m]"])).cor, rel=1e-15)
     assert cli.main(["export", str(tmp_path / "missing.nc")]) == 2
     assert "does not exist" in capsys.readouterr().err
-
-
-def _with_ids(shard, ids):
-    shard = shard.copy()
-    shard["material_id"] = ("point", [ids[str(m)] for m in shard["material"].values])
-    return shard.set_coords("material_id")

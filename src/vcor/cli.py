@@ -1,28 +1,45 @@
-"""The ``vcor`` command line: one impact, the materials a project can name, a dataset as a table.
+"""The ``vcor`` command line (also ``python -m vcor``): one impact, the materials a project can name, a
+dataset as a table.
 
 ::
 
     vcor impact --material sls --v0 10 [--json]         one impact (method adaptive unless --method)
-    vcor materials [--config config.yaml] [--json]      presets and a config's materials
+    vcor materials [--config config.yaml] [--json]      presets and a config's materials, with units
     vcor export results/sls/sweep.nc [--csv FILE]       a dataset as a tidy table (one row per point)
     vcor --version
 
+``vcor impact`` prints each number with its unit, to 5 significant digits (2 for the energy residual
+and the times of the run; ``--json`` keeps full precision), and its validity in words: the names of
+the flags set (:data:`vcor.solvers.validity.FLAGS`) and the sentence saying why.
+
+Its ``wall_time`` is the solve alone. The numba kernels are loaded from numba's cache on first use in
+a process, or compiled when the cache is empty or stale (about 10 s; a one-line notice on standard
+error says so while it happens); that time is ``kernel_load_time``, reported beside it. When the
+first run spent time loading or compiling kernels, the impact is solved a second time with the kernels
+in memory, and that run is the one reported (the same numbers: the solvers are deterministic).
+
 Exit codes: 0 ok; 1 the impact ended with a status other than ok (its message says what to change);
-2 bad input (the message names the parameter and the allowed range).
+2 bad input (the message names the option, its unit and the allowed range; numbers are checked before
+any work).
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import math
+import os
 import sys
 from pathlib import Path
 
-from .contact.impact import GEOMETRY_DEFAULTS
+from .checks import number
+from .contact.impact import GEOMETRY_DEFAULTS, RANGE_UNITS, RANGES, Geometry
 from .solvers.options import BOOLEAN_OPTIONS, OPTION_HELP, OPTION_UNITS, SolverOptions
 from .version import __version__
 
-__all__ = ["GEOMETRY_FLAGS", "build_parser", "impact_options", "main"]
+__all__ = ["COMPILE_NOTICE", "GEOMETRY_FLAGS", "MODEL_FORMULAS", "PRESET_REFERENCES", "build_parser",
+           "impact_options", "main", "validity_flags"]
 
 _INTEGER_OPTIONS = ("steps_per_contact", "max_steps", "max_adaptive_steps")
 
@@ -37,7 +54,52 @@ GEOMETRY_FLAGS = {
     "nu_plate": ("Poisson ratio of the elastic plate (case 4)", "none (dimensionless)", GEOMETRY_DEFAULTS["nu_plate"]),
 }
 
+#: printed on standard error when a solver kernel starts compiling (numba's cache empty or stale)
+COMPILE_NOTICE = "vcor: compiling the solver kernels, once (about 10 s; cached in {cache})"
 
+#: model kind -> (formula name, E(t), ((parameter, UDUNITS unit), ...) in the order the formula names them)
+MODEL_FORMULAS = {
+    "sls": ("standard linear solid (Zener), Green 2026 Eq. 13",
+            "E(t) = E_glassy [alpha/beta + (1 - alpha/beta) exp(-beta t)]",
+            (("E_glassy", "Pa"), ("alpha", "s-1"), ("beta", "s-1"))),
+    "prony": ("generalised Maxwell (Prony series)", "E(t) = E_inf + sum_i E_i exp(-beta_i t)",
+              (("E_inf", "Pa"), ("E", "Pa"), ("beta", "s-1"))),
+    "fractional": ("fractional, order 1/2 (Bagley-Torvik), Green 2026 Eq. 23", "E(t) = E0 + E1 / sqrt(pi t)",
+                   (("E0", "Pa"), ("E1", "Pa s0.5"))),
+    "cerf": ("Mittag-Leffler, order 1/2 (CERF), Green 2026 Eq. 24", "E(t) = E0 + E1 erfcx(b1 sqrt(t))",
+             (("E0", "Pa"), ("E1", "Pa"), ("b1", "s-0.5"))),
+    "kelvin-voigt": ("Kelvin-Voigt, Ramirez et al. 1999 Eq. 3 (A = tau)", "E(t) = E [1 + tau delta(t)]",
+                     (("E", "Pa"), ("tau", "s"))),
+    "elastic": ("elastic", "E(t) = E", (("E", "Pa"),)),
+}
+
+#: preset -> where its numbers come from
+PRESET_REFERENCES = {
+    "sls": "Green 2026, Eq. 14",
+    "butyl-fc": "Green 2026, Eq. 23b (Bagley and Torvik's Butyl B252 data)",
+    "butyl-cerf": "Green 2026, Eq. 24 (the paper's CERF fit of butyl-fc)",
+    "butyl-prony3": "Green 2026, Eq. 26 (Szumski's three-term Prony fit)",
+    "elastic": "the glassy modulus of sls without relaxation (the elastic-limit check)",
+    "kelvin-voigt": "illustrative values, not from a paper",
+}
+
+#: shift function model -> UDUNITS unit of each of its parameters
+_SHIFT_UNITS = {"C1": "1", "C2": "K", "T_ref": "degC", "E_a": "J mol-1", "T": "degC", "log_aT": "1"}
+
+#: UDUNITS strings -> the units the text output writes
+_TEXT_UNITS = {"m s-1": "m/s", "rad s-1": "rad/s", "s-1": "1/s", "s-0.5": "s^-0.5", "Pa s0.5": "Pa s^0.5",
+               "J mol-1": "J/mol", "degC": "deg C"}
+
+#: significant digits of the text output (default 5: the default method's COR and t0 are accurate to
+#: ~1e-6 relative; the energy residual and the run's times are indicators, two digits say enough)
+_DIGITS = {"energy_residual": 2, "wall_time": 2, "kernel_load_time": 2, "dt": 3}
+
+#: the text output's description of the two times of a run
+_TIME_NOTES = {"wall_time": "the solve alone (kernels already loaded)",
+               "kernel_load_time": "loading (on a cold cache: compiling) the numba kernels; not in wall_time"}
+
+
+# ----------------------------------------------------------------------------- numbers on the command line
 def _flags(name: str) -> list[str]:
     """``--name-with-dashes`` and, where it differs, the old spelling ``--name_with_underscores``."""
     dashed = f"--{name.replace('_', '-')}"
@@ -48,17 +110,62 @@ def _unit_text(unit: str) -> str:
     return "no unit" if unit in ("none", "1") or unit.startswith("none") else f"unit {unit}"
 
 
-def _add_impact(sub) -> list:
-    """Add the impact subcommand to ``sub``; returns its options (argparse actions)."""
-    actions = []
-    imp = sub.add_parser("impact", help="simulate one sphere-plate impact and print its outcome with units",
-                         description="Simulate one impact (vcor.simulate) and print the result with units.")
-    _add(actions, imp, "--material", required=True,
-                     help="a preset (vcor materials lists them), a material file (.nc or .json), or a name of "
-                          "--config's materials, fits or calibrations [no unit; required]")
-    _add(actions, imp, "--config", default=None, help="a config.yaml whose materials block defines --material "
-                     "(relative paths from its folder) [no unit; default: none]")
-    _add(actions, imp, "--v0", type=float, required=True, help="impact speed, > 0 [unit m/s; required]")
+def _as_number(text: str, integer: bool):
+    """``text`` as an int (``integer``, when it is a whole number) or a float; None if not a number."""
+    try:
+        value = float(text)
+    except ValueError:
+        return None
+    return int(value) if integer and math.isfinite(value) and value.is_integer() else value
+
+
+def _numeric(what: str, unit: str, check, integer: bool = False):
+    """An argparse ``type``: the number, checked by ``check`` (the library's own validation, which
+    raises ValueError naming the parameter and the allowed range); a refusal names the quantity
+    (``what``, unless empty) and its unit too. A text that is not a number (or not a whole number for
+    an ``integer`` option) gets the allowed range from a value always refused (NaN, or -1 for the
+    integer options, whose lower bounds are >= 10)."""
+
+    said = f"({what}, {_unit_text(unit)})" if what else f"({_unit_text(unit)})"
+
+    def parse(text):
+        value = _as_number(text, integer)
+        whole = value is not None and (isinstance(value, int) or not integer)
+        try:
+            check(value if whole else (-1 if integer else math.nan))
+        except ValueError as exc:
+            kind = "an integer" if integer and value is not None else "a number"
+            rule = str(exc) if whole else f"{text!r} is not {kind}: {str(exc).rsplit(', got ', 1)[0]}"
+            raise argparse.ArgumentTypeError(f"{rule} {said}") from None
+        if not whole:  # pragma: no cover - every check refuses NaN and -1
+            raise argparse.ArgumentTypeError(f"{text!r} is not a number {said}")
+        return value
+
+    return parse
+
+
+def _v0_check(value):
+    number("v0", value, *RANGES["v0"], lo_open=False, hi_open=False, unit=RANGE_UNITS["v0"])
+
+
+def _geometry_check(name: str):
+    return lambda value: Geometry(**{name: value})
+
+
+def _option_check(name: str):
+    """SolverOptions' own check of option ``name``, with a method that uses it (c2: with volterra)."""
+    fixed = {"method": SolverOptions.methods_of(name)[0], **({"volterra": True} if name == "c2" else {})}
+    return lambda value: SolverOptions(**fixed, **{name: value})
+
+
+def _case(text: str) -> int:
+    if text.strip() not in ("1", "2", "3", "4"):
+        raise argparse.ArgumentTypeError(f"{text!r} is not one of 1, 2, 3, 4 (which body is viscoelastic; no unit)")
+    return int(text)
+
+
+# ----------------------------------------------------------------------------- the parser
+def _add_solver_options(actions, imp):
     for name in SolverOptions.names():
         if name == "ghost":
             continue  # histories only; the command prints scalars
@@ -70,24 +177,41 @@ def _add_impact(sub) -> list:
             _add(actions, imp, *_flags(name), dest=name, action="store_true", default=None, help=help_text)
         elif name in BOOLEAN_OPTIONS:
             _add(actions, imp, *_flags(name), dest=name, action=argparse.BooleanOptionalAction, default=None,
-                             help=help_text)
+                 help=help_text)
         elif SolverOptions.allowed_of(name) is not None:
             _add(actions, imp, *_flags(name), dest=name, choices=SolverOptions.allowed_of(name), default=None,
-                             help=help_text)
+                 help=help_text)
         else:
-            _add(actions, imp, *_flags(name), dest=name, type=int if name in _INTEGER_OPTIONS else float, default=None,
-                             help=help_text)
+            kind = _numeric("", OPTION_UNITS[name], _option_check(name),
+                            integer=name in _INTEGER_OPTIONS)
+            _add(actions, imp, *_flags(name), dest=name, type=kind, default=None, help=help_text)
+
+
+def _add_impact(sub) -> list:
+    """Add the impact subcommand to ``sub``; returns its options (argparse actions)."""
+    actions = []
+    imp = sub.add_parser("impact", help="simulate one sphere-plate impact and print its outcome with units",
+                         description="Simulate one impact (vcor.simulate) and print the result with units.")
+    _add(actions, imp, "--material", required=True,
+         help="a preset (vcor materials lists them), a material file (.nc or .json), or a name of "
+              "--config's materials, fits or calibrations [no unit; required]")
+    _add(actions, imp, "--config", default=None, help="a config.yaml whose materials block defines --material "
+         "(relative paths from its folder) [no unit; default: none]")
+    low, high = RANGES["v0"]
+    _add(actions, imp, "--v0", type=_numeric("impact speed", RANGE_UNITS["v0"], _v0_check), required=True,
+         help=f"impact speed, in [{low:g}, {high:g}] [unit {RANGE_UNITS['v0']}; required]")
+    _add_solver_options(actions, imp)
     for key, (text, unit, default) in GEOMETRY_FLAGS.items():
-        _add(actions, imp, *_flags(key), dest=key, type=float, default=None,
-                         help=f"{text} [{_unit_text(unit)}; default {default}]")
-    _add(actions, imp, "--case", type=int, default=None, choices=(1, 2, 3, 4),
-                     help="which body is viscoelastic (Green 2026, Sec. 3): 1 both elastic, 2 sphere and plate of "
-                          "the material, 3 a stiff sphere on a plate of the material, 4 a sphere of the material on "
-                          "a stiff plate [no unit; default 3]")
+        _add(actions, imp, *_flags(key), dest=key, type=_numeric(text, unit, _geometry_check(key)), default=None,
+             help=f"{text} [{_unit_text(unit)}; default {default}]")
+    _add(actions, imp, "--case", type=_case, default=None, choices=(1, 2, 3, 4),
+         help="which body is viscoelastic (Green 2026, Sec. 3): 1 both elastic, 2 sphere and plate of "
+              "the material, 3 a stiff sphere on a plate of the material, 4 a sphere of the material on "
+              "a stiff plate [no unit; default 3]")
     _add(actions, imp, "--rigid", action="store_true", help="rigid, immovable target (plate mobility 0) [no unit; "
-                     "default off]")
-    _add(actions, imp, "--json", action="store_true", help="print JSON, every number with its unit [no unit; "
          "default off]")
+    _add(actions, imp, "--json", action="store_true", help="print JSON, every number with its unit, full precision "
+         "[no unit; default off]")
     return actions
 
 
@@ -107,7 +231,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"vcor {__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="{impact,materials,export}")
     _add_impact(sub)
-    mats = sub.add_parser("materials", help="list the presets and a config's materials with their parameters",
+    mats = sub.add_parser("materials", help="list the presets and a config's materials: model, formula, "
+                          "parameters with units, and where the numbers come from",
                           description="List the materials a project can name: presets, and with --config its "
                                       "materials, fits and calibrations.")
     mats.add_argument("--config", default=None, help="a config.yaml [no unit; default: presets only]")
@@ -136,15 +261,110 @@ def _catalogue(config):
     cfg = yaml.safe_load(path.read_text()) or {}
     if not isinstance(cfg, dict):
         raise ValueError(f"--config {str(path)!r}: not a mapping of config keys")
-    cfg.setdefault("scenes", {})
-    base = path.parent
-    return load_project({**cfg, "scenes": {}}, base_dir=base).catalogue
+    return load_project({**cfg, "scenes": {}}, base_dir=path.parent, require_targets=False).catalogue
+
+
+# ----------------------------------------------------------------------------- one impact
+@contextlib.contextmanager
+def _kernel_watch(stream):
+    """Watch numba while a solve runs (numba's event API): print :data:`COMPILE_NOTICE` on ``stream``
+    when the first vcor kernel starts compiling (a cache miss: numba fires ``numba:compile`` only then,
+    not when it loads a kernel from its cache), and time numba's compiler lock, held while a kernel is
+    loaded or compiled. Yields a dict whose ``seconds`` (that time) and ``compiled`` are final on exit."""
+    from numba.core import event
+
+    record = {"seconds": 0.0, "compiled": False}
+
+    class Notice(event.Listener):
+        def on_start(self, ev):
+            dispatcher = ev.data["dispatcher"]
+            if record["compiled"] or not dispatcher.py_func.__module__.startswith("vcor."):
+                return
+            record["compiled"] = True
+            print(COMPILE_NOTICE.format(cache=dispatcher.stats.cache_path), file=stream, flush=True)
+
+        def on_end(self, ev):
+            pass
+
+    def add(seconds):
+        record["seconds"] += seconds
+
+    with event.install_listener("numba:compile", Notice()), event.install_timer("numba:compiler_lock", add):
+        yield record
+
+
+def _solve(material, v0, options, geometry):
+    """(Result, kernel load time in s): the result's wall_time is the solve alone (module docstring)."""
+    from .solvers.simulate import simulate
+
+    with _kernel_watch(sys.stderr) as watch:
+        res = simulate(material, v0, options=options, **geometry)
+    if watch["seconds"] > 0:
+        res = simulate(material, v0, options=options, **geometry)
+    return res, watch["seconds"]
+
+
+def _fmt(value, digits: int = 5) -> str:
+    """A number to ``digits`` significant digits: fixed point in [0.01, 1e5), else 1.2345e-4."""
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_fmt(v, digits) for v in value) + "]"
+    if isinstance(value, (bool, int)):
+        return str(value)
+    v = float(value)
+    if v == 0 or not math.isfinite(v) or 1e-2 <= abs(v) < 1e5:
+        return f"{v:.{digits}g}"
+    mantissa, exponent = f"{v:.{digits - 1}e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".") if "." in mantissa else mantissa
+    return f"{mantissa}e{int(exponent)}"
+
+
+def _text_unit(units: str) -> str:
+    return f"[{_TEXT_UNITS.get(units, units)}]"
+
+
+def validity_flags(mask: int) -> list[str]:
+    """The names of the validity flags set in ``mask`` (:data:`vcor.solvers.validity.FLAGS`)."""
+    from .solvers.validity import FLAGS
+
+    return [name for name, bit in FLAGS.items() if mask & bit]
+
+
+def _impact_json(res, load_time: float) -> dict:
+    out = {}
+    for key, value in res.with_units().items():
+        out[key] = value
+        if key == "wall_time":
+            out["kernel_load_time"] = {"value": load_time, "units": "s"}
+        elif key == "validity":
+            out["validity_flags"] = validity_flags(res.validity)
+    return out
+
+
+def _impact_lines(res, load_time: float) -> list[str]:
+    from .solvers.common import LONG_NAMES, UNITS
+
+    lines = []
+    for key, value in res.scalars().items():
+        if key in ("status", "message", "method", "validity", "validity_message"):
+            continue
+        note = _TIME_NOTES.get(key, LONG_NAMES.get(key, ""))
+        lines.append(f"{key:17s} {_fmt(value, _DIGITS.get(key, 5)):12s} {_text_unit(UNITS[key]):8s} {note}")
+        if key == "wall_time":
+            lines.append(f"{'kernel_load_time':17s} {_fmt(load_time, 2):12s} {'[s]':8s} "
+                         f"{_TIME_NOTES['kernel_load_time']}")
+    lines += [f"{'method':17s} {res.method}", f"{'status':17s} {res.status}"]
+    if res.message:
+        lines.append(f"{'message':17s} {res.message}")
+    if res.ok:
+        names = validity_flags(res.validity)
+        said = (f"{', '.join(names)} (flags {res.validity}): {res.validity_message}" if names
+                else "inside the model's stated range (no validity flag)")
+        lines.append(f"{'validity':17s} {said}")
+    return lines
 
 
 def _impact(args) -> int:
     from .materials.files import from_file
-    from .solvers.common import UNITS
-    from .solvers.simulate import simulate
 
     geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if getattr(args, k, None) is not None}
     if args.rigid:
@@ -157,41 +377,73 @@ def _impact(args) -> int:
     else:
         catalogue.check(name, "--material")
         material = catalogue.material(name)
-    res = simulate(material, args.v0, options=options, **geometry)
+    res, load_time = _solve(material, args.v0, options, geometry)
     if args.json:
-        print(json.dumps(res.with_units(), indent=2))
+        print(json.dumps(_impact_json(res, load_time), indent=2))
     else:
-        for key, value in res.scalars().items():
-            unit = UNITS.get(key)
-            print(f"{key:16s} {value}" + (f" {unit}" if unit and unit != "1" else ""))
+        print("\n".join(_impact_lines(res, load_time)))
     if not res.ok:
         print(f"vcor: status {res.status}: {res.message}", file=sys.stderr)
     return 0 if res.ok else 1
 
 
+# ----------------------------------------------------------------------------- materials
+def _parameters(kind: str, params: dict) -> dict:
+    """{parameter: {"value", "units"}} in the formula's order (:data:`MODEL_FORMULAS`)."""
+    order = MODEL_FORMULAS[kind][2] if kind in MODEL_FORMULAS else ()
+    known = [(p, unit) for p, unit in order if p in params]
+    rest = [(p, "see vcor.materials") for p in params if p not in dict(order)]
+    return {p: {"value": params[p], "units": unit} for p, unit in known + rest}
+
+
+def _material_row(catalogue, name: str, config) -> dict:
+    source = catalogue.source(name)
+    reference = PRESET_REFERENCES.get(name) if source == "preset" else \
+        f"{config}: {'materials' if source == 'config' else source + 's'}.{name}"
+    try:
+        d = catalogue.material(name).to_dict()
+        shift = catalogue.shift(name)
+    except ValueError as exc:  # a fit or calibration not computed yet
+        return {"name": name, "source": source, "reference": reference, "model": None, "formula_name": None,
+                "formula": None, "parameters": {}, "shift": None, "note": f"not computed yet: {exc}"}
+    kind = d.pop("kind")
+    formula_name, formula, _ = MODEL_FORMULAS.get(kind, (kind, "see vcor.materials", ()))
+    shift_row = None
+    if shift:
+        spec = shift.to_dict()
+        shift_row = {"model": spec.pop("model"),
+                     "parameters": {k: {"value": v, "units": _SHIFT_UNITS.get(k, "1")} for k, v in spec.items()}}
+    return {"name": name, "source": source, "reference": reference, "model": kind, "formula_name": formula_name,
+            "formula": formula, "parameters": _parameters(kind, d), "shift": shift_row}
+
+
+def _material_lines(row: dict) -> list[str]:
+    lines = [f"{row['name']}  ({row['source']}: {row['reference']})"]
+    if row["model"] is None:
+        return [*lines, f"    {row['note']}"]
+    lines.append(f"    {'model':10s} {row['model']}: {row['formula_name']}")
+    lines.append(f"    {'':10s} {row['formula']}")
+    for p, v in row["parameters"].items():
+        lines.append(f"    {p:10s} {_fmt(v['value']):12s} {_text_unit(v['units'])}")
+    if row["shift"]:
+        shift = ", ".join(f"{k} = {_fmt(v['value'])} {_text_unit(v['units'])}"
+                          for k, v in row["shift"]["parameters"].items())
+        lines.append(f"    {'shift':10s} {row['shift']['model']}: {shift}")
+    return lines
+
+
 def _materials(args) -> int:
-    catalogue = _catalogue(args.config)
-    rows = []
     from .materials.presets import PRESETS
 
-    for name in [*PRESETS, *catalogue.specs, *catalogue.fits, *catalogue.calibrations]:
-        source = catalogue.source(name)
-        try:
-            d = catalogue.material(name).to_dict()
-            shift = catalogue.shift(name)
-        except ValueError as exc:  # a fit or calibration not computed yet
-            d, shift = {"kind": "(not computed yet)", "note": str(exc)}, None
-        rows.append({"name": name, "source": source, "model": d.pop("kind"), "parameters": d,
-                     "shift": shift.to_dict() if shift else None})
+    catalogue = _catalogue(args.config)
+    names = [*PRESETS, *catalogue.specs, *catalogue.fits, *catalogue.calibrations]
+    rows = [_material_row(catalogue, name, args.config) for name in names]
     if args.json:
         print(json.dumps(rows, indent=2))
         return 0
-    print("# parameters in SI: moduli Pa, rates 1/s, times s (the model's own names: vcor.materials)")
-    print(f"{'name':24s} {'source':12s} {'model':14s} parameters")
+    print("# each material: where its numbers come from, its model and E(t), its parameters in SI units")
     for row in rows:
-        params = ", ".join(f"{k}={v}" for k, v in row["parameters"].items())
-        shift = f"; shift {row['shift']}" if row["shift"] else ""
-        print(f"{row['name']:24s} {row['source']:12s} {row['model']:14s} {params}{shift}")
+        print("\n".join(_material_lines(row)))
     return 0
 
 
@@ -207,6 +459,7 @@ def _export(args) -> int:
 
 
 def main(argv=None) -> int:
+    """Run the command line; returns the exit code (module docstring)."""
     args = build_parser().parse_args(argv)
     run = {"impact": _impact, "materials": _materials, "export": _export}[args.command]
     try:
@@ -214,6 +467,9 @@ def main(argv=None) -> int:
     except ValueError as exc:
         print(f"vcor: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader stopped early (``vcor materials | head``): not an error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":  # pragma: no cover
