@@ -152,3 +152,32 @@ def test_prony_terms_marks_flagged_points_in_both_panels():
     left_open = [line for line in fig.axes[0].get_lines()
                  if str(line.get_markerfacecolor()) == "none" and len(line.get_xdata())]
     assert sorted(np.concatenate([line.get_xdata() for line in left_open])) == [2, 3]
+
+
+def _histories(flags):
+    """A histories dataset shaped like vcor.study.datasets.histories_dataset's, one run per flag, with a
+    ``validity`` variable per run."""
+    n = 50
+    t = np.linspace(0.0, 1e-3, n)
+    runs = [f"sls/method{i}" for i in range(len(flags))]
+    shape = (len(runs), n)
+    wave = np.sin(np.pi * t / t[-1])
+    data = {"t": (("run", "sample"), np.broadcast_to(t, shape)), "s": (("run", "sample"), np.broadcast_to(wave, shape)),
+            "sdot": (("run", "sample"), np.broadcast_to(np.cos(np.pi * t / t[-1]), shape)),
+            "F": (("run", "sample"), np.broadcast_to(wave, shape)),
+            "ghost": (("run", "sample"), np.zeros(shape, np.int8)),
+            "status": ("run", np.zeros(len(runs), np.int8), status.cf_attrs()),
+            "validity": ("run", np.asarray(flags, np.int8), validity.cf_attrs())}
+    for name, value in (("cor", 0.5), ("t0", 1e-3), ("s_max", 1.0), ("f_max", 1.0), ("s_residual", 0.0), ("w_h", 1.0)):
+        data[name] = ("run", np.full(len(runs), value))
+    return xr.Dataset(data, coords={"run": runs}, attrs={"v0": 10.0})
+
+
+def test_history_figures_name_a_flagged_run_and_its_reason():
+    hist = _histories([0, LARGE])
+    runs = {"runs": list(hist["run"].values)}
+    notes = " ".join(t.get_text() for ax in plots.draw("fig2", {"histories": hist}, runs).axes for t in ax.texts)
+    flagged = [line for line in notes.splitlines() if "outside the model's range (s_max/r" in line]
+    assert len(flagged) == 1 and flagged[0].startswith("sls (method1)")
+    labels = _legend_texts(plots.draw("fig3", {"histories": hist}, runs))
+    assert [("outside the model's range" in t) for t in labels] == [False, True]
