@@ -94,9 +94,10 @@ _TEXT_UNITS = {"m s-1": "m/s", "rad s-1": "rad/s", "s-1": "1/s", "s-0.5": "s^-0.
 #: ~1e-6 relative; the energy residual and the run's times are indicators, two digits say enough)
 _DIGITS = {"energy_residual": 2, "wall_time": 2, "kernel_load_time": 2, "dt": 3}
 
-#: the text output's description of the two times of a run
-_TIME_NOTES = {"wall_time": "the solve alone (kernels already loaded)",
-               "kernel_load_time": "loading (on a cold cache: compiling) the numba kernels; not in wall_time"}
+#: the text output's descriptions where they differ from LONG_NAMES (a line within ~100 columns)
+_TEXT_NOTES = {"energy_residual": "energy balance residual, relative to m v0^2/2",
+               "wall_time": "the solve alone (kernels already loaded)",
+               "kernel_load_time": "loading or compiling the numba kernels; not in wall_time"}
 
 
 # ----------------------------------------------------------------------------- numbers on the command line
@@ -343,21 +344,17 @@ def _impact_json(res, load_time: float) -> dict:
 def _impact_lines(res, load_time: float) -> list[str]:
     from .solvers.common import LONG_NAMES, UNITS
 
-    lines = []
-    for key, value in res.scalars().items():
-        if key in ("status", "message", "method", "validity", "validity_message"):
-            continue
-        note = _TIME_NOTES.get(key, LONG_NAMES.get(key, ""))
-        lines.append(f"{key:17s} {_fmt(value, _DIGITS.get(key, 5)):12s} {_text_unit(UNITS[key]):8s} {note}")
-        if key == "wall_time":
-            lines.append(f"{'kernel_load_time':17s} {_fmt(load_time, 2):12s} {'[s]':8s} "
-                         f"{_TIME_NOTES['kernel_load_time']}")
+    numbers = {k: (v, UNITS[k]) for k, v in res.scalars().items() if k in UNITS and k != "validity"}
+    numbers["wall_time"] = numbers.pop("wall_time")  # the run's times last
+    numbers["kernel_load_time"] = (load_time, "s")
+    lines = [f"{key:17s} {_fmt(value, _DIGITS.get(key, 5)):12s} {_text_unit(unit):8s} "
+             f"{_TEXT_NOTES.get(key, LONG_NAMES.get(key, ''))}" for key, (value, unit) in numbers.items()]
     lines += [f"{'method':17s} {res.method}", f"{'status':17s} {res.status}"]
     if res.message:
         lines.append(f"{'message':17s} {res.message}")
     if res.ok:
         names = validity_flags(res.validity)
-        said = (f"{', '.join(names)} (flags {res.validity}): {res.validity_message}" if names
+        said = (f"{', '.join(names)} (mask {res.validity}): {res.validity_message}" if names
                 else "inside the model's stated range (no validity flag)")
         lines.append(f"{'validity':17s} {said}")
     return lines
