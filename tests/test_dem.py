@@ -200,3 +200,22 @@ def test_a_corrupt_dem_dataset_is_found_by_the_archive_check(tmp_path):
     path.parent.mkdir(parents=True)
     path.write_bytes(b"not a NetCDF file")
     assert [p for p, _ in archive.problems(project, tmp_path)] == [path]
+
+
+def test_a_deck_holds_the_lammps_laws_the_entry_fitted(tmp_path):
+    """An entry with one LAMMPS law gets a deck of that law alone (its default, the only model it
+    accepts); one with none is refused naming the models a deck needs."""
+    from vcor.dem import lammps
+
+    col = fit.collision("sls", np.geomspace(0.1, 10.0, 5), sphere={"r": 0.005}, target="rigid")
+    for only, name, var in [("lammps-viscoelastic", "viscoelastic", "eta_n0"),
+                            ("lammps-coeff-restitution", "coeff_restitution", "e")]:
+        ds = export.dem_dataset("t", [col], [fit.fit_laws(col, [only, "table"])])
+        lammps.write_deck(tmp_path / "in.wall", ds)
+        text = (tmp_path / "in.wall").read_text()
+        assert f"variable model   index {name}\n" in text and f"print 'model must be {name}'" in text
+        assert f"variable {var:<7s} index {float(ds[var]):.12g}" in text
+        other = "e" if var == "eta_n0" else "eta_n0"
+        assert f"variable {other:<7s} index" not in text and "elif" not in text
+    with pytest.raises(ValueError, match="no LAMMPS law"):
+        lammps.write_deck(tmp_path / "x", export.dem_dataset("t", [col], [fit.fit_laws(col, ["table"])]))

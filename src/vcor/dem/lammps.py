@@ -26,32 +26,36 @@ NSTEPS = 2000
 _HEADER = """\
 # vcor DEM deck, entry {name}: {what}. Written by vcor.dem.lammps; units si.
 #   lmp -in {deck} -var v0 <m/s> -screen none -log none     prints one line: COR = <value>
-# -var model viscoelastic       damping viscoelastic, eta_n0, limit_damping (the force clipped at zero;
-#                               vcor's separation where the force vanishes)            [default]
-# -var model coeff_restitution  damping coeff_restitution, the constant e, no limit_damping
-# Parameters fitted by vcor (results/dem/{name}.nc){t_note}:
+{usage}# Parameters fitted by vcor (results/dem/{name}.nc){t_note}:
 {table}
 """
 
 _COMMON = """\
 variable v0      index 1.0
-variable model   index viscoelastic
+variable model   index {model}
 variable E       index {E:.12g}
 variable nu      index {nu:.12g}
-variable eta_n0  index {eta_n0:.12g}
-variable e       index {e:.12g}
-variable nsteps  index {nsteps}
+{law_vars}variable nsteps  index {nsteps}
 units            si
 atom_style       sphere
 dimension        3
 boundary         f f f
 comm_modify      vel yes
 atom_modify      map array
-if "${{model}} == viscoelastic" then "variable coef string '${{eta_n0}}'" "variable tail string 'limit_damping'" &
-   elif "${{model}} == coeff_restitution" "variable coef string '${{e}}'" "variable tail string ' '" &
-   else "print 'model must be viscoelastic or coeff_restitution'" "quit 1"
+{choice}
 variable Eeff    equal v_E/(2.0*(1.0-v_nu^2))
 """
+#: the header line of each LAMMPS law
+_USAGE = {
+    "lammps-viscoelastic": "# -var model viscoelastic       damping viscoelastic, eta_n0, limit_damping (the force clipped "
+                           "at zero;\n#                               vcor's separation where the force vanishes)"
+                           "            [default]\n",
+    "lammps-coeff-restitution": "# -var model coeff_restitution  damping coeff_restitution, the constant e, no "
+                                "limit_damping\n",
+}
+#: per LAMMPS law of the dataset: the deck's model name, its coefficient variable, the tail keyword
+_LAWS = {"lammps-viscoelastic": ("viscoelastic", "eta_n0", "limit_damping"),
+         "lammps-coeff-restitution": ("coeff_restitution", "e", " ")}
 
 _PAIR = """\
 variable R1      index {r1:.12g}
@@ -141,11 +145,27 @@ def deck_name(kind: str) -> str:
     return DECK_NAMES[kind]
 
 
+def _choice(present: list) -> str:
+    """The deck's if-chain (``if ... then ... elif ... else``) that sets the coefficient and tail of the
+    chosen law, over the fitted laws only."""
+    branches = [f'"${{model}} == {_LAWS[m][0]}"{" then" if i == 0 else ""} '
+                f'"variable coef string \'${{{_LAWS[m][1]}}}\'" "variable tail string \'{_LAWS[m][2]}\'"'
+                for i, m in enumerate(present)]
+    allowed = " or ".join(_LAWS[m][0] for m in present)
+    return ("if " + " &\n   elif ".join(branches)
+            + f' &\n   else "print \'model must be {allowed}\'" "quit 1"')
+
+
 def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
     """The deck of the DEM dataset ``ds`` (:func:`vcor.dem.export.dem_dataset`) at ``path`` (module
-    docstring); the first temperature's parameters are the defaults."""
+    docstring) with the LAMMPS laws the dataset holds; the first temperature's parameters are the
+    defaults."""
     import json
 
+    present = [m for m in _LAWS if m in ds["model"].values]
+    if not present:
+        raise ValueError(f"dataset {ds.attrs.get('dem', '?')}: no LAMMPS law (models {sorted(_LAWS)}); "
+                         "the entry's models must include one for a deck")
     contact = json.loads(ds.attrs["contact"])
     kind = contact["kind"]
     first = (lambda v: float(ds[v].values.flat[0]))
@@ -154,14 +174,19 @@ def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
     for i in range(ds.sizes["T"] if has_t else 1):
         pick = (lambda v, i=i: float(ds[v].values[i] if has_t else ds[v].values))
         prefix = f"T = {float(ds['T'].values[i]):g} degC: " if has_t else ""
-        rows.append(f"#   {prefix}-var eta_n0 {pick('eta_n0'):.10g}  -var e {pick('e'):.10g}  (E {pick('E_lammps'):.10g} Pa)")
+        coefs = "  ".join(f"-var {_LAWS[m][1]} {pick(_LAWS[m][1]):.10g}" for m in present)
+        rows.append(f"#   {prefix}{coefs}  (E {pick('E_lammps'):.10g} Pa)")
     radii, dens = contact["radii_m"], contact["densities_kg_m-3"]
-    values = {"E": first("E_lammps"), "nu": contact["nu"], "eta_n0": first("eta_n0"), "e": first("e"),
-              "nsteps": int(nsteps), "r1": radii[0], "rho1": dens[0],
+    law_vars = "".join(f"variable {_LAWS[m][1]:<7s} index {first(_LAWS[m][1]):.12g}\n" for m in present)
+    values = {"E": first("E_lammps"), "nu": contact["nu"], "model": _LAWS[present[0]][0], "law_vars": law_vars,
+              "choice": _choice(present), "nsteps": int(nsteps), "r1": radii[0], "rho1": dens[0],
               "r2": radii[-1], "rho2": dens[-1]}
     what = ("two spheres, head-on, v0 = relative approach speed" if kind == "pair"
             else "a sphere on a flat wall, v0 = approach speed")
-    text = _HEADER.format(name=ds.attrs["dem"], what=what, deck=DECK_NAMES[kind], table="\n".join(rows),
+    usage = "".join(_USAGE[m] for m in present)
+    if present[0] != "lammps-viscoelastic":
+        usage = usage.replace("limit_damping\n", "limit_damping   [default]\n")
+    text = _HEADER.format(name=ds.attrs["dem"], what=what, deck=DECK_NAMES[kind], table="\n".join(rows), usage=usage,
                           t_note=", per temperature" if has_t else "")
     text += _COMMON.format(**values) + (_PAIR if kind == "pair" else _WALL).format(**values)
     atomic_text(path, text)
