@@ -219,3 +219,21 @@ def test_a_deck_holds_the_lammps_laws_the_entry_fitted(tmp_path):
         assert f"variable {other:<7s} index" not in text and "elif" not in text
     with pytest.raises(ValueError, match="no LAMMPS law"):
         lammps.write_deck(tmp_path / "x", export.dem_dataset("t", [col], [fit.fit_laws(col, ["table"])]))
+
+
+def test_every_file_the_dem_rules_write_is_a_target_of_the_entry():
+    """The default target and an entry's MANIFEST.txt require every output of the DEM rules (read
+    from workflow/rules/dem.smk), so `snakemake results/dem/<name>/MANIFEST.txt` builds them all."""
+    import re
+    from pathlib import Path
+
+    rules = Path(__file__).parents[1] / "workflow" / "rules" / "dem.smk"
+    outputs = set()
+    for block in re.findall(r"\n    output:\n((?:        .*\n|            .*\n)+)", rules.read_text()):
+        outputs |= set(re.findall(r'"(results/dem/[^"]+)"', block))
+    outputs = {o for o in outputs if not o.endswith("MANIFEST.txt")}
+    assert "results/dem/{dem}/yade/collision.py" in outputs and "results/dem/{dem}/parameters.csv" in outputs
+    targets = set(load_project(BASE, ".").dem_targets("d"))
+    expected = {o.replace("{dem}", "d").replace("{kind}", "pair") for o in outputs}
+    expected = {e for e in expected if "{ext}" not in e}
+    assert expected <= targets, sorted(expected - targets)
