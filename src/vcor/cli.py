@@ -83,7 +83,7 @@ PRESET_REFERENCES = {
     "kelvin-voigt": "illustrative values, not from a paper",
 }
 
-#: shift function model -> UDUNITS unit of each of its parameters
+#: shift function parameter -> its UDUNITS unit (vcor.materials.shift)
 _SHIFT_UNITS = {"C1": "1", "C2": "K", "T_ref": "degC", "E_a": "J mol-1", "T": "degC", "log_aT": "1"}
 
 #: UDUNITS strings -> the units the text output writes
@@ -278,8 +278,9 @@ def _kernel_watch(stream):
 
     class Notice(event.Listener):
         def on_start(self, ev):
-            dispatcher = ev.data["dispatcher"]
-            if record["compiled"] or not dispatcher.py_func.__module__.startswith("vcor."):
+            dispatcher = (ev.data or {}).get("dispatcher")
+            module = getattr(getattr(dispatcher, "py_func", None), "__module__", None) or ""
+            if record["compiled"] or not module.startswith("vcor."):
                 return
             record["compiled"] = True
             print(COMPILE_NOTICE.format(cache=dispatcher.stats.cache_path), file=stream, flush=True)
