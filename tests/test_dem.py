@@ -92,7 +92,7 @@ def test_a_hereditary_curve_the_one_parameter_laws_cannot_follow():
     note = ds.attrs["trend_warning"]
     print(note)
     for words in ("vcor's COR rises", "lammps-viscoelastic, mercurydpm-bshp, yade-mindlin fall", "cor_lookup",
-                  f"{col.cor[0]:.2f} at 0.1 m/s"):
+                  f"{col.cor[0]:.3f} at 0.1 m/s"):
         assert words in note, words
 
 
@@ -103,7 +103,11 @@ def test_no_trend_warning_where_the_law_follows():
     ds = export.dem_dataset("kv", [col], [fit.fit_laws(col)])
     assert not ds["opposite_trend"].values.any() and ds.attrs["trend_warning"] == ""
     assert trend.trend(col.cor, np.isfinite(col.cor)) == -1
-    assert trend.trend([0.5, 0.505], [True, True]) == 0  # within FLAT: no trend
+    assert trend.trend([0.5, 0.5005], [True, True]) == 0 and trend.trend([0.5, 0.502], [True, True]) == 1
+    # opposite trends are flagged only where the law misses the curve by more than the bound
+    ok = np.ones(3, dtype=bool)
+    rising, falling = np.array([0.80, 0.805, 0.81]), np.array([[0.815, 0.805, 0.795]])
+    assert not trend.opposite(rising, falling, ok, 0.02)[0] and trend.opposite(rising, falling, ok, 0.01)[0]
 
 
 def test_dataset_layout_units_and_the_within_range():

@@ -8,8 +8,8 @@ The dataset (CF attributes as every vcor dataset) has the dimensions ``model`` (
 * ``max_abs_error(model[, T])`` over the speeds, and ``v0_within_lo``, ``v0_within_hi``: the widest
   run of consecutive speeds on which ``abs(error) <= WITHIN`` (NaN when there is none);
 * ``opposite_trend(model[, T])``: 1 where the law's COR changes with speed in the opposite sense to
-  vcor's over the range (:mod:`vcor.dem.trend`), and the attribute ``trend_warning`` saying so in
-  words (empty when no law does), pointing to the COR table;
+  vcor's over the range and misses it by more than ``WITHIN`` (:mod:`vcor.dem.trend`), and the
+  attribute ``trend_warning`` saying so in words (empty when no law does), pointing to the COR table;
 * each law's parameters (``eta_n0``, ``E_lammps``, ``e``, ``A``, ``E_eff``, ``en``, ``vn``,
   ``young``), with units and the model they belong to, per temperature;
 * the contact (``m_eff``, ``r_eff``, ``nu``, kind), the collision's config and each law's formula
@@ -84,9 +84,9 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     message = np.array([[str(m) for m in c.message] for c in collisions])
     validity = np.array([c.validity for c in collisions], dtype=np.int8)
     ok = status == code("ok")
-    opposed = np.array([trend.opposite(cor[t], cor_model[t], ok[t]) for t in range(nt)], dtype=np.int8)
+    opposed = np.array([trend.opposite(cor[t], cor_model[t], ok[t], WITHIN) for t in range(nt)], dtype=np.int8)
     prefix = [f"At T = {float(T):g} degC: " if with_t else "" for T in (temperatures if with_t else [None])]
-    warnings = [trend.warning(v0, cor[t], cor_model[t], ok[t], models, prefix[t]) for t in range(nt)]
+    warnings = [trend.warning(v0, cor[t], cor_model[t], ok[t], models, WITHIN, prefix[t]) for t in range(nt)]
 
     def squeeze(dims, arr):
         return (dims, arr) if with_t else (dims[1:], arr[0])
@@ -124,7 +124,8 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
              "v0_within_hi": f"highest speed of the widest run of speeds with abs(error) <= {WITHIN}",
              "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)",
              "opposite_trend": "1 where the law's COR changes with speed in the opposite sense to vcor's over the "
-                               "range (vcor.dem.trend): no value of its parameters follows the curve"}
+                               f"range and misses it by more than {WITHIN} (vcor.dem.trend): no value of its "
+                               "parameters follows the curve"}
     for v, text in names.items():
         ds[v].attrs["long_name"] = text
         if v in units:

@@ -1,11 +1,13 @@
 """Where no fitted DEM law can follow the hereditary curve: the sense in which the COR changes with speed.
 
 The trend of a COR curve is the sign of its change from the lowest to the highest speed whose vcor
-result is ``ok``; a change of at most :data:`FLAT` (absolute COR) counts as flat. A law whose trend is
-the opposite of vcor's (one rises with speed where the other falls) follows the curve with no value
-of its parameters: the fit can only trade the error at one end of the range for the other. A COR
-table (``table.csv``; in Aspherix ``hertz/vel_dependent`` with ``cor_lookup``) is then the route that
-follows vcor's curve. A constant law (``lammps-coeff-restitution``) is flat and never opposite.
+result is ``ok``; a change of at most :data:`FLAT` (absolute COR) counts as flat. A law is flagged
+where its trend is the opposite of vcor's (one rises with speed where the other falls) and it misses
+vcor's COR by more than the dataset's bound (0.01, :data:`vcor.dem.export.WITHIN`) somewhere: no value
+of its parameters follows the curve, the fit can only trade the error at one end of the range for
+the other. (A law within the bound everywhere follows the curve whatever its trend.) A COR table
+(``table.csv``; in Aspherix ``hertz/vel_dependent`` with ``cor_lookup``) is then the route that
+follows vcor's curve. A constant law (``lammps-coeff-restitution``) is flat and never flagged.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ import numpy as np
 __all__ = ["FLAT", "TABLE_ROUTE", "opposite", "trend", "warning"]
 
 #: a change of the COR over the range at most this large (absolute) is no trend
-FLAT = 0.01
+FLAT = 1e-3
 #: the route that follows the hereditary curve where no fitted law does
 TABLE_ROUTE = "the COR table (table.csv; Aspherix hertz/vel_dependent with cor_lookup)"
 
@@ -33,11 +35,13 @@ def trend(values, ok) -> int:
     return 0 if not np.isfinite(change) or abs(change) <= FLAT else int(np.sign(change))
 
 
-def opposite(cor, cor_model, ok) -> np.ndarray:
+def opposite(cor, cor_model, ok, bound: float) -> np.ndarray:
     """Per law (rows of ``cor_model``): True where its trend and that of ``cor`` are non-zero and of
-    opposite sign (module docstring)."""
+    opposite sign and the law misses ``cor`` by more than ``bound`` at an ok speed (module docstring)."""
     ref = trend(cor, ok)
-    return np.array([ref != 0 and trend(row, ok) == -ref for row in np.atleast_2d(cor_model)], dtype=bool)
+    cor, ok = np.asarray(cor, dtype=float), np.asarray(ok, dtype=bool) & np.isfinite(cor)
+    return np.array([ref != 0 and trend(row, ok) == -ref and np.max(np.abs(row[ok] - cor[ok])) > bound
+                     for row in np.atleast_2d(np.asarray(cor_model, dtype=float))], dtype=bool)
 
 
 def _words(sign: int, many: bool = False) -> str:
@@ -46,12 +50,12 @@ def _words(sign: int, many: bool = False) -> str:
     return "rises" if sign > 0 else "falls"
 
 
-def warning(v0, cor, cor_model, ok, models, prefix: str = "") -> str:
-    """One sentence naming the laws whose trend opposes vcor's at these speeds (m/s), with both
+def warning(v0, cor, cor_model, ok, models, bound: float, prefix: str = "") -> str:
+    """One sentence naming the laws flagged by :func:`opposite` at these speeds (m/s), with both
     curves' end values; empty when there is none. Laws with the same curve are named together."""
     v0, cor, ok = np.asarray(v0, dtype=float), np.asarray(cor, dtype=float), np.asarray(ok, dtype=bool)
     cor_model = np.atleast_2d(np.asarray(cor_model, dtype=float))
-    bad = opposite(cor, cor_model, ok)
+    bad = opposite(cor, cor_model, ok, bound)
     if not bad.any():
         return ""
     idx = np.flatnonzero(ok & np.isfinite(cor))
@@ -60,8 +64,8 @@ def warning(v0, cor, cor_model, ok, models, prefix: str = "") -> str:
     groups: dict[tuple, list] = {}
     for k in np.flatnonzero(bad):
         groups.setdefault(tuple(np.round(_ends(cor_model[k], ok), 4)), []).append(str(models[k]))
-    laws = "; ".join(f"{', '.join(names)} {_words(-trend(cor, ok), len(names) > 1)} ({lo:.2f} to {hi:.2f})"
+    laws = "; ".join(f"{', '.join(names)} {_words(-trend(cor, ok), len(names) > 1)} ({lo:.3f} to {hi:.3f})"
                      for (lo, hi), names in groups.items())
-    return (f"{prefix}vcor's COR {_words(trend(cor, ok))} with speed ({c_lo:.2f} at {v_lo:g} m/s to {c_hi:.2f} "
+    return (f"{prefix}vcor's COR {_words(trend(cor, ok))} with speed ({c_lo:.3f} at {v_lo:g} m/s to {c_hi:.3f} "
             f"at {v_hi:g} m/s) while {laws}: no value of these laws' parameters follows the curve; "
             f"{TABLE_ROUTE} does.")
