@@ -24,7 +24,7 @@ LAYERS = (
     ("dem",),
     ("plots",),
     ("study",),
-    ("cli",),
+    ("cli", "__main__"),
 )
 MAX_PARAMETERS = 12
 

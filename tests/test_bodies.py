@@ -112,7 +112,7 @@ SCENE = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}, "sphere": {"material
     ({"sphere": {"material": "sls"}, "plate": {"material": "sls"}}, ["both bodies name a material"]),
     ({"geometry": {"r": 0.02}}, ["scenes.s.geometry", "bodies"]),
     ({"grid": {"v0": [1.0], "h": [0.01, 0.02]}}, ["scenes.s.grid", "geometry axes ['h']"]),
-    ({"sphere": {"material": "my-config-material"}}, ["sphere.material", "inline"]),
+    ({"sphere": {"material": "my-config-material"}}, ["scenes.s.sphere.material", "unknown material"]),
     ({"sphere": {"material": {"model": "elastic", "E": -1.0}}}, ["scenes.s", "sphere.material", "E must be in"]),
     ({"plate": {"rho": 0}}, ["plate.rho"]),
     ({"sphere": {"r": 0.01, "radius": 2}}, ["sphere", "radius"]),

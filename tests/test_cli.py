@@ -63,7 +63,7 @@ def test_text_output_has_significant_digits_and_units(capsys):
         value, unit = rows[key]
         assert _significant_digits(value) <= 5, (key, value)
         assert float(value) == pytest.approx(getattr(api, key), rel=5e-5), (key, value)  # rounded, not changed
-        assert unit == cli._TEXT_UNITS.get(UNITS[key], UNITS[key]), (key, unit)
+        assert unit == cli.TEXT_UNITS.get(UNITS[key], UNITS[key]), (key, unit)
     assert rows["cor"] == (f"{api.cor:.5g}", "1")
     assert "e-" in rows["t0"][0] and rows["t0"][1] == "s"  # 1.3415e-3 s: a small number in powers of ten
     assert _significant_digits(rows["energy_residual"][0]) <= 2
@@ -278,7 +278,7 @@ def test_materials_text_has_units_formulas_and_sources(capsys):
         lines = block.splitlines()[3: 3 + len(params)]
         assert [l.split()[0] for l in lines] == [p for p, _ in params]  # the formula's order
         for line, (_, unit) in zip(lines, params):
-            assert line.endswith(f" [{cli._TEXT_UNITS.get(unit, unit)}]"), line
+            assert line.endswith(f" [{cli.TEXT_UNITS.get(unit, unit)}]"), line
     assert "Green 2026, Eq. 14" in text and "Eq. 26" in text and "[Pa s^0.5]" in text
 
 

@@ -92,8 +92,12 @@ def _settings():
     return scene.settings_of(SCENE)
 
 
+_GRID = scene.grid_of(SCENE)
+_ROWS = list(range(_GRID.size))
+
+
 def _shard(code):
-    pts = [{**p, "material_id": "x"} for p in scene.scene_points(SCENE)]
+    pts = [{**p, "material_id": "x"} for p in scene.scene_points(SCENE)]  # every point, index order
     ds = runner.run_points(pts, _settings())
     ds.attrs["code_fingerprint"] = code
     ds.attrs["materials"] = json.dumps({"sls": vcor.materials.get("sls").to_dict()})
@@ -103,9 +107,9 @@ def _shard(code):
 def test_aggregate_refuses_shards_of_different_code():
     current = provenance.code_fingerprint()
     with pytest.raises(ValueError, match="different code"):
-        aggregation.aggregate([_shard(current), _shard("0123456789abcdef")], SCENE, {"sls": "x"})
+        aggregation.aggregate([_shard(current), _shard("0123456789abcdef")], [_ROWS, _ROWS], _GRID, SCENE)
     with pytest.raises(ValueError, match="different code"):
-        aggregation.aggregate([_shard("0123456789abcdef")], SCENE, {"sls": "x"})
+        aggregation.aggregate([_shard("0123456789abcdef")], [_ROWS], _GRID, SCENE)
 
 
 def test_aggregate_refuses_changed_material_parameters():
@@ -114,7 +118,7 @@ def test_aggregate_refuses_changed_material_parameters():
     p["E0"] = p.get("E0", 1.0) * 1.01
     ds.attrs["materials"] = json.dumps({"sls": p})
     with pytest.raises(ValueError, match="material 'sls'"):
-        aggregation.aggregate([ds], SCENE, {"sls": "x"})
+        aggregation.aggregate([ds], [_ROWS], _GRID, SCENE)
 
 
 def test_shard_identity_covers_code_material_content_and_options():
@@ -157,9 +161,10 @@ def test_a_sweep_rebuilds_from_its_dataset_bit_for_bit(tmp_path):
 
     def sweep(sc, catalogue):
         ids = {m: catalogue.identity(m) for m in sc["materials"]}
-        ds = runner.run_points(shards.identified_points(sc, ids), scene.settings_of(sc), catalogue)
+        points = shards.identified_points(sc, ids)
+        ds = runner.run_points(points, scene.settings_of(sc), catalogue)
         ds.attrs["code_fingerprint"] = provenance.code_fingerprint()  # what the shard file records
-        return aggregation.aggregate([ds], sc, ids, catalogue)
+        return aggregation.aggregate([ds], [[p["index"] for p in points]], scene.grid_of(sc), sc, catalogue)
 
     path = tmp_path / "sweep.nc"
     netcdf.write_dataset(sweep(sc, catalogue), path, title="sweep",
@@ -167,9 +172,9 @@ def test_a_sweep_rebuilds_from_its_dataset_bit_for_bit(tmp_path):
     (tmp_path / "mats/fitted.nc").unlink()  # the rebuild needs the dataset only
     back = xr.load_dataset(path)
     rebuilt, cat2 = scene_from_dataset(back)
-    assert list(rebuilt["grid"]) == ["T", "v0", "nu"] and list(back["cor"].dims) == ["material", "T", "v0", "nu"]
+    assert rebuilt.grid.names == ["T", "v0", "nu"] and list(back["cor"].dims) == ["material", "T", "v0", "nu"]
     assert cat2.shift("fitted").to_dict() == wlf and cat2.shift("mine").to_dict() == arrhenius
-    again = sweep(rebuilt, cat2)
+    again = sweep(rebuilt.config, cat2)
     assert int((back["status"] == 0).sum()) == back["status"].size
     assert set(again.data_vars) == set(back.data_vars)
     for v in set(back.data_vars) - {"wall_time"}:  # wall_time: the run's clock, not a result

@@ -45,13 +45,14 @@ def test_a_material_without_measured_data_is_refused():
 def test_the_bootstrap_axis_and_the_files_a_scene_needs():
     project = load_project(_config(bootstrap=7, seed=3), ".")
     scene = project.scenes["u"]
-    assert vscene.scene_axes(scene)["sample"] == [float(k) for k in range(7)]
-    assert vscene.point_count(scene) == 1 * 2 * 2 * 7
-    assert vscene.settings_of(scene)["uncertainty"] == {"bootstrap": 7, "seed": 3, "level": 0.95}
+    assert scene.grid.values()["sample"] == [float(k) for k in range(7)]
+    assert scene.grid.axis("sample").role == "sample" and scene.grid.size == 1 * 2 * 2 * 7
+    assert vscene.point_count(scene.config) == scene.grid.size
+    assert scene.settings["uncertainty"] == {"bootstrap": 7, "seed": 3, "level": 0.95}
     assert "results/materials/samples/pv-b7-s3.nc" in project.material_files_of("u")
     assert "results/materials/samples/pv-b7-s3.nc" in project.scene_targets("u")
     plain = load_project({"scenes": {"p": {"materials": ["sls"], "grid": {"v0": [1, 2]}}}}, ".").scenes["p"]
-    assert "sample" not in vscene.scene_axes(plain) and "uncertainty" not in vscene.settings_of(plain)
+    assert "sample" not in plain.grid.names and "uncertainty" not in plain.settings
 
 
 def _sweep(cor, status):

@@ -87,7 +87,7 @@ PRESET_REFERENCES = {
 _SHIFT_UNITS = {"C1": "1", "C2": "K", "T_ref": "degC", "E_a": "J mol-1", "T": "degC", "log_aT": "1"}
 
 #: UDUNITS strings -> the units the text output writes
-_TEXT_UNITS = {"m s-1": "m/s", "rad s-1": "rad/s", "s-1": "1/s", "s-0.5": "s^-0.5", "Pa s0.5": "Pa s^0.5",
+TEXT_UNITS = {"m s-1": "m/s", "rad s-1": "rad/s", "s-1": "1/s", "s-0.5": "s^-0.5", "Pa s0.5": "Pa s^0.5",
                "J mol-1": "J/mol", "degC": "deg C"}
 
 #: significant digits of the text output (default 5: the default method's COR and t0 are accurate to
@@ -321,7 +321,7 @@ def _fmt(value, digits: int = 5) -> str:
 
 
 def _text_unit(units: str) -> str:
-    return f"[{_TEXT_UNITS.get(units, units)}]"
+    return f"[{TEXT_UNITS.get(units, units)}]"
 
 
 def validity_flags(mask: int) -> list[str]:

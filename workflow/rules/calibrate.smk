@@ -5,15 +5,14 @@ rule calibrate:
     input:
         get_calibration_inputs,
     output:
-        record="results/calibrations/{cal}.nc",
-        material=f"{MATERIAL_DIR}/{{cal}}.nc",
+        record=vpaths.CALIBRATION,
+        material=vpaths.material(MATERIAL_DIR, "{cal}"),
     log:
         "results/calibrations/logs/{cal}.log",
     benchmark:
         "results/calibrations/benchmarks/{cal}.tsv"
     wildcard_constraints:
-        cal="|".join(re.escape(c) for c in sorted(CATALOGUE.calibrations))
-        or "no-calibration",
+        cal=_names(CATALOGUE.calibrations, "no-calibration"),
     params:
         code=CODE,
         spec=get_calibration_spec,
@@ -25,19 +24,18 @@ rule calibrate:
 
 rule calibration_figure:
     input:
-        "results/calibrations/{cal}.nc",
+        vpaths.CALIBRATION,
     output:
         png=report(
-            "results/calibrations/{cal}.png",
+            vpaths.fmt(vpaths.CALIBRATION_FIGURE, cal="{cal}", ext="png"),
             caption="../report/calibration.rst",
             category="calibrations",
         ),
-        pdf="results/calibrations/{cal}.pdf",
+        pdf=vpaths.fmt(vpaths.CALIBRATION_FIGURE, cal="{cal}", ext="pdf"),
     log:
         "results/calibrations/logs/{cal}.figure.log",
     wildcard_constraints:
-        cal="|".join(re.escape(c) for c in sorted(CATALOGUE.calibrations))
-        or "no-calibration",
+        cal=_names(CATALOGUE.calibrations, "no-calibration"),
     params:
         plots_code=PLOTS_CODE,
     script:

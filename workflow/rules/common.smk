@@ -1,28 +1,30 @@
-# Config validation (the schema, then vcor.study.config), the run's set-up (project lock, healing of
-# the archive: vcor.study.archive) and every input function. No logic in rules.
+# Config validation (the schema, then vcor.study.config: one line naming the key), the run's set-up
+# (project lock, healing of the archive: vcor.study.archive) and every input function. The project
+# model (vcor.study.project) is built once, here; paths come from vcor.study.paths. No logic in rules.
 import dataclasses
 import re
 import sys
+from pathlib import Path
 
 from snakemake.cli import get_argument_parser
 from snakemake.exceptions import WorkflowError
-from snakemake.utils import validate
 
 import vcor.io.receipts as vreceipts
 import vcor.plots as vplots
 import vcor.provenance as vprovenance
 import vcor.study.archive as varchive
 import vcor.study.config as vconfig
-import vcor.study.scene as vscene
+import vcor.study.paths as vpaths
+import vcor.study.schema as vschema
 import vcor.study.shards as vshards
 import vcor.study.uncertainty as vuncertainty
 
-validate(config, schema="../schemas/config.schema.yaml")
-
+SCHEMA = Path(workflow.basedir) / "workflow" / "schemas" / "config.schema.yaml"
 try:
+    vschema.check_schema(config, SCHEMA)  # fills in the schema's defaults
     PROJECT = vconfig.load_project(config, base_dir=".")
 except ValueError as exc:
-    raise WorkflowError(f"config: {exc}")
+    raise WorkflowError(f"config: {exc}") from None
 
 
 def _executes():
@@ -98,81 +100,93 @@ CODE = vprovenance.code_fingerprint()
 PLOTS_CODE = vprovenance.plots_fingerprint()
 
 
+def _names(names, empty):
+    """A wildcard constraint matching exactly ``names`` (``empty``, a name no file has, when none)."""
+    return "|".join(re.escape(n) for n in sorted(names)) or empty
+
+
 wildcard_constraints:
-    scene="|".join(re.escape(s) for s in SCENES),
-    material="|".join(re.escape(m) for m in sorted(CATALOGUE.fits))
-    or "no-fitted-material",
+    scene=_names(SCENES, "no-scene"),
+    material=_names(CATALOGUE.fits, "no-fitted-material"),
     material_case="[A-Za-z0-9_.-]+?",
     shard=vshards.SHARD_PATTERN,
     fig="|".join(vplots.FIGURES),
 
 
 _PLANS = {}
-_IDENTITIES = {}
 
 
 def material_identities(scene):
-    """{material name: content identity} of a scene's materials (vcor.materials.Catalogue)."""
-    if scene not in _IDENTITIES:
-        _IDENTITIES[scene] = {
-            m: CATALOGUE.identity(m) for m in SCENES[scene]["materials"]
-        }
-    return _IDENTITIES[scene]
+    """{material name: content identity} of a scene's swept materials (vcor.materials.Catalogue)."""
+    return {m: CATALOGUE.identity(m) for m in SCENES[scene].materials}
 
 
 def shard_plan(scene):
+    """{shard id: vcor.study.shards.Shard} of a scene's sweep, planned once per run."""
     if scene not in _PLANS:
+        sc = SCENES[scene]
         _PLANS[scene] = vshards.plan_shards(
-            SCENES[scene],
-            f"results/{scene}/shards",
-            PROJECT.shard_size_of(scene),
+            sc.config,
+            vpaths.fmt(vpaths.SHARD_DIR, scene=scene),
+            sc.shard_size,
             material_identities(scene),
             on_invalid=_invalid_shard,
+            grid=sc.grid,
+            settings=sc.settings,
         )
     return _PLANS[scene]
 
 
-def get_identities(wildcards):
-    return material_identities(wildcards.scene)
-
-
 def get_scene(wildcards):
-    return SCENES[wildcards.scene]
+    return SCENES[wildcards.scene].config
+
+
+def get_grid(wildcards):
+    return SCENES[wildcards.scene].grid.to_dict()
 
 
 def get_histories_spec(wildcards):
-    return SCENES[wildcards.scene]["histories"]
+    return SCENES[wildcards.scene].config["histories"]
 
 
 def get_spheres_spec(wildcards):
-    return SCENES[wildcards.scene]["spheres"]
+    return SCENES[wildcards.scene].config["spheres"]
 
 
 def get_convergence_spec(wildcards):
-    return SCENES[wildcards.scene]["convergence"]
+    return SCENES[wildcards.scene].config["convergence"]
 
 
 def get_convergence_v0s(wildcards):
-    return SCENES[wildcards.scene]["convergence"]["v0"]
+    return SCENES[wildcards.scene].config["convergence"]["v0"]
 
 
 def get_convergence_cases(wildcards):
-    spec = SCENES[wildcards.scene]["convergence"]
-    return [f"results/{wildcards.scene}/convergence/{m}.nc" for m in spec["materials"]]
+    spec = SCENES[wildcards.scene].config["convergence"]
+    return [
+        vpaths.fmt(vpaths.CONVERGENCE_CASE, scene=wildcards.scene, material_case=m)
+        for m in spec["materials"]
+    ]
 
 
 def get_settings(wildcards):
-    return vscene.settings_of(SCENES[wildcards.scene])
+    return SCENES[wildcards.scene].settings
 
 
 def get_shard_points(wildcards):
-    return shard_plan(wildcards.scene)[wildcards.shard]
+    return shard_plan(wildcards.scene)[wildcards.shard].points
 
 
 def get_shard_files(wildcards):
     return [
-        f"results/{wildcards.scene}/shards/{s}.nc" for s in shard_plan(wildcards.scene)
+        vpaths.fmt(vpaths.SHARD, scene=wildcards.scene, shard=s)
+        for s in shard_plan(wildcards.scene)
     ]
+
+
+def get_shard_rows(wildcards):
+    """For each shard (in get_shard_files' order), the grid index of each of its points."""
+    return [shard.rows for shard in shard_plan(wildcards.scene).values()]
 
 
 def get_material_files(wildcards):
@@ -218,29 +232,27 @@ def get_material_table(wildcards):
 
 
 def get_scene_fitted_names(wildcards):
-    return [
-        m for m in SCENES[wildcards.scene].get("materials", []) if m in CATALOGUE.fits
-    ]
+    return [m for m in SCENES[wildcards.scene].materials if m in CATALOGUE.fits]
 
 
 def get_scene_fit_files(wildcards):
-    return [f"{MATERIAL_DIR}/{m}.nc" for m in get_scene_fitted_names(wildcards)]
+    return [vpaths.material(MATERIAL_DIR, m) for m in get_scene_fitted_names(wildcards)]
 
 
 def get_moduli_materials(wildcards):
-    scene = SCENES[wildcards.scene]
-    return scene.get("moduli", scene["materials"])
+    sc = SCENES[wildcards.scene]
+    return sc.config.get("moduli", sc.materials)
 
 
 def figure_inputs(scene):
     """Every dataset the scene's figures need (the union over its figures; fits: one file each; the
     bootstrap samples of those fits when the scene has an uncertainty band)."""
     out = {}
-    for fig, opts in SCENES[scene].get("figures", {}).items():
+    for fig, opts in SCENES[scene].figures.items():
         for n in vplots.FIGURES[fig][1]:
             if n == "material_fit":
                 out[f"{fig}_fits"] = [
-                    f"{MATERIAL_DIR}/{m}.nc" for m in opts.get("materials", [])
+                    vpaths.material(MATERIAL_DIR, m) for m in opts.get("materials", [])
                 ]
             elif n == "material_samples":
                 out[f"{fig}_samples"] = [
@@ -249,16 +261,16 @@ def figure_inputs(scene):
                     if m in opts.get("materials", [])
                 ]
             else:
-                out[n] = f"results/{scene}/{n}.nc"
+                out[n] = vpaths.fmt(vpaths.DATASET, scene=scene, dataset=n)
     return out
 
 
 def figure_options(scene):
     """Each figure's options from the scene, plus the band's probability (``level``) of the scene's
     uncertainty for the figures that draw bootstrap samples themselves."""
-    spec = vuncertainty.uncertainty_of(SCENES[scene])
+    spec = SCENES[scene].uncertainty
     out = {}
-    for fig, opts in SCENES[scene].get("figures", {}).items():
+    for fig, opts in SCENES[scene].figures.items():
         out[fig] = dict(opts or {})
         if spec is not None and "material_samples" in vplots.FIGURES[fig][1]:
             out[fig]["level"] = spec["level"]
@@ -284,16 +296,8 @@ def get_calibration_inputs(wildcards):
     start = spec.get("material")
     files = [spec["data"]]
     if isinstance(start, str) and CATALOGUE.source(start) != "preset":
-        files.append(f"{MATERIAL_DIR}/{start}.nc")
+        files.append(vpaths.material(MATERIAL_DIR, start))
     return files
-
-
-def calibration_targets():
-    return [
-        f"results/calibrations/{c}.{ext}"
-        for c in CATALOGUE.calibrations
-        for ext in ("nc", "png", "pdf")
-    ]
 
 
 def get_dem_spec(wildcards):
@@ -301,14 +305,9 @@ def get_dem_spec(wildcards):
 
 
 def get_dem_material_files(wildcards):
-    """The fitted or calibrated material file a dem: entry reads, if it names one."""
+    """The fitted or calibrated material files a dem: entry's bodies read, if they name any."""
     return PROJECT.dem_material_files(wildcards.dem)
 
 
 def get_all_targets():
-    out = []
-    for scene in SCENES:
-        out += PROJECT.scene_targets(scene) + [f"results/{scene}/MANIFEST.txt"]
-    for name in PROJECT.dem:
-        out += PROJECT.dem_targets(name)
-    return out + calibration_targets()
+    return PROJECT.all_targets()

@@ -5,7 +5,7 @@ rule convergence_case:
     input:
         materials=get_material_files,
     output:
-        "results/{scene}/convergence/{material_case}.nc",
+        vpaths.CONVERGENCE_CASE,
     log:
         "results/{scene}/logs/convergence/{material_case}.log",
     benchmark:
@@ -25,8 +25,8 @@ rule convergence:
     input:
         get_convergence_cases,
     output:
-        nc="results/{scene}/convergence.nc",
-        orders="results/{scene}/orders.txt",
+        nc=vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="convergence"),
+        orders=vpaths.ORDERS,
     log:
         "results/{scene}/logs/convergence.log",
     # the work-precision figure (~4 s) follows: not the last job of a -j2 run

@@ -6,8 +6,8 @@
 # scene's figures), each PNG has its own caption in the report, and a change to one figure's options
 # re-draws the scene's figures (seconds).
 
-for _scene, _cfg in SCENES.items():
-    _figs = list(_cfg.get("figures", {}))
+for _scene, _sc in SCENES.items():
+    _figs = list(_sc.figures)
     if not _figs:
         continue
 
@@ -19,13 +19,13 @@ for _scene, _cfg in SCENES.items():
         output:
             png=[
                 report(
-                    f"results/{_scene}/figures/{f}.png",
+                    vpaths.fmt(vpaths.FIGURE, scene=_scene, fig=f, ext="png"),
                     caption=f"../report/figures/{f}.rst",
                     category=_scene,
                 )
                 for f in _figs
             ],
-            pdf=[f"results/{_scene}/figures/{f}.pdf" for f in _figs],
+            pdf=[vpaths.fmt(vpaths.FIGURE, scene=_scene, fig=f, ext="pdf") for f in _figs],
         log:
             f"results/{_scene}/logs/figures.log",
         params:
@@ -41,7 +41,7 @@ rule manifest:
     input:
         get_scene_targets,
     output:
-        "results/{scene}/MANIFEST.txt",
+        vpaths.MANIFEST,
     log:
         "results/{scene}/logs/manifest.log",
     script:

@@ -6,12 +6,11 @@ rule config_material:
     input:
         get_material_table,
     output:
-        f"{MATERIAL_DIR}/{{name}}.nc",
+        vpaths.material(MATERIAL_DIR),
     log:
         f"{MATERIAL_DIR}/logs/{{name}}.log",
     wildcard_constraints:
-        name="|".join(re.escape(m) for m in sorted(CATALOGUE.specs))
-        or "no-config-material",
+        name=_names(CATALOGUE.specs, "no-config-material"),
     params:
         code=CODE,
         spec=get_material_spec,
@@ -24,8 +23,8 @@ rule fit_material:
     input:
         get_fit_data_files,
     output:
-        nc=f"{MATERIAL_DIR}/{{material}}.nc",
-        table=f"{MATERIAL_DIR}/{{material}}.txt",
+        nc=vpaths.material(MATERIAL_DIR, "{material}"),
+        table=vpaths.material_table(MATERIAL_DIR, "{material}"),
     log:
         f"{MATERIAL_DIR}/logs/{{material}}.log",
     benchmark:
@@ -45,7 +44,7 @@ rule fit_samples:
     input:
         get_fit_data_files,
     output:
-        f"{MATERIAL_DIR}/samples/{{material}}-b{{n}}-s{{seed}}.nc",
+        vpaths.samples(MATERIAL_DIR),
     log:
         f"{MATERIAL_DIR}/logs/samples/{{material}}-b{{n}}-s{{seed}}.log",
     benchmark:
@@ -66,7 +65,7 @@ rule fit_metrics:
     input:
         get_scene_fit_files,
     output:
-        "results/{scene}/fit_metrics.txt",
+        vpaths.FIT_METRICS,
     log:
         "results/{scene}/logs/fit_metrics.log",
     params:

@@ -3,7 +3,7 @@
 
 rule spheres:
     output:
-        "results/{scene}/spheres.nc",
+        vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="spheres"),
     log:
         "results/{scene}/logs/spheres.log",
     benchmark:

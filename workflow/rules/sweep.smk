@@ -5,8 +5,8 @@ rule sweep_shard:
     input:
         materials=get_material_files,
     output:
-        nc="results/{scene}/shards/{shard}.nc",
-        index="results/{scene}/shards/{shard}.json",
+        nc=vpaths.SHARD,
+        index=vpaths.SHARD_INDEX,
     log:
         "results/{scene}/logs/shards/{shard}.log",
     benchmark:
@@ -27,14 +27,15 @@ rule aggregate:
         shards=get_shard_files,
         materials=get_material_files,
     output:
-        "results/{scene}/sweep.nc",
+        vpaths.SWEEP,
     log:
         "results/{scene}/logs/aggregate.log",
     benchmark:
         "results/{scene}/benchmarks/aggregate.tsv"
     priority: 5
     params:
-        identities=get_identities,
+        rows=get_shard_rows,
+        grid=get_grid,
         code=CODE,
         scene=get_scene,
         catalogue=CATALOGUE_SPEC,
@@ -46,7 +47,7 @@ rule moduli:
     input:
         materials=get_material_files,
     output:
-        "results/{scene}/moduli.nc",
+        vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="moduli"),
     log:
         "results/{scene}/logs/moduli.log",
     benchmark:
@@ -63,7 +64,7 @@ rule histories:
     input:
         materials=get_material_files,
     output:
-        "results/{scene}/histories.nc",
+        vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="histories"),
     log:
         "results/{scene}/logs/histories.log",
     benchmark:

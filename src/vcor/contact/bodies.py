@@ -3,9 +3,10 @@ material, size, density and Poisson ratio, combined as Green 2026 Eq. 1 says.
 
 * ``sphere: {material, r, rho, nu}``, ``plate: {material, h, rho, nu}``; ``material`` is a
   material (a preset name, a config material's name (the workflow inlines its parameters:
-  :func:`vcor.study.config.inline_config_materials`), an inline spec ``{model: ...}`` as in the config's ``materials:``
+  :mod:`vcor.study.project`; a fit or calibration, which the workflow resolves through its
+  catalogue), an inline spec ``{model: ...}`` as in the config's ``materials:``
   block, ``rigid``, or ``{model: elastic, E: ...}``); in a scene a body without ``material`` takes the
-  scene's swept material (its ``materials`` list). A fitted material can only be the swept one. h is the plate's half-thickness (default 2 r).
+  scene's swept material (its ``materials`` list). h is the plate's half-thickness (default 2 r).
 * Defaults: a rigid or elastic body is steel (rho 7800 kg/m^3, nu 0.3), a viscoelastic one the
   paper's polymer (rho 1100 kg/m^3, nu 0.5) (``vcor.contact.impact.DENSITIES``).
 * Contact modulus, Eq. 1 as written: E'(t) = E'_a E'_b / (E'_a + E'_b) pointwise in time, E'_i =
@@ -82,9 +83,9 @@ def _material_of(value, where, swept):
         return None
     if isinstance(value, str):
         if value not in PRESETS:
-            raise ValueError(f"{where}.material: {value!r} is not a preset ({sorted(PRESETS)}), a config "
-                             f"material or 'rigid'; a fitted material goes into the scene's materials list (the "
-                             f"swept body, which then omits material), another material inline as {{model: ...}}")
+            raise ValueError(f"{where}.material: {value!r} is not a preset ({sorted(PRESETS)}) or 'rigid'; "
+                             f"another material inline as {{model: ...}} (in a workflow config, a body also "
+                             f"takes the names of config materials, fits and calibrations)")
         return get(value)
     if isinstance(value, dict):
         return from_spec(value, where=f"{where}.material")
@@ -130,8 +131,11 @@ def scene_bodies(specs: dict, swept) -> tuple[Body, Body]:
     out = []
     for kind in ("sphere", "plate"):
         spec = specs.get(kind) or {}
-        out.append(_fixed_body(kind, json.dumps(spec, sort_keys=True)) if "material" in spec
-                   else body_from_spec(kind, spec, swept=swept))
+        material = spec.get("material")
+        if material is None or isinstance(material, _materials.Material):
+            out.append(body_from_spec(kind, spec, swept=swept))
+        else:
+            out.append(_fixed_body(kind, json.dumps(spec, sort_keys=True)))
     return out[0], out[1]
 
 

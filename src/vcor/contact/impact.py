@@ -31,7 +31,7 @@ from ..checks import interned, number
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 
-__all__ = ["DENSITIES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "Geometry", "Impact", "make_impact"]
+__all__ = ["DENSITIES", "GEOMETRY_AXES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "Geometry", "Impact", "make_impact"]
 
 #: densities (kg/m^3) used when rho_a / rho_b are not given: the viscoelastic body is the paper's polymer
 #: (1100), a stiff elastic one steel (7800). Case 1 and 3: steel sphere on a polymer plate; case 2: both
@@ -63,6 +63,9 @@ GEOMETRY_DEFAULTS = {
     # deformable bodies); the plate's plane-strain modulus is then E_b(t) / (1 - nu_plate^2)
     "plate_material": None,
 }
+#: the geometry keywords that are numbers a sweep may vary (grid axes of role geometry,
+#: vcor.study.grid); case, rigid and plate_material choose the set-up and are fixed per scene
+GEOMETRY_AXES = tuple(k for k in GEOMETRY_DEFAULTS if k not in ("case", "rigid", "plate_material"))
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -18,11 +18,15 @@ import numpy as np
 from ..contact.impact import GEOMETRY_DEFAULTS
 from ..materials.catalogue import Catalogue
 from ..provenance import code_fingerprint
-from .scene import AXIS_UNITS, canon, material_params, scene_axes, settings_of
-from .shards import identified_points, point_key
+from .grid import Grid
+from .scene import material_params, settings_of
 from .uncertainty import reduce_samples, uncertainty_of
 
 __all__ = ["aggregate", "dataset_attrs"]
+
+#: variables stored as text and as small integers (status flags); every other variable is a float
+TEXT_VARS = ("message", "error_message", "validity_message")
+INT_VARS = ("status", "error_status", "validity")
 
 
 def dataset_attrs(scene_name, scene, catalogue: Catalogue | None = None) -> dict:
@@ -52,54 +56,51 @@ def _check_provenance(shards, scene, catalogue):
                                  f"{params[name]}: refusing to combine them; recompute the stale shards")
 
 
-def aggregate(shards, scene, identities: dict, catalogue: Catalogue | None = None):
-    """Combine shard datasets into one Dataset with dims ``(material, *grid axes)``."""
+def _check_rows(k, ds, rows, grid: Grid):
+    """The shard's points are the grid's points at ``rows`` (material and every axis value, exactly):
+    a plan that does not fit its shard is an error, never a misread."""
+    if len(rows) != ds.sizes["point"]:
+        raise ValueError(f"shard {k}: {ds.sizes['point']} points, the plan gives {len(rows)} grid indices")
+    keep = np.flatnonzero(np.asarray(rows) >= 0)
+    pos = np.unravel_index(np.asarray(rows, dtype=np.int64)[keep], grid.shape)
+    mats = np.asarray(grid.materials, dtype=object)[pos[0]]
+    if not np.array_equal(ds["material"].values[keep].astype(str), mats.astype(str)):
+        raise ValueError(f"shard {k}: its materials differ from the grid's at the planned indices")
+    for axis, p in zip(grid.axes, pos[1:]):
+        if axis.name not in ds.coords or not np.array_equal(ds[axis.name].values[keep], np.asarray(axis.values)[p]):
+            raise ValueError(f"shard {k}: its values of axis {axis.name!r} differ from the grid's at the planned "
+                             f"indices")
+    return keep, pos
+
+
+def aggregate(shards, rows, grid: Grid, scene: dict, catalogue: Catalogue | None = None):
+    """Combine shard datasets into one Dataset with dims ``(material, *grid axes)``: row ``i`` of shard
+    ``k`` is grid point ``rows[k][i]`` (-1: not on the grid any more; :attr:`vcor.study.shards.Shard.rows`)."""
     import xarray as xr
 
     catalogue = catalogue or Catalogue()
     _check_provenance(shards, scene, catalogue)
-    axes = scene_axes(scene)
-    mats = list(scene["materials"])
-    names = list(axes)
-    shape = (len(mats),) + tuple(len(axes[a]) for a in names)
-    # position of every requested point in the output arrays
-    pos_of = {}
-    for p in identified_points(scene, identities):
-        pos_of[point_key(p)] = (mats.index(p["material"]),) + tuple(axes[a].index(p[a]) for a in names)
     first = shards[0]
-    text_vars = ("message", "error_message", "validity_message")
-    int_vars = ("status", "error_status", "validity")
-    var_names = [v for v in first.data_vars if v not in text_vars + int_vars]
-    out = {v: np.full(shape, np.nan) for v in var_names}
-    ints = {v: np.zeros(shape, dtype=np.int8) for v in int_vars if v in first}
-    texts = {v: np.empty(shape, dtype=object) for v in text_vars if v in first}
-    filled = np.zeros(shape, dtype=bool)
-    for ds in shards:
-        cols = {v: ds[v].values for v in list(var_names) + list(ints) + list(texts)}
-        mat_col, id_col = ds["material"].values, ds["material_id"].values
-        ax_cols = {a: ds[a].values for a in names}
-        for i in range(ds.sizes["point"]):
-            p = {"material": str(mat_col[i]), "material_id": str(id_col[i])}
-            for a in names:
-                p[a] = canon(ax_cols[a][i])
-            pos = pos_of.get(point_key(p))
-            if pos is None:
-                continue  # a reused shard may hold points no longer in the grid
-            for v, col in cols.items():
-                (out.get(v) if v in out else ints.get(v) if v in ints else texts[v])[pos] = col[i]
-            filled[pos] = True
+    names = [v for v in first.data_vars if v not in TEXT_VARS + INT_VARS]
+    out = {v: np.full(grid.shape, np.nan) for v in names}
+    out.update({v: np.zeros(grid.shape, dtype=np.int8) for v in INT_VARS if v in first})
+    out.update({v: np.full(grid.shape, "", dtype=object) for v in TEXT_VARS if v in first})
+    filled = np.zeros(grid.shape, dtype=bool)
+    for k, (ds, r) in enumerate(zip(shards, rows)):
+        keep, pos = _check_rows(k, ds, r, grid)
+        for v, arr in out.items():
+            arr[pos] = ds[v].values[keep]
+        filled[pos] = True
     if not filled.all():
         raise ValueError(f"{int((~filled).sum())} grid points missing from the shards")
-    dims = ("material",) + tuple(names)
-    data = {v: (dims, arr) for v, arr in {**out, **ints}.items()}
-    data.update({v: (dims, arr.astype(str)) for v, arr in texts.items()})
-    coords = {"material": np.array(mats, dtype=str), **{a: np.array(axes[a]) for a in names}}
+    dims = ("material", *grid.names)
+    data = {v: (dims, arr.astype(str) if v in TEXT_VARS else arr) for v, arr in out.items()}
+    coords = {"material": np.array(grid.materials, dtype=str), **{a.name: np.array(a.values) for a in grid.axes}}
     ds = xr.Dataset(data, coords=coords)
     for v in ds.data_vars:
         ds[v].attrs.update(first[v].attrs)  # units, long names, status flags: as the shards have them
-    for a in names:
-        u, ln = AXIS_UNITS.get(a, ("1", a))
-        ds[a].attrs.update(units=u, long_name=ln)
+    for a in grid.axes:
+        ds[a.name].attrs.update(units=a.unit, long_name=a.long_name)
     ds["material"].attrs["long_name"] = "material (preset or fitted name)"
     spec = uncertainty_of(scene)
     return ds if spec is None else reduce_samples(ds, spec["level"])

@@ -20,7 +20,8 @@ import os
 from pathlib import Path
 
 from ..io import receipts
-from .uncertainty import samples_identity, uncertainty_of
+from . import paths
+from .uncertainty import samples_identity
 
 __all__ = ["LOCK_FILE", "ProjectLock", "heal", "problems", "remove_stale_snakemake_locks"]
 
@@ -33,22 +34,20 @@ def _expected(project, base: Path):
     files of the catalogue (identity: the material's content identity), calibration records, DEM
     datasets."""
     cat = project.catalogue
-    for scene in project.scenes:
+    for scene, sc in project.scenes.items():
         for target in project.scene_targets(scene):
             if target.endswith(".nc") and not target.startswith(f"{cat.material_dir}/"):
                 yield base / target, None
-        for material in project.scenes[scene].get("convergence", {}).get("materials", []):
-            yield base / f"results/{scene}/convergence/{material}.nc", None
-    for scene in project.scenes:
-        spec = uncertainty_of(project.scenes[scene])
+        for material in sc.config.get("convergence", {}).get("materials", []):
+            yield base / paths.fmt(paths.CONVERGENCE_CASE, scene=scene, material_case=material), None
         for path, name in project.samples_of(scene):
-            yield base / path, samples_identity(cat, name, spec)
+            yield base / path, samples_identity(cat, name, sc.uncertainty)
     for name in project.dem:
-        yield base / "results" / "dem" / f"{name}.nc", None
+        yield base / paths.fmt(paths.DEM, dem=name), None
     for name in [*cat.specs, *cat.fits, *cat.calibrations]:
-        yield base / cat.material_dir / f"{name}.nc", cat.identity(name)
+        yield base / paths.material(cat.material_dir, name), cat.identity(name)
     for name in cat.calibrations:
-        yield base / "results" / "calibrations" / f"{name}.nc", cat.identity(name)
+        yield base / paths.fmt(paths.CALIBRATION, cal=name), cat.identity(name)
 
 
 def problems(project, base=".") -> list[tuple[Path, str]]:

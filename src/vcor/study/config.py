@@ -1,18 +1,17 @@
 """Config checks: everything about a workflow config that can be checked before any job runs.
 
-The JSON schema (``workflow/schemas/config.schema.yaml``, applied by ``snakemake.utils.validate``)
-checks the shape; :func:`load_project` checks what needs vcor and returns the :class:`Project` the
-workflow plans from: the material catalogue (presets, config materials, fits, calibrations) and the
-scenes, each with its datasets, figures and targets. Every error is a ``ValueError`` whose message
-starts with the config key (``scenes.<name>.grid.T``, ``materials.<name>.E``, ...) and says the
-allowed values.
+The JSON schema (``workflow/schemas/config.schema.yaml``, applied by :func:`vcor.study.schema.check_schema`)
+checks the shape; :func:`load_project` checks what needs vcor and returns the
+:class:`~vcor.study.project.Project` the workflow plans from: the material catalogue (presets,
+config materials, fits, calibrations) and the scenes, each with its grid and settings, built once.
+Every error is a ``ValueError`` whose one-line message starts with the config key
+(``scenes.<name>.grid.T``, ``materials.<name>.E``, ...) and says the allowed values.
 """
 
 from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..fitting.calibrate import check_spec
@@ -23,16 +22,10 @@ from ..materials.specs import from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.options import METHOD_NAMES
 from .dem import check_dem
-from .scene import (
-    MAX_JOBS,
-    MAX_POINTS,
-    canon,
-    check_temperature_axis,
-    point_count,
-    scene_axes,
-    validate_scene,
-)
-from .uncertainty import check_uncertainty, samples_file, uncertainty_of
+from .grid import Grid, canon
+from .project import BUILDS, DATASETS, DEFAULTS, Project, Scene
+from .scene import MAX_JOBS, MAX_POINTS, check_temperature_axis, grid_of, point_count, settings_of, validate_scene
+from .uncertainty import check_uncertainty
 
 __all__ = ["NAME_PATTERN", "SCENE_NAME_PATTERN", "Project", "inline_config_materials", "load_project"]
 
@@ -40,78 +33,6 @@ __all__ = ["NAME_PATTERN", "SCENE_NAME_PATTERN", "Project", "inline_config_mater
 NAME_PATTERN = r"[A-Za-z0-9_.-]+"
 #: names of scenes (they become rule names)
 SCENE_NAME_PATTERN = r"[A-Za-z0-9_-]+"
-#: datasets a scene may build (besides its sweep), each from a config block of the same name
-DATASETS = ("moduli", "histories", "spheres", "convergence")
-
-
-@dataclass(frozen=True)
-class Project:
-    """A checked config: ``catalogue`` (every material name), ``scenes`` (name -> scene, config
-    materials of bodies inlined), ``shard_size`` (points per sweep job unless a scene says otherwise)."""
-
-    catalogue: Catalogue
-    scenes: dict
-    shard_size: int
-    config: dict = field(repr=False, default_factory=dict)
-    dem: dict = field(default_factory=dict)
-
-    def dem_targets(self, name: str) -> list[str]:
-        """The outputs of a ``dem:`` entry: its dataset, COR table, LAMMPS deck and figure."""
-        target = self.dem[name].get("target", "rigid")
-        deck = "in.pair" if isinstance(target, dict) and "sphere" in target else "in.wall"
-        return [f"results/dem/{name}.nc", f"results/dem/{name}/table.csv", f"results/dem/{name}/lammps/{deck}",
-                f"results/dem/{name}.png", f"results/dem/{name}.pdf"]
-
-    def dem_material_files(self, name: str) -> list[str]:
-        """The computed material file a ``dem:`` entry's job reads (a fit or calibration), if any."""
-        value = self.dem[name]["sphere"].get("material")
-        computed = self.catalogue.computed()
-        return [f"{self.catalogue.material_dir}/{value}.nc"] if isinstance(value, str) and value in computed else []
-
-    def shard_size_of(self, scene: str) -> int:
-        return int(self.scenes[scene].get("shard_size", self.shard_size))
-
-    def datasets_of(self, scene: str) -> list[str]:
-        """The datasets the scene builds: ``sweep`` with a grid, and each one its figures need."""
-        cfg = self.scenes[scene]
-        need = needs(cfg.get("figures", {}))
-        return (["sweep"] if "grid" in cfg else []) + [n for n in DATASETS if n in need]
-
-    def scene_targets(self, scene: str) -> list[str]:
-        """Every output of a scene (its datasets, figures, tables, the files of the materials it uses that
-        are not presets), paths relative to the project: the workflow's default target requires them
-        all, so a lost one is computed again."""
-        cfg = self.scenes[scene]
-        out = [f"results/{scene}/{n}.nc" for n in self.datasets_of(scene)]
-        out += [f"{self.catalogue.material_dir}/{m}.nc" for m in self._used(scene)
-                if m in self.catalogue.specs or m in self.catalogue.computed()]
-        out += [path for path, _ in self.samples_of(scene)]
-        for fig in cfg.get("figures", {}):
-            out += [f"results/{scene}/figures/{fig}.png", f"results/{scene}/figures/{fig}.pdf"]
-        if "convergence" in cfg:
-            out.append(f"results/{scene}/orders.txt")
-        if set(cfg.get("materials", [])) & set(self.catalogue.fits):
-            out.append(f"results/{scene}/fit_metrics.txt")
-        return out
-
-    def _used(self, scene: str) -> list[str]:
-        cfg = self.scenes[scene]
-        return sorted(set(cfg.get("materials", [])) | set(cfg.get("moduli", []))
-                      | set(cfg.get("convergence", {}).get("materials", [])))
-
-    def material_files_of(self, scene: str) -> list[str]:
-        """The computed material files (fits, calibrations) a scene's jobs read; presets and config
-        materials are built from their definitions."""
-        computed = self.catalogue.computed()
-        return ([f"{self.catalogue.material_dir}/{m}.nc" for m in self._used(scene) if m in computed]
-                + [path for path, _ in self.samples_of(scene)])
-
-    def samples_of(self, scene: str) -> list[tuple[str, str]]:
-        """(samples file, fit name) of every material of an uncertainty scene (vcor.study.uncertainty)."""
-        spec = uncertainty_of(self.scenes[scene])
-        if spec is None:
-            return []
-        return [(samples_file(self.catalogue.material_dir, m, spec), m) for m in self.scenes[scene]["materials"]]
 
 
 def inline_config_materials(scene: dict, catalogue: Catalogue) -> dict:
@@ -177,7 +98,7 @@ def _check_paths(config: dict, base_dir: Path) -> None:
 
 def _material_dir(config: dict, base_dir: Path) -> str:
     """``material_dir``: a non-empty relative path inside the project."""
-    return inside_project("material_dir", config.get("material_dir", "results/materials"), base_dir)
+    return inside_project("material_dir", config.get("material_dir", DEFAULTS["material_dir"]), base_dir)
 
 
 def _catalogue(config: dict, base_dir: Path) -> Catalogue:
@@ -199,18 +120,18 @@ def _catalogue(config: dict, base_dir: Path) -> Catalogue:
     return catalogue
 
 
-def _check_figures(name: str, scene: dict, catalogue: Catalogue) -> None:
+def _check_figures(name: str, scene: dict, catalogue: Catalogue, grid: Grid | None) -> None:
     """The scene builds what its figures need, and every figure option is one the figure takes, with a
     value it can draw (a material of the scene, a value on the grid axis, ...: plots.FIGURE_OPTIONS)."""
     where = f"scenes.{name}"
     figures = scene.get("figures") or {}
     need = needs(figures)
-    if "sweep" in need and "grid" not in scene:
+    if "sweep" in need and grid is None:
         raise ValueError(f"{where}.figures: {sorted(figures)} need a sweep: add {where}.grid")
     for dataset in DATASETS[1:]:
         if dataset in need and dataset not in scene:
             raise ValueError(f"{where}.figures: {sorted(figures)} need {where}.{dataset}")
-    axes = scene_axes(scene) if "grid" in scene else {}
+    axes = grid.values() if grid is not None else {}
     for fig, opts in figures.items():
         key = f"{where}.figures.{fig}"
         for axis in NEEDS_AXIS.get(fig, ()):
@@ -223,18 +144,20 @@ def _check_figures(name: str, scene: dict, catalogue: Catalogue) -> None:
         for option in (o for o, kind in taken.items() if kind == "fits" and o not in options):
             raise ValueError(f"{key}.{option}: figure {fig} needs a list of fits (of {sorted(catalogue.fits)})")
         for option, value in options.items():
+            given = option in (opts or {})
             if option in taken:
-                _check_option(f"{key}.{option}", taken[option], value, scene, axes, catalogue)
+                _check_option(f"{key}.{option}", taken[option], value, scene, axes, catalogue, given, options)
             elif fig in AXIS_OPTIONS and option in axes:
-                _check_option(f"{key}.{option}", option, value, scene, axes, catalogue)
+                _check_option(f"{key}.{option}", option, value, scene, axes, catalogue, given, options)
             else:
                 allowed = sorted(taken) + ([f"a grid axis ({', '.join(a for a in axes if a != 'v0')})"]
                                            if fig in AXIS_OPTIONS else [])
                 raise ValueError(f"{key}.{option}: figure {fig} takes no option {option!r}; allowed: {allowed}")
 
 
-def _check_option(key, kind, value, scene, axes, catalogue):
-    """One figure option's value against what it names (plots.FIGURE_OPTIONS)."""
+def _check_option(key, kind, value, scene, axes, catalogue, given=True, options=None):
+    """One figure option's value against what it names (plots.FIGURE_OPTIONS); ``given``: the scene
+    gave it (not a default of the figure's)."""
     materials = list(scene.get("materials") or [])
     if kind == "material":
         if value not in materials:
@@ -252,18 +175,34 @@ def _check_option(key, kind, value, scene, axes, catalogue):
         if not ok:
             what = {"number": "a finite number", "text": "a text", "pattern": "a text containing {n}"}[kind]
             raise ValueError(f"{key} must be {what}, got {value!r}")
-    else:  # a value (or list of values) on a grid axis
-        axis, listed = kind.split(" ")[0], kind.endswith(" list")
-        if axis not in axes:
-            if axis == "beta":  # drawn at the material's own beta when the grid has no beta axis
-                return
-            raise ValueError(f"{key} names values on the grid axis {axis}, which the scene has not")
-        values = value if listed else [value]
-        if listed and (not isinstance(value, list) or not value):
-            raise ValueError(f"{key} must be a list of values of the grid axis {axis} {axes[axis]}, got {value!r}")
+    else:
+        _check_axis_option(key, kind, value, axes, catalogue, given, options or {})
+
+
+def _check_axis_option(key, kind, value, axes, catalogue, given, options):
+    """A value (or list of values) on a grid axis; a figure's ``beta`` without a beta axis is the
+    material's own, which a value the scene gives must then equal."""
+    axis, listed = kind.split(" ")[0], kind.endswith(" list")
+    values = value if listed else [value]
+    if listed and (not isinstance(value, list) or not value):
+        raise ValueError(f"{key} must be a list of values of the grid axis {axis} {axes.get(axis)}, got {value!r}")
+    for v in values:
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise ValueError(f"{key}: {v!r} is not a number on the grid axis {axis}")
+    if axis in axes:
         for v in values:
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or canon(v) not in axes[axis]:
+            if canon(v) not in axes[axis]:
                 raise ValueError(f"{key}: {v!r} is not on the grid axis {axis} {axes[axis]}")
+        return
+    if axis != "beta":
+        raise ValueError(f"{key} names values on the grid axis {axis}, which the scene has not")
+    material = options.get("material")
+    if not given or not isinstance(material, str) or material in catalogue.computed():
+        return  # the figure's default, or a fit's beta known only after the fit
+    own = catalogue.material(material).to_dict().get("beta")
+    if own is None or canon(own) != canon(value):
+        raise ValueError(f"{key}: {value!r} is neither on a grid axis beta (the scene has none) nor material "
+                         f"{material!r}'s own beta ({own}); give the material's beta, or sweep beta")
 
 
 def _check_size(where: str, scene: dict, shard_size: int) -> None:
@@ -280,16 +219,31 @@ def _check_size(where: str, scene: dict, shard_size: int) -> None:
                          f"or raise shard_size")
 
 
-def _check_scene(name: str, scene: dict, catalogue: Catalogue, shard_size: int) -> None:
+def _body_identities(scene: dict, catalogue: Catalogue) -> dict:
+    """{name: content identity} of the computed materials (fits, calibrations) the scene's bodies name:
+    part of the settings, so a refitted body material recomputes the sweep."""
+    names = [(scene.get(k) or {}).get("material") for k in ("sphere", "plate")]
+    return {n: catalogue.identity(n) for n in names if isinstance(n, str) and n in catalogue.computed()}
+
+
+def _build_scene(name: str, config: dict, catalogue: Catalogue, shard_size: int) -> Scene:
+    """The checked :class:`Scene` of one config entry; its grid is built here, once."""
     where = f"scenes.{name}"
     if not re.fullmatch(SCENE_NAME_PATTERN, name):
         raise ValueError(f"{where}: scene names may use letters, digits, - and _")
+    scene = inline_config_materials(config, catalogue)
+    size = int(scene.get("shard_size", shard_size))
     check_uncertainty(where, scene, catalogue)
+    grid = None
     if "grid" in scene:
-        _check_size(where, scene, int(scene.get("shard_size", shard_size)))
-        check_temperature_axis(name, scene, catalogue)  # before the corner points (which would shift)
-        validate_scene(name, scene, catalogue)
-    _check_figures(name, scene, catalogue)
+        _check_size(where, scene, size)
+        try:
+            grid = grid_of(scene)
+        except ValueError as exc:
+            raise ValueError(f"{where}.grid.{exc}") from None
+        check_temperature_axis(name, scene, catalogue, grid)  # before the corner points (which would shift)
+        validate_scene(name, scene, catalogue, grid)
+    _check_figures(name, scene, catalogue, grid)
     for mat in scene.get("convergence", {}).get("materials", []):
         catalogue.check(mat, f"{where}.convergence.materials")
     for mat in scene.get("moduli", []):
@@ -300,18 +254,33 @@ def _check_scene(name: str, scene: dict, catalogue: Catalogue, shard_size: int) 
                              f"{[m for m in METHOD_NAMES if m != 'paper']}")
         if mat not in scene.get("materials", []):
             raise ValueError(f"{where}.histories.runs: {mat!r} is not in {where}.materials")
+    settings = settings_of(scene)
+    bodies = _body_identities(scene, catalogue)
+    if bodies:
+        settings["body_materials"] = bodies
+    return Scene(name=name, config=scene, grid=grid, settings=settings, shard_size=size)
 
 
-def load_project(config: dict, base_dir=".") -> Project:
-    """The checked :class:`Project` of a config (already validated against the schema); ValueError
-    naming the key for anything wrong (module docstring)."""
+def _check_builds_something(config: dict) -> None:
+    if not any(config.get(k) for k in BUILDS):
+        given = sorted(k for k in config if config.get(k) not in (None, {}, []) and config[k] != DEFAULTS.get(k))
+        raise ValueError(f"the config names nothing to build (sections given: {given or 'none'}): add scenes, "
+                         f"fits, calibrations or dem entries (materials: only defines materials for them)")
+
+
+def load_project(config: dict, base_dir=".", *, require_targets: bool = True) -> Project:
+    """The checked :class:`~vcor.study.project.Project` of a config (already validated against the
+    schema); ValueError naming the key for anything wrong (module docstring). ``require_targets``: a
+    config that names nothing to build is refused (the workflow's rule; the command line reads a
+    config's materials alone)."""
+    config = config or {}
     base = Path(base_dir)
+    if require_targets:
+        _check_builds_something(config)
     catalogue = _catalogue(config, base)
-    shard_size = int(config.get("shard_size", 1000))
-    scenes = {}
-    for name, scene in (config.get("scenes") or {}).items():
-        scenes[name] = inline_config_materials(scene, catalogue)
-        _check_scene(name, scenes[name], catalogue, shard_size)
+    shard_size = int(config.get("shard_size", DEFAULTS["shard_size"]))
+    scenes = {name: _build_scene(name, scene, catalogue, shard_size)
+              for name, scene in (config.get("scenes") or {}).items()}
     dem = dict(config.get("dem") or {})
     for name, spec in dem.items():
         if not re.fullmatch(SCENE_NAME_PATTERN, name):

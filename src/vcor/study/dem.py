@@ -11,9 +11,10 @@
         models: [lammps-viscoelastic, ...]   # optional: every law of vcor.dem.laws.MODELS
         solver: {...}                 # optional solver options (default method adaptive)
 
-``sphere.material`` is a name of the project's catalogue (preset, config material, fit or
-calibration) or an inline spec ``{model: ...}``; a target sphere without ``material`` is the
-sphere's twin. :func:`check_dem` checks an entry before any job (every message names the key);
+``sphere.material`` and a target body's ``material`` are names of the project's catalogue (preset,
+config material, fit or calibration), inline specs ``{model: ...}`` or (a target's) ``rigid``; a
+target sphere without ``material`` is the sphere's twin. With ``T``, every viscoelastic body's
+material is taken at each temperature through its shift function. :func:`check_dem` checks an entry before any job (every message names the key);
 :func:`run_dem` is the job: the collisions at every temperature and the laws fitted to each.
 """
 
@@ -27,7 +28,7 @@ from ..materials.catalogue import Catalogue
 from ..materials.shift import at_temperature
 from ..materials.specs import from_spec, shift_function
 from ..solvers.options import SolverOptions
-from .scene import axis_values
+from .grid import axis_values
 
 __all__ = ["DEM_KEYS", "check_dem", "dem_material", "run_dem"]
 
@@ -41,21 +42,39 @@ def _where(name: str) -> str:
 
 def dem_material(spec: dict, catalogue: Catalogue, T: float | None = None, where: str = "dem"):
     """(material, shift function or None) of an entry's ``sphere.material`` at temperature T (deg C)."""
-    value = (spec.get("sphere") or {}).get("material")
+    return _body_material((spec.get("sphere") or {}).get("material"), catalogue, T, f"{where}.sphere")
+
+
+def _body_material(value, catalogue: Catalogue, T: float | None, where: str):
+    """(material, shift function or None) of a body's ``material`` value at temperature T (deg C); an
+    elastic material without a shift function is the same at every temperature."""
     if isinstance(value, str):
-        catalogue.check(value, f"{where}.sphere.material")
+        catalogue.check(value, f"{where}.material")
         shift = catalogue.shift(value)
         material = catalogue.material(value)
         name = value
     elif isinstance(value, dict):
-        material = from_spec(value, name="sphere", base_dir=catalogue.base_dir, where=f"{where}.sphere.material")
-        shift = shift_function(value, f"{where}.sphere.material") if "shift" in value else None
-        name = f"{where}.sphere.material"
+        material = from_spec(value, name="body", base_dir=catalogue.base_dir, where=f"{where}.material")
+        shift = shift_function(value, f"{where}.material") if "shift" in value else None
+        name = f"{where}.material"
     else:
-        raise ValueError(f"{where}.sphere.material: a material name or a spec {{model: ...}}, got {value!r}")
-    if T is not None:
+        raise ValueError(f"{where}.material: a material name or a spec {{model: ...}}, got {value!r}")
+    if T is not None and not (shift is None and material.is_elastic):
         material = at_temperature(material, shift, T, name)
     return material, shift
+
+
+def _target_at(spec: dict, catalogue: Catalogue, T: float | None, where: str):
+    """The entry's target with a target body's named material (or spec) resolved to the material at T."""
+    target = spec.get("target", "rigid")
+    if not isinstance(target, dict):
+        return target
+    (kind, body), = target.items()
+    value = (body or {}).get("material") if isinstance(body, dict) else None
+    if value is None or value == "rigid":
+        return target
+    material, _ = _body_material(value, catalogue, T, f"{where}.target.{kind}")
+    return {kind: {**body, "material": material}}
 
 
 def _speeds(spec, where):
@@ -101,9 +120,12 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
             temps = axis_values(spec["T"])
         except (ValueError, TypeError) as exc:
             raise ValueError(f"{where}.T: {exc}") from None
-    value = sphere["material"]
-    if isinstance(value, str) and value in catalogue.computed():
-        catalogue.check(value, f"{where}.sphere.material")
+    bodies = [("sphere", sphere)] + ([(f"target.{k}", b) for k, b in target.items()] if isinstance(target, dict) else [])
+    names = [b.get("material") if isinstance(b, dict) else None for _, b in bodies]
+    for (key, _), value in zip(bodies, names):
+        if isinstance(value, str) and value != "rigid":
+            catalogue.check(value, f"{where}.{key}.material")
+    if any(isinstance(v, str) and v in catalogue.computed() for v in names):
         return  # a fit's or calibration's file is written by its rule: its values are checked by the job
     if temps != [None] and dem_material(spec, catalogue, where=where)[1] is None:
         raise ValueError(f"{where}.T: the sphere's material has no shift function (a temperature sweep needs "
@@ -117,7 +139,7 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
         geometry = {k: body[s] for k, s in (("r", "r"), ("rho_a", "rho"), ("nu", "nu")) if s in body}
         for v in (v0[0], v0[-1]):
             try:
-                mat, geo = target_inputs(material, target, geometry)
+                mat, geo = target_inputs(material, _target_at(spec, catalogue, T, where), geometry)
                 make_impact(mat, v, geo)
             except ValueError as exc:
                 raise ValueError(f"{where}: {exc}") from None
@@ -136,7 +158,8 @@ def run_dem(name: str, spec: dict, catalogue: Catalogue):
     collisions, fits = [], []
     for T in temps or [None]:
         material, _ = dem_material(spec, catalogue, T, where)
-        col = collision(material, v0, sphere=sphere, target=spec.get("target", "rigid"), options=spec.get("solver"))
+        target = _target_at(spec, catalogue, T, where)
+        col = collision(material, v0, sphere=sphere, target=target, options=spec.get("solver"))
         collisions.append(col)
         fits.append(fit_laws(col, models))
     return collisions, fits, temps

@@ -15,6 +15,8 @@ import json
 
 from ..materials.catalogue import Catalogue
 from ..materials.presets import PRESETS, get
+from .project import DEFAULTS, Scene
+from .scene import grid_of, settings_of
 
 __all__ = ["scene_from_dataset"]
 
@@ -27,8 +29,8 @@ def _attr(ds, key):
     return json.loads(value) if isinstance(value, str) else value
 
 
-def scene_from_dataset(ds) -> tuple[dict, Catalogue]:
-    """(scene, catalogue) of a sweep dataset (module docstring). ValueError when the dataset lacks
+def scene_from_dataset(ds) -> tuple[Scene, Catalogue]:
+    """(:class:`~vcor.study.project.Scene`, catalogue) of a sweep dataset (module docstring). ValueError when the dataset lacks
     the attributes, or a preset's recorded parameters differ from the running code's preset (the
     preset changed since: the scene cannot be rebuilt under its name)."""
     scene = _attr(ds, "scene_config")
@@ -46,4 +48,7 @@ def scene_from_dataset(ds) -> tuple[dict, Catalogue]:
         if record.get("shift"):
             spec["shift"] = dict(record["shift"])
         specs[name] = spec
-    return scene, Catalogue(specs=specs)
+    name = str(ds.attrs.get("scene", "rebuilt"))
+    rebuilt = Scene(name=name, config=scene, grid=grid_of(scene), settings=settings_of(scene),
+                    shard_size=DEFAULTS["shard_size"])
+    return rebuilt, Catalogue(specs=specs)

@@ -19,6 +19,7 @@ from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS, richardson
 from ..solvers.simulate import simulate
+from .grid import Axis
 from .scene import build_point
 
 __all__ = ["ERRORS", "SCALARS", "run_points", "solve_point"]
@@ -95,12 +96,20 @@ def _rows_to_dataset(points, rows, settings):
         data["error_status"] = ("point", _status.codes_of(r["error_status"] for r in rows))
         data["error_message"] = ("point", np.array([r["error_message"] for r in rows], dtype=object))
     coords = {"point": np.arange(n)}
-    axes = [k for k in points[0] if k not in ("material", "material_id")] if points else []
+    axes = [k for k in points[0] if k not in ("index", "material", "material_id")] if points else []
     coords["material"] = ("point", np.array([p["material"] for p in points], dtype=object))
     coords["material_id"] = ("point", np.array([p.get("material_id", "") for p in points], dtype=object))
+    if points and all("index" in p for p in points):
+        coords["index"] = ("point", np.array([int(p["index"]) for p in points], dtype=np.int64))
     for a in axes:
         coords[a] = ("point", np.array([float(p[a]) for p in points]))
     ds = xr.Dataset(data, coords=coords)
+    for a in axes:
+        axis = Axis.of(a, ())
+        ds[a].attrs.update(units=axis.unit, long_name=axis.long_name)
+    if "index" in ds.coords:
+        ds["index"].attrs.update(units="1", long_name="the point's index in its scene's grid when the shard was "
+                                                      "written (vcor.study.grid)")
     for v in SCALARS + (ERRORS if estimate else ()):
         base = v.replace("_err", "")
         ds[v].attrs["units"] = UNITS.get(base, "1")

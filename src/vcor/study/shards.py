@@ -13,20 +13,29 @@ So changed code, a changed preset or fit, or changed settings give new shard nam
 recomputes exactly those shards and ``snakemake -n`` lists them. Planning reuses every finished
 shard whose settings hash matches and that holds still-wanted points, and groups only the points
 not yet covered into new shards, so extending a grid never recomputes finished points.
+
+A point's name (:func:`vcor.study.grid.point_key`) leaves out its grid index, which moves when a grid
+is extended; every shard still records the index of each point when it was written (its ``index``
+coordinate), and the plan gives, for each shard, the index of each of its points in the current grid
+(:attr:`Shard.rows`), which the aggregate joins by. A shard whose index file has no point indices (an
+older vcor's) is recomputed, never misread.
 """
 
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..io import receipts
 from ..materials.catalogue import content_hash
 from ..provenance import code_fingerprint
-from .scene import scene_points, settings_of
+from .grid import Grid, point_key
+from .scene import grid_of, settings_of
 
 __all__ = [
     "SHARD_PATTERN",
+    "Shard",
     "identified_points",
     "plan_shards",
     "point_key",
@@ -38,45 +47,70 @@ __all__ = [
 SHARD_PATTERN = "[0-9a-f]{10}-[0-9a-f]{12}"
 
 
+@dataclass(frozen=True, kw_only=True)
+class Shard:
+    """One sweep job: ``points`` as the job solves and records them (a reused shard: as its index file
+    holds them, with the grid index they had when it was written), and ``rows``, the index of each
+    of those points in the current grid (-1: no longer on the grid), which the aggregate joins by."""
+
+    id: str
+    points: list
+    rows: list
+
+
 def shard_settings(scene) -> dict:
     """The scene's settings plus the code fingerprint: what the settings hash covers."""
     return {**settings_of(scene), "code": code_fingerprint()}
 
 
-def settings_hash(scene) -> str:
-    return content_hash(shard_settings(scene), 10)
+def settings_hash(scene, settings: dict | None = None) -> str:
+    """The hash of the scene's settings (``settings``: already built, e.g. with body identities)."""
+    return content_hash({**(settings or settings_of(scene)), "code": code_fingerprint()}, 10)
 
 
-def identified_points(scene, identities: dict) -> list[dict]:
-    """The scene's points, each with the ``material_id`` of its material (``identities``: name -> id)."""
-    return [{**p, "material_id": identities[p["material"]]} for p in scene_points(scene)]
+def identified_points(scene, identities: dict, grid: Grid | None = None) -> list[dict]:
+    """The scene's points (index order), each with the ``material_id`` of its material (``identities``:
+    name -> id)."""
+    grid = grid or grid_of(scene)
+    return [{**p, "material_id": identities[p["material"]]} for p in grid.points()]
 
 
-def point_key(p: dict) -> str:
-    return json.dumps(p, sort_keys=True)
+def _read_index(idx: Path, order: list) -> list[dict]:
+    """The points of a shard's index file, keys in the grid's order (so that Snakemake sees unchanged
+    params); ValueError when it cannot be read or was written before shards carried their index."""
+    try:
+        pts = json.loads(idx.read_text())["points"]
+        pts = [{k: p[k] for k in order if k in p} | {k: p[k] for k in sorted(p) if k not in order} for p in pts]
+    except (OSError, ValueError, KeyError, TypeError):
+        raise ValueError(f"its index {idx.name} cannot be read") from None
+    if any("index" not in p for p in pts):
+        raise ValueError(f"its index {idx.name} has no point indices (written by an older vcor)")
+    return pts
 
 
-def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict, on_invalid=None) -> dict[str, list[dict]]:
-    """{shard id: points}. Existing shards with the same settings hash are reused as they are, if they
-    are what their writer wrote (:func:`vcor.io.receipts.problem`, the shard id as identity); a shard
-    that is not is passed to ``on_invalid(path, reason)`` (the workflow moves it aside) and its points
-    are planned again."""
-    h = settings_hash(scene)
-    wanted = identified_points(scene, identities)
+def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict, on_invalid=None, *,
+                grid: Grid | None = None, settings: dict | None = None) -> dict[str, Shard]:
+    """{shard id: :class:`Shard`}. Existing shards with the same settings hash are reused as they are,
+    if they are what their writer wrote (:func:`vcor.io.receipts.problem`, the shard id as identity)
+    and hold still-wanted points; a shard that is not is passed to ``on_invalid(path, reason)`` (the
+    workflow moves it aside) and its points are planned again. ``grid`` and ``settings``: the scene's,
+    when the caller built them already."""
+    settings = settings or settings_of(scene)
+    h = settings_hash(scene, settings)
+    wanted = identified_points(scene, identities, grid)
     todo = {point_key(p): p for p in wanted}
+    index_of = {k: p["index"] for k, p in todo.items()}
     order = list(wanted[0]) if wanted else []
-    plan: dict[str, list[dict]] = {}
+    plan: dict[str, Shard] = {}
     for idx in sorted(Path(shard_dir).glob(f"{h}-*.json")):
         nc = idx.with_suffix(".nc")
-        try:
-            pts = json.loads(idx.read_text())["points"]
-            # same key order as the scene's points, so Snakemake sees unchanged params
-            pts = [{k: p[k] for k in order if k in p} | {k: p[k] for k in sorted(p) if k not in order} for p in pts]
-        except (OSError, ValueError, KeyError, TypeError):
-            if nc.exists() and on_invalid is not None:
-                on_invalid(nc, f"its index {idx.name} cannot be read")
-            continue
         if not nc.exists():
+            continue
+        try:
+            pts = _read_index(idx, order)
+        except ValueError as exc:
+            if on_invalid is not None:
+                on_invalid(nc, str(exc))
             continue
         keys = [point_key(p) for p in pts]
         if not any(k in todo for k in keys):
@@ -86,11 +120,12 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict,
             if on_invalid is not None:
                 on_invalid(nc, reason)
             continue
-        plan[idx.stem] = pts
+        plan[idx.stem] = Shard(id=idx.stem, points=pts, rows=[index_of.get(k, -1) for k in keys])
         for k in keys:
             todo.pop(k, None)
     rest = list(todo.values())
     for i in range(0, len(rest), shard_size):
         chunk = rest[i : i + shard_size]
-        plan[f"{h}-{content_hash([point_key(p) for p in chunk])}"] = chunk
+        sid = f"{h}-{content_hash([point_key(p) for p in chunk])}"
+        plan[sid] = Shard(id=sid, points=chunk, rows=[p["index"] for p in chunk])
     return plan

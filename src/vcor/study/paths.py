@@ -1,0 +1,91 @@
+"""Where the workflow writes: every result path, once, for Python and for the rules.
+
+Each path is a pattern with Snakemake's wildcards in braces (``results/{scene}/sweep.nc``); the rules
+use the patterns as their inputs and outputs, Python formats them (:func:`fmt`). Material files live
+under the config's ``material_dir`` (default ``results/materials``), which the patterns of the
+material rules take as their first argument. Paths are relative to the project folder.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "CALIBRATION",
+    "CALIBRATION_FIGURE",
+    "CONVERGENCE_CASE",
+    "DATASET",
+    "DEM",
+    "DEM_DECK",
+    "DEM_FIGURE",
+    "DEM_TABLE",
+    "FIGURE",
+    "FIT_METRICS",
+    "MANIFEST",
+    "ORDERS",
+    "RESULTS",
+    "SHARD",
+    "SHARD_DIR",
+    "SHARD_INDEX",
+    "SWEEP",
+    "benchmark",
+    "fmt",
+    "log",
+    "material",
+    "material_table",
+    "samples",
+]
+
+#: the folder every result is written to
+RESULTS = "results"
+
+#: a scene's datasets (sweep, moduli, histories, spheres, convergence)
+DATASET = "results/{scene}/{dataset}.nc"
+SWEEP = "results/{scene}/sweep.nc"
+#: a sweep job's shard and its index (the points it holds, JSON), in the scene's shard folder
+SHARD_DIR = "results/{scene}/shards"
+SHARD = SHARD_DIR + "/{shard}.nc"
+SHARD_INDEX = SHARD_DIR + "/{shard}.json"
+#: one material's ladder of the work-precision study
+CONVERGENCE_CASE = "results/{scene}/convergence/{material_case}.nc"
+ORDERS = "results/{scene}/orders.txt"
+FIT_METRICS = "results/{scene}/fit_metrics.txt"
+MANIFEST = "results/{scene}/MANIFEST.txt"
+#: a scene's figure, ext png (the report's) or pdf (print)
+FIGURE = "results/{scene}/figures/{fig}.{ext}"
+#: calibrations from measured COR
+CALIBRATION = "results/calibrations/{cal}.nc"
+CALIBRATION_FIGURE = "results/calibrations/{cal}.{ext}"
+#: DEM entries
+DEM = "results/dem/{dem}.nc"
+DEM_TABLE = "results/dem/{dem}/table.csv"
+DEM_DECK = "results/dem/{dem}/lammps/in.{kind}"
+DEM_FIGURE = "results/dem/{dem}.{ext}"
+
+
+def fmt(pattern: str, **wildcards) -> str:
+    """``pattern`` with its wildcards filled in."""
+    return pattern.format(**wildcards)
+
+
+def material(material_dir: str, name: str = "{name}") -> str:
+    """A material file (a fit, calibration or config material), ``<material_dir>/<name>.nc``."""
+    return f"{material_dir}/{name}.nc"
+
+
+def material_table(material_dir: str, name: str = "{name}") -> str:
+    """A fit's parameter table, ``<material_dir>/<name>.txt``."""
+    return f"{material_dir}/{name}.txt"
+
+
+def samples(material_dir: str, name: str = "{material}", n="{n}", seed="{seed}") -> str:
+    """A fit's bootstrap samples, ``<material_dir>/samples/<name>-b<n>-s<seed>.nc``."""
+    return f"{material_dir}/samples/{name}-b{n}-s{seed}.nc"
+
+
+def log(folder: str, name: str) -> str:
+    """A job's log, ``<folder>/logs/<name>.log`` (folder: ``results/{scene}``, a material dir, ...)."""
+    return f"{folder}/logs/{name}.log"
+
+
+def benchmark(folder: str, name: str) -> str:
+    """A job's benchmark file (Snakemake's ``benchmark:``), ``<folder>/benchmarks/<name>.tsv``."""
+    return f"{folder}/benchmarks/{name}.tsv"

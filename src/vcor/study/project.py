@@ -1,0 +1,168 @@
+"""One typed model of a project, built once from its config (:func:`vcor.study.config.load_project`).
+
+A :class:`Project` holds the material catalogue (presets, config materials, fits, calibrations:
+every material reference of the config resolves through it), the scenes, the DEM entries and the
+defaults; a :class:`Scene` holds its config, its grid (:class:`vcor.study.grid.Grid`: typed axes
+and indexed points) and its solver settings. The workflow plans from this model, and every output
+path comes from :mod:`vcor.study.paths`.
+
+What a config builds (the workflow's default target):
+
+* every scene's datasets, figures, tables and manifest, and the files of the materials it uses;
+* every fit (its material file and parameter table) and every calibration (its record, figure and
+  material file), whether or not a scene uses them: a config that names a fit asks for it;
+* every DEM entry's dataset, COR table, LAMMPS deck and figure.
+
+The ``materials:`` block defines materials for the others to use; it builds nothing by itself.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..materials.catalogue import Catalogue
+from ..plots import needs
+from . import paths
+from .grid import Grid
+from .uncertainty import samples_file, uncertainty_of
+
+__all__ = ["BUILDS", "DATASETS", "DEFAULTS", "Project", "Scene"]
+
+#: defaults of the config's top-level keys (the schema states the same; tests/test_config_model.py)
+DEFAULTS = {"shard_size": 1000, "material_dir": "results/materials"}
+#: datasets a scene may build (besides its sweep), each from a config block of the same name
+DATASETS = ("moduli", "histories", "spheres", "convergence")
+#: the top-level sections that name something to build
+BUILDS = ("scenes", "fits", "calibrations", "dem")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Scene:
+    """One checked scene: ``config`` as configured (config materials of bodies inlined), ``grid``
+    (None without a sweep), ``settings`` (:func:`vcor.study.scene.settings_of`, plus the identities of
+    computed body materials) and the points per sweep job ``shard_size``."""
+
+    name: str
+    config: dict
+    grid: Grid | None
+    settings: dict
+    shard_size: int
+
+    @property
+    def materials(self) -> list[str]:
+        return list(self.config.get("materials") or [])
+
+    @property
+    def figures(self) -> dict:
+        return dict(self.config.get("figures") or {})
+
+    @property
+    def uncertainty(self) -> dict | None:
+        return uncertainty_of(self.config)
+
+    def datasets(self) -> list[str]:
+        """The datasets the scene builds: ``sweep`` with a grid, and each one its figures need."""
+        need = needs(self.figures)
+        return (["sweep"] if self.grid is not None else []) + [n for n in DATASETS if n in need]
+
+    def used_materials(self) -> list[str]:
+        """Names of the catalogue the scene uses (swept, tabulated, convergence and body materials)."""
+        cfg = self.config
+        bodies = [(cfg.get(k) or {}).get("material") for k in ("sphere", "plate")]
+        return sorted(set(self.materials) | set(cfg.get("moduli", []))
+                      | set(cfg.get("convergence", {}).get("materials", []))
+                      | {b for b in bodies if isinstance(b, str) and b != "rigid"})
+
+
+@dataclass(frozen=True, kw_only=True)
+class Project:
+    """A checked config (module docstring)."""
+
+    catalogue: Catalogue
+    scenes: dict = field(default_factory=dict)
+    dem: dict = field(default_factory=dict)
+    shard_size: int = DEFAULTS["shard_size"]
+    config: dict = field(repr=False, default_factory=dict)
+
+    @property
+    def material_dir(self) -> str:
+        return self.catalogue.material_dir
+
+    # -- scenes -----------------------------------------------------------------------------------
+    def scene_targets(self, scene: str) -> list[str]:
+        """Every output of a scene (its datasets, figures, tables, the files of the materials it uses that
+        are not presets), paths relative to the project: the workflow's default target requires them
+        all, so a lost one is computed again."""
+        sc = self.scenes[scene]
+        out = [paths.fmt(paths.DATASET, scene=scene, dataset=n) for n in sc.datasets()]
+        out += [paths.material(self.material_dir, m) for m in sc.used_materials()
+                if m in self.catalogue.specs or m in self.catalogue.computed()]
+        out += [path for path, _ in self.samples_of(scene)]
+        for fig in sc.figures:
+            out += [paths.fmt(paths.FIGURE, scene=scene, fig=fig, ext=e) for e in ("png", "pdf")]
+        if "convergence" in sc.config:
+            out.append(paths.fmt(paths.ORDERS, scene=scene))
+        if set(sc.materials) & set(self.catalogue.fits):
+            out.append(paths.fmt(paths.FIT_METRICS, scene=scene))
+        return out
+
+    def material_files_of(self, scene: str) -> list[str]:
+        """The computed material files (fits, calibrations) a scene's jobs read; presets and config
+        materials are built from their definitions."""
+        computed = self.catalogue.computed()
+        return ([paths.material(self.material_dir, m) for m in self.scenes[scene].used_materials() if m in computed]
+                + [path for path, _ in self.samples_of(scene)])
+
+    def samples_of(self, scene: str) -> list[tuple[str, str]]:
+        """(samples file, fit name) of every material of an uncertainty scene (vcor.study.uncertainty)."""
+        sc = self.scenes[scene]
+        spec = sc.uncertainty
+        if spec is None:
+            return []
+        return [(samples_file(self.material_dir, m, spec), m) for m in sc.materials]
+
+    # -- fits, calibrations, DEM entries ------------------------------------------------------------
+    def fit_targets(self) -> list[str]:
+        """Every fit's material file and parameter table."""
+        return [p for m in self.catalogue.fits
+                for p in (paths.material(self.material_dir, m), paths.material_table(self.material_dir, m))]
+
+    def calibration_targets(self) -> list[str]:
+        """Every calibration's record, figure and material file."""
+        out = []
+        for c in self.catalogue.calibrations:
+            out += [paths.fmt(paths.CALIBRATION, cal=c)]
+            out += [paths.fmt(paths.CALIBRATION_FIGURE, cal=c, ext=e) for e in ("png", "pdf")]
+            out += [paths.material(self.material_dir, c)]
+        return out
+
+    def dem_targets(self, name: str) -> list[str]:
+        """The outputs of a ``dem:`` entry: its dataset, COR table, LAMMPS deck and figure."""
+        target = self.dem[name].get("target", "rigid")
+        kind = "pair" if isinstance(target, dict) and "sphere" in target else "wall"
+        return [paths.fmt(paths.DEM, dem=name), paths.fmt(paths.DEM_TABLE, dem=name),
+                paths.fmt(paths.DEM_DECK, dem=name, kind=kind),
+                *(paths.fmt(paths.DEM_FIGURE, dem=name, ext=e) for e in ("png", "pdf"))]
+
+    def dem_materials(self, name: str) -> list[str]:
+        """Names of the catalogue a ``dem:`` entry's bodies use (the sphere's, a target body's)."""
+        spec = self.dem[name]
+        target = spec.get("target", "rigid")
+        bodies = [spec["sphere"]] + (list(target.values()) if isinstance(target, dict) else [])
+        return [b["material"] for b in bodies
+                if isinstance(b, dict) and isinstance(b.get("material"), str) and b["material"] != "rigid"]
+
+    def dem_material_files(self, name: str) -> list[str]:
+        """The computed material files (fits, calibrations) a ``dem:`` entry's job reads."""
+        computed = self.catalogue.computed()
+        return [paths.material(self.material_dir, m) for m in self.dem_materials(name) if m in computed]
+
+    def all_targets(self) -> list[str]:
+        """What ``snakemake`` builds without a target (module docstring)."""
+        out = []
+        for scene in self.scenes:
+            out += self.scene_targets(scene) + [paths.fmt(paths.MANIFEST, scene=scene)]
+        for name in self.dem:
+            out += self.dem_targets(name)
+        out += self.fit_targets() + self.calibration_targets()
+        return list(dict.fromkeys(out))

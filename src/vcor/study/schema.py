@@ -1,0 +1,180 @@
+"""The config's shape, checked against its JSON schema, refused in one line.
+
+``workflow/schemas/config.schema.yaml`` says which keys a config may have, their types, ranges and
+defaults (a ``description`` per key). :func:`check_schema` validates a config against it, filling in
+the defaults (as ``snakemake.utils.validate(..., set_default=True)`` does), and turns the most
+relevant of jsonschema's error objects into one line built from the error's path and validator (not
+its text, which for ``oneOf``/``anyOf`` quotes the whole schema):
+
+    scenes.my-study.figure: unknown key; allowed: [...]; did you mean 'figures'?
+    scenes.s.grid.v0: got '1,2,3'; allowed: a list of numbers, or a range {start, stop, step} ...
+
+It uses jsonschema directly (Snakemake's ``validate`` raises the first error only, and only as text
+wrapped in its own message), with the same default-filling recipe.
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+from pathlib import Path
+
+__all__ = ["SchemaError", "check_schema", "explain", "load_schema"]
+
+
+class SchemaError(ValueError):
+    """A config that does not have the schema's shape; the message is one line naming the key."""
+
+
+@functools.lru_cache(maxsize=4)
+def _load(path: str) -> dict:
+    import yaml
+
+    return yaml.safe_load(Path(path).read_text())
+
+
+def load_schema(path) -> dict:
+    """The schema at ``path`` (YAML), read once per process."""
+    return _load(str(Path(path).resolve()))
+
+
+def _validator(schema: dict):
+    from jsonschema import Draft202012Validator, validators
+
+    properties = Draft202012Validator.VALIDATORS["properties"]
+
+    def set_defaults(validator, props, instance, sub):
+        if isinstance(instance, dict):
+            for name, subschema in props.items():
+                if isinstance(subschema, dict) and "default" in subschema:
+                    instance.setdefault(name, subschema["default"])
+        yield from properties(validator, props, instance, sub)
+
+    cls = validators.extend(Draft202012Validator, {"properties": set_defaults})
+    return cls(schema)
+
+
+def check_schema(config: dict, schema_path) -> dict:
+    """``config`` with the schema's defaults filled in; :class:`SchemaError` (one line) when it does
+    not have the schema's shape."""
+    if config is None:
+        config = {}
+    if not isinstance(config, dict):
+        raise SchemaError(f"the config must be a mapping of sections (scenes, fits, calibrations, dem, "
+                          f"materials, ...), got {type(config).__name__} {_short(config)}")
+    schema = load_schema(schema_path)
+    errors = list(_validator(schema).iter_errors(config))
+    if errors:
+        raise SchemaError(explain(_most_relevant(errors), schema))
+    return config
+
+
+def _most_relevant(errors):
+    from jsonschema.exceptions import relevance
+
+    return sorted(errors, key=relevance)[-1] if len(errors) > 1 else errors[0]
+
+
+# -- one line per error -----------------------------------------------------------------------------
+def _where(path) -> str:
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out or "the config"
+
+
+def _short(value, n: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= n else text[: n - 3] + "..."
+
+
+def _hint(word, choices) -> str:
+    close = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.6)
+    return f"; did you mean {close[0]!r}?" if close else ""
+
+
+def _allowed_keys(schema: dict) -> list[str]:
+    return sorted(schema.get("properties", {}))
+
+
+#: JSON schema types in a config writer's words
+TYPE_WORDS = {"object": "a mapping", "array": "a list", "number": "a number", "integer": "an integer",
+              "string": "a text", "boolean": "true or false", "null": "null"}
+
+
+def _form(schema: dict) -> str:
+    """A short description of what a (sub)schema accepts."""
+    if "description" in schema and len(schema["description"]) <= 120:
+        return schema["description"]
+    if "const" in schema:
+        return repr(schema["const"])
+    if "enum" in schema:
+        return f"one of {schema['enum']}"
+    kind = schema.get("type")
+    if kind == "object" and "properties" in schema:
+        req = schema.get("required", [])
+        opt = [k for k in schema["properties"] if k not in req]
+        return "{" + ", ".join(req + [f"{k}?" for k in opt]) + "}"
+    if kind == "array":
+        item = schema.get("items", {})
+        return f"a list of {item.get('type', 'values')}s" if isinstance(item, dict) else "a list"
+    if isinstance(kind, str):
+        return TYPE_WORDS.get(kind, kind)
+    return " or ".join(TYPE_WORDS.get(k, k) for k in kind) if isinstance(kind, list) else "a value"
+
+
+def _alternatives(error):
+    """The context errors of a oneOf/anyOf grouped by alternative, without the alternatives the value's
+    type or keys rule out at once."""
+    groups = {}
+    for sub in error.context:
+        groups.setdefault(sub.relative_schema_path[0], []).append(sub)
+    near = {}
+    for k, subs in groups.items():
+        structural = any(len(s.path) == 0 and s.validator in ("type", "required", "additionalProperties", "const")
+                         for s in subs)
+        if not structural:
+            near[k] = subs
+    return near
+
+
+def explain(error, schema: dict) -> str:
+    """One line for a jsonschema ``ValidationError`` (module docstring)."""
+    where, given, rule = _where(error.absolute_path), error.instance, error.validator
+    sub = error.schema if isinstance(error.schema, dict) else {}
+    if rule in ("oneOf", "anyOf"):
+        near = _alternatives(error)
+        if len(near) == 1:
+            (subs,) = near.values()
+            return explain(_most_relevant(subs), schema)
+        forms = "; or ".join(_form(s) for s in error.validator_value)
+        return f"{where}: got {_short(given)}; allowed: {sub.get('description') or forms}"
+    if rule == "additionalProperties":
+        allowed = _allowed_keys(sub)
+        extra = [k for k in given if k not in allowed]
+        key = extra[0] if extra else "?"
+        return f"{where}.{key}: unknown key; allowed: {allowed}{_hint(key, allowed)}" if where != "the config" \
+            else f"{key}: unknown section; allowed: {allowed}{_hint(key, allowed)}"
+    if rule == "propertyNames":
+        names = error.validator_value.get("enum", [])
+        bad = [k for k in given if k not in names] if names else []
+        key = bad[0] if bad else "?"
+        return f"{where}.{key}: unknown name; allowed: {names}{_hint(key, names)}"
+    if rule == "required":
+        missing = [k for k in error.validator_value if k not in given]
+        return f"{where}: missing key {missing[0]!r} (required: {error.validator_value})"
+    if rule == "enum":
+        return f"{where}: {_short(given)} is not allowed; allowed: {error.validator_value}" \
+               f"{_hint(given, error.validator_value)}"
+    if rule == "const":
+        return f"{where}: {_short(given)} is not allowed; allowed: {error.validator_value!r}"
+    if rule == "type":
+        return f"{where}: expected {_form({'type': error.validator_value})}, got {_short(given)}"
+    limits = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}
+    if rule in limits:
+        return f"{where}: must be {limits[rule]} {error.validator_value}, got {_short(given)}"
+    if rule in ("minItems", "maxItems", "minProperties", "maxProperties"):
+        what = "item" if "Items" in rule else "entry"
+        bound = "at least" if rule.startswith("min") else "at most"
+        return f"{where}: {bound} {error.validator_value} {what}(s), got {_short(given)}"
+    return f"{where}: {_short(given)} does not satisfy {rule} {_short(error.validator_value)}"
