@@ -66,6 +66,53 @@ def within_range(v0, error, bound: float = WITHIN) -> tuple[float, float]:
     return (float(v0[best[1]]), float(v0[best[2]])) if best[0] else (np.nan, np.nan)
 
 
+#: units and long names of the dataset's variables other than the laws' parameters
+_UNITS = {"cor": "1", "cor_model": "1", "error": "1", "max_abs_error": "1", "v0_within_lo": "m s-1",
+          "v0_within_hi": "m s-1", "validity": "1", "opposite_trend": "1"}
+_NAMES = {"cor": "vcor's COR (hereditary contact, the contact ends where the force vanishes)",
+          "cor_model": "the DEM law's COR with its fitted parameters", "error": "cor_model - cor",
+          "max_abs_error": "largest abs(error) over the speeds",
+          "v0_within_lo": f"lowest speed of the widest run of speeds with abs(error) <= {WITHIN}",
+          "v0_within_hi": f"highest speed of the widest run of speeds with abs(error) <= {WITHIN}",
+          "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)",
+          "opposite_trend": "1 where the law's COR changes with speed in the opposite sense to vcor's over the "
+                            f"range and misses it by more than {WITHIN} (vcor.dem.trend): no value of its "
+                            "parameters follows the curve"}
+
+
+def _describe(ds, params: dict, with_t: bool) -> None:
+    """Units and long names of every variable and coordinate, in place."""
+    for v, text in _NAMES.items():
+        ds[v].attrs["long_name"] = text
+        if v in _UNITS:
+            ds[v].attrs["units"] = _UNITS[v]
+    ds["status"].attrs.update(cf_attrs())
+    ds["status"].attrs["long_name"] = "status of vcor's solve at the point"
+    for key, (model, unit, meaning, _) in params.items():
+        ds[key].attrs.update(units=unit, long_name=meaning, model=model)
+    ds["v0"].attrs.update(units="m s-1", long_name="impact speed (relative normal approach speed of a pair)")
+    ds["model"].attrs["long_name"] = "DEM contact law (vcor.dem.laws)"
+    if with_t:
+        ds["T"].attrs.update(units="degC", long_name="temperature")
+
+
+def _global_attrs(ds, name: str, collisions: list, models: list, config) -> None:
+    """The entry, its config, the contact and each law's source, separation and required version."""
+    contact = collisions[0].contact
+    ds.attrs.update({
+        "dem": name,
+        "dem_config": json.dumps(config or {}),
+        "contact": json.dumps({"kind": contact.kind, "m_eff_kg": contact.m_eff, "r_eff_m": contact.r_eff,
+                               "nu": contact.nu, "radii_m": list(contact.radii),
+                               "densities_kg_m-3": list(contact.densities)}),
+        "E_eff_note": "E_eff: vcor's contact stiffness at a quarter of its contact time at the reference speed "
+                      "(vcor.dem.fit); it sets a DEM contact's duration, not its COR",
+        "models": json.dumps({m: {"source": SOURCES[m], "separation": SEPARATION[m], "requires": REQUIRES[m],
+                                  "parameters": {p: u for p, (u, _) in PARAMETERS[m].items()}} for m in models}),
+        "v_ref_m_s": collisions[0].v_ref,
+    })
+
+
 def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, config: dict | None = None):
     """The dataset of one ``dem:`` entry (module docstring): ``collisions`` and ``fits`` per temperature
     (one of each without a temperature sweep)."""
@@ -110,47 +157,13 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
             params[key] = (model, unit, meaning, np.array([f[model][p] for f in fits]))
     for key, (model, unit, meaning, values) in params.items():
         data[key] = (("T",), values) if with_t else ((), values[0])
-    contact = collisions[0].contact
     coords = {"model": ("model", np.array(models, dtype=str)), "v0": ("v0", v0)}
     if with_t:
         coords["T"] = ("T", np.asarray(temperatures, dtype=float))
     ds = xr.Dataset(data, coords=coords)
-    units = {"cor": "1", "cor_model": "1", "error": "1", "max_abs_error": "1", "v0_within_lo": "m s-1",
-             "v0_within_hi": "m s-1", "validity": "1", "opposite_trend": "1"}
-    names = {"cor": "vcor's COR (hereditary contact, the contact ends where the force vanishes)",
-             "cor_model": "the DEM law's COR with its fitted parameters", "error": "cor_model - cor",
-             "max_abs_error": "largest abs(error) over the speeds",
-             "v0_within_lo": f"lowest speed of the widest run of speeds with abs(error) <= {WITHIN}",
-             "v0_within_hi": f"highest speed of the widest run of speeds with abs(error) <= {WITHIN}",
-             "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)",
-             "opposite_trend": "1 where the law's COR changes with speed in the opposite sense to vcor's over the "
-                               f"range and misses it by more than {WITHIN} (vcor.dem.trend): no value of its "
-                               "parameters follows the curve"}
-    for v, text in names.items():
-        ds[v].attrs["long_name"] = text
-        if v in units:
-            ds[v].attrs["units"] = units[v]
-    ds["status"].attrs.update(cf_attrs())
-    ds["status"].attrs["long_name"] = "status of vcor's solve at the point"
-    for key, (model, unit, meaning, _) in params.items():
-        ds[key].attrs.update(units=unit, long_name=meaning, model=model)
-    ds["v0"].attrs.update(units="m s-1", long_name="impact speed (relative normal approach speed of a pair)")
-    ds["model"].attrs["long_name"] = "DEM contact law (vcor.dem.laws)"
-    if with_t:
-        ds["T"].attrs.update(units="degC", long_name="temperature")
-    ds.attrs.update({
-        "dem": name,
-        "dem_config": json.dumps(config or {}),
-        "contact": json.dumps({"kind": contact.kind, "m_eff_kg": contact.m_eff, "r_eff_m": contact.r_eff,
-                               "nu": contact.nu, "radii_m": list(contact.radii),
-                               "densities_kg_m-3": list(contact.densities)}),
-        "E_eff_note": "E_eff: vcor's contact stiffness at a quarter of its contact time at the reference speed "
-                      "(vcor.dem.fit); it sets a DEM contact's duration, not its COR",
-        "models": json.dumps({m: {"source": SOURCES[m], "separation": SEPARATION[m], "requires": REQUIRES[m],
-                                  "parameters": {p: u for p, (u, _) in PARAMETERS[m].items()}} for m in models}),
-        "v_ref_m_s": collisions[0].v_ref,
-        "trend_warning": " ".join(w for w in warnings if w),
-    })
+    _describe(ds, params, with_t)
+    _global_attrs(ds, name, collisions, models, config)
+    ds.attrs["trend_warning"] = " ".join(w for w in warnings if w)
     if "yade-mindlin" in models:
         ds.attrs["yade_version_required"] = YADE_VERSION
         ds.attrs["yade_version_note"] = REQUIRES["yade-mindlin"]
@@ -168,7 +181,6 @@ def table_csv(path, collisions: list, temperatures=None) -> None:
             row = f"{v:.10g},{c:.10g}"
             lines.append(f"{float(temperatures[i]):.10g},{row}" if temperatures is not None else row)
     atomic_text(path, "\n".join(lines) + "\n")
-
 
 
 def _parameter_rows(ds) -> list[str]:
