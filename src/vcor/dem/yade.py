@@ -21,8 +21,8 @@ The script sets, as Yade's ``pkg/dem/HertzMindlin.cpp`` reads them:
 
 It needs Yade >= 2024.02a (:data:`vcor.dem.export.YADE_VERSION`), where ``vn`` was added: an older
 Yade has no ``vn`` (``AttributeError: No such attribute: vn``), and ``en`` alone would give
-Thornton's constant-COR damping, the COR ``en`` at every speed. The script checks the version and
-the attribute first and stops with that message on an older Yade.
+Thornton's constant-COR damping, the COR ``en`` at every speed. The script checks for ``vn`` first
+and stops with that message (naming the Yade it found) on an older Yade.
 """
 
 from __future__ import annotations
@@ -50,7 +50,6 @@ _HEADER = '''\
 # E_eff); en at vn; no friction, no gravity, no numerical damping; a wall with hertzian=True.
 # Time step: the elastic Hertz contact time / steps (default {steps}).
 import math
-import re
 import sys
 
 from yade import O, Vector3, config
@@ -74,16 +73,10 @@ HERTZ_TIME = 3.2180654597185065   # elastic Hertz contact time in units of (m_ef
 
 _BODY = '''
 
-def version_tuple(text):
-    """(year, release) of a Yade version string such as 2024.02a or 2025.2.0; None if unreadable."""
-    found = re.match(r"\\s*(\\d{4})[.-](\\d+)", str(text))
-    return (int(found.group(1)), int(found.group(2))) if found else None
-
-
 def check_yade():
-    have = str(getattr(config, "version", "unknown"))
-    old = version_tuple(have) is not None and version_tuple(have) < version_tuple(REQUIRED)
-    if old or not hasattr(Ip2_FrictMat_FrictMat_MindlinPhys(), "vn"):
+    """Stop on a Yade without Ip2_FrictMat_FrictMat_MindlinPhys.vn (older than 2024.02a), saying why."""
+    if not hasattr(Ip2_FrictMat_FrictMat_MindlinPhys(), "vn"):
+        have = str(getattr(config, "version", "unknown"))
         sys.exit(f"this script needs Yade >= {REQUIRED} (found {have}): Ip2_FrictMat_FrictMat_MindlinPhys.vn, "
                  "the velocity-dependent COR, was added in 2024.02a; with en alone an older Yade uses Thornton's "
                  "constant-COR damping and its COR would be en at every speed, not the fitted curve")
