@@ -1,5 +1,6 @@
 """Sphinx configuration of the vcor documentation (MyST Markdown pages, autosummary API)."""
 
+import shutil
 import sys
 from pathlib import Path
 
@@ -38,6 +39,9 @@ myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist"]
 myst_heading_anchors = 3
 
 autosummary_generate = True
+# autosummary writes docs/api/ (git ignores it) but never removes a page: every build starts from an empty
+# folder, so that a module no longer in the package leaves no page behind
+shutil.rmtree(HERE / "api", ignore_errors=True)
 autosummary_imported_members = False
 autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_member_order = "bysource"

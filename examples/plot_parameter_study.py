@@ -2,31 +2,24 @@
 A parameter study and its ``sweep.nc``
 ======================================
 
-A study is a **scene** in ``config.yaml``; ``snakemake -j2 results/<scene>/MANIFEST.txt`` plans its
-grid into shards, solves each shard in a job and aggregates them into ``results/<scene>/sweep.nc``.
-This example runs the same steps in one Python process on a small grid, with the functions the
-workflow's jobs call (:func:`vcor.study.runner.run_points` for a shard,
-:func:`vcor.study.aggregation.aggregate` for the dataset, :func:`vcor.io.netcdf.write_dataset` to
-write it), so that it takes a second rather than the start-up of a job per shard. The dataset it
-writes has the layout of the workflow's, and is read back with xarray.
+A study is a **scene** in ``config.yaml``. Snakemake plans the scene's grid into jobs, solves them
+and aggregates the results into ``results/<scene>/sweep.nc``, a NetCDF dataset with units on every
+variable. This example writes a project with one small scene into a temporary folder, runs the
+workflow on it, and reads the dataset with xarray. It needs the workflow extra
+(``pip install -e '.[workflow]'``) and a clone of the repository (for ``Snakefile`` and ``workflow/``).
 """
 
+import shutil
+import subprocess
 import tempfile
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import xarray as xr
-import yaml
 
 from vcor import plots
-from vcor.io.netcdf import write_dataset
-from vcor.study.aggregation import aggregate, dataset_attrs
-from vcor.study.config import load_project
-from vcor.study.runner import run_points
-from vcor.study.scene import material_params, settings_of
-from vcor.study.shards import identified_points
 
-CONFIG = """
+CONFIG = """\
 scenes:
   my-first:
     description: "SLS plate: COR against v0 at three relaxation rates"
@@ -40,26 +33,20 @@ scenes:
       fig4: {material: sls}
 """
 
-project = load_project(yaml.safe_load(CONFIG))  # the checks Snakemake runs before any job
-scene = project.scenes["my-first"]
-identities = {m: project.catalogue.identity(m) for m in scene["materials"]}
-points = identified_points(scene, identities)
-print(f"{len(points)} points, e.g. {points[0]}")
+# the repository (Snakefile, workflow/, profiles/), whether this runs as a script or in the manual's build
+here = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
+repo = next(p for p in (here, *here.parents) if (p / "Snakefile").is_file())
+workdir = tempfile.TemporaryDirectory(prefix="vcor-example-")  # removed when the example ends
+project = Path(workdir.name)
+for part in ("Snakefile", "workflow", "profiles"):
+    (shutil.copytree if (repo / part).is_dir() else shutil.copy)(repo / part, project / part)
+(project / "config.yaml").write_text(CONFIG)
 
-# one shard holding every point, written as the sweep_shard job writes it (with the code's fingerprint
-# and the materials' parameters, which the aggregation checks)
-results = Path(tempfile.mkdtemp()) / "results" / "my-first"
-(results / "shards").mkdir(parents=True)
-settings = settings_of(scene)
-shard = run_points(points, settings, project.catalogue)
-attrs = {"settings": settings, "materials": material_params(scene["materials"], project.catalogue)}
-write_dataset(shard, results / "shards" / "all.nc", title="vcor sweep shard", extra_attrs=attrs,
-              command="examples/plot_parameter_study.py", identity="all")
-sweep = aggregate([xr.load_dataset(results / "shards" / "all.nc")], scene, identities, project.catalogue)
-out = results / "sweep.nc"
-write_dataset(sweep, out, title="vcor sweep, scene my-first", extra_attrs=dataset_attrs("my-first", scene,
-                                                                                         project.catalogue),
-              command="examples/plot_parameter_study.py")
+run = subprocess.run(["snakemake", "-j2", "results/my-first/sweep.nc"], cwd=project, capture_output=True,
+                     text=True, check=False)
+print("snakemake -j2 results/my-first/sweep.nc: exit code", run.returncode)
+print("\n".join(run.stderr.strip().splitlines()[-6:]))
+run.check_returncode()
 
 # %%
 # Reading the dataset
@@ -67,7 +54,7 @@ write_dataset(sweep, out, title="vcor sweep, scene my-first", extra_attrs=datase
 # One variable per result field, each with its ``units`` and ``long_name``; the grid axes are
 # dimensions; ``status`` and ``validity`` are CF flag variables.
 
-ds = xr.open_dataset(out)
+ds = xr.load_dataset(project / "results" / "my-first" / "sweep.nc")
 print(ds)
 print()
 print("cor:", ds["cor"].attrs["long_name"], f"[{ds['cor'].attrs['units']}]")
@@ -97,9 +84,10 @@ fig.tight_layout()
 # %%
 # The workflow's own figure
 # -------------------------
-# The scene asks for ``fig4``; the workflow draws it with :data:`vcor.plots.FIGURES` from the same
-# dataset.
+# The scene asks for ``fig4``; ``snakemake -j2 results/my-first/MANIFEST.txt`` would draw it into
+# ``results/my-first/figures/``. Here it is drawn from the same dataset by the same function
+# (:data:`vcor.plots.FIGURES`).
 
 draw, needs = plots.FIGURES["fig4"]
-fig = draw(ds, scene["figures"]["fig4"])
+fig = draw(ds, {"material": "sls"})
 plt.show()

@@ -70,8 +70,8 @@ def test_the_manual_shows_at_least_ten_figures_besides_the_landing_one(built_sit
 @pytest.mark.slow
 def test_user_guide_pages_show_gallery_figures(built_site):
     """The pages the examples belong to show their figures (not only the gallery)."""
-    for page in ("user-guide/materials", "user-guide/dma", "user-guide/uncertainty", "user-guide/calibration",
-                 "validation", "benchmarks", "getting-started"):
+    for page in ("user-guide/materials", "user-guide/dma", "user-guide/uncertainty", "validation", "benchmarks",
+                 "getting-started"):
         text = (built_site / f"{page}.html").read_text(encoding="utf-8")
         assert re.search(r'<img[^>]+src="[^"]*sphx_glr_plot_\w+\.png"', text), f"{page}: no gallery figure"
 
