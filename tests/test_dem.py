@@ -226,18 +226,20 @@ def test_a_deck_holds_the_lammps_laws_the_entry_fitted(tmp_path):
 
 
 def test_every_file_the_dem_rules_write_is_a_target_of_the_entry():
-    """The default target and an entry's MANIFEST.txt require every output of the DEM rules (read
-    from workflow/rules/dem.smk), so `snakemake results/dem/<name>/MANIFEST.txt` builds them all."""
+    """The default target and an entry's MANIFEST.txt require every output of the DEM rules (the path
+    patterns of workflow/rules/dem.smk's outputs, from vcor.study.paths), so
+    `snakemake results/dem/<name>/MANIFEST.txt` builds them all."""
     import re
     from pathlib import Path
 
+    from vcor.study import paths
+
     rules = Path(__file__).parents[1] / "workflow" / "rules" / "dem.smk"
-    outputs = set()
+    names = set()
     for block in re.findall(r"\n    output:\n((?:        .*\n|            .*\n)+)", rules.read_text()):
-        outputs |= set(re.findall(r'"(results/dem/[^"]+)"', block))
-    outputs = {o for o in outputs if not o.endswith("MANIFEST.txt")}
-    assert "results/dem/{dem}/yade/collision.py" in outputs and "results/dem/{dem}/parameters.csv" in outputs
+        names |= set(re.findall(r"vpaths\.(DEM_[A-Z]+|DEM)\b", block))
+    names -= {"DEM_MANIFEST"}
+    assert {"DEM_YADE", "DEM_PARAMETERS", "DEM_DECK", "DEM_FIGURE"} <= names
     targets = set(load_project(BASE, ".").dem_targets("d"))
-    expected = {o.replace("{dem}", "d").replace("{kind}", "pair") for o in outputs}
-    expected = {e for e in expected if "{ext}" not in e}
+    expected = {getattr(paths, n).format(dem="d", kind="pair", ext="png") for n in names}
     assert expected <= targets, sorted(expected - targets)

@@ -8,9 +8,9 @@ rule calibrate:
         record=vpaths.CALIBRATION,
         material=vpaths.material(MATERIAL_DIR, "{cal}"),
     log:
-        "results/calibrations/logs/{cal}.log",
+        vpaths.log(vpaths.CALIBRATIONS_DIR, "{cal}"),
     benchmark:
-        "results/calibrations/benchmarks/{cal}.tsv"
+        vpaths.benchmark(vpaths.CALIBRATIONS_DIR, "{cal}")
     wildcard_constraints:
         cal=_names(CATALOGUE.calibrations, "no-calibration"),
     params:
@@ -33,7 +33,7 @@ rule calibration_figure:
         ),
         pdf=vpaths.fmt(vpaths.CALIBRATION_FIGURE, cal="{cal}", ext="pdf"),
     log:
-        "results/calibrations/logs/{cal}.figure.log",
+        vpaths.log(vpaths.CALIBRATIONS_DIR, "{cal}.figure"),
     wildcard_constraints:
         cal=_names(CATALOGUE.calibrations, "no-calibration"),
     params:

@@ -304,6 +304,11 @@ def get_dem_spec(wildcards):
     return PROJECT.dem[wildcards.dem]
 
 
+def get_dem_targets(wildcards):
+    """Every output of a dem: entry (its manifest's inputs)."""
+    return PROJECT.dem_targets(wildcards.dem)
+
+
 def get_dem_material_files(wildcards):
     """The fitted or calibrated material files a dem: entry's bodies read, if they name any."""
     return PROJECT.dem_material_files(wildcards.dem)

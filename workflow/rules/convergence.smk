@@ -7,9 +7,9 @@ rule convergence_case:
     output:
         vpaths.CONVERGENCE_CASE,
     log:
-        "results/{scene}/logs/convergence/{material_case}.log",
+        vpaths.log(vpaths.SCENE_DIR, "convergence/{material_case}"),
     benchmark:
-        "results/{scene}/benchmarks/convergence/{material_case}.tsv"
+        vpaths.benchmark(vpaths.SCENE_DIR, "convergence/{material_case}")
     # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
     priority: 10
     params:
@@ -28,7 +28,7 @@ rule convergence:
         nc=vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="convergence"),
         orders=vpaths.ORDERS,
     log:
-        "results/{scene}/logs/convergence.log",
+        vpaths.log(vpaths.SCENE_DIR, "convergence"),
     # the work-precision figure (~4 s) follows: not the last job of a -j2 run
     priority: 10
     params:

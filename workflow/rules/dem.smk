@@ -3,25 +3,19 @@
 # results/dem/<name>/MANIFEST.txt requires them all (the one target that builds an entry).
 
 
-def get_dem_targets(wildcards):
-    """Every output of a dem: entry (the manifest's inputs)."""
-    return PROJECT.dem_targets(wildcards.dem)
-
-
-
 rule dem:
     input:
         get_dem_material_files,
     output:
-        nc="results/dem/{dem}.nc",
-        table="results/dem/{dem}/table.csv",
-        parameters="results/dem/{dem}/parameters.csv",
+        nc=vpaths.DEM,
+        table=vpaths.DEM_TABLE,
+        parameters=vpaths.DEM_PARAMETERS,
     log:
-        "results/dem/logs/{dem}.log",
+        vpaths.log(vpaths.DEM_DIR, "{dem}"),
     benchmark:
-        "results/dem/benchmarks/{dem}.tsv"
+        vpaths.benchmark(vpaths.DEM_DIR, "{dem}")
     wildcard_constraints:
-        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+        dem=_names(PROJECT.dem, "no-dem"),
     params:
         code=CODE,
         spec=get_dem_spec,
@@ -32,13 +26,13 @@ rule dem:
 
 rule dem_deck:
     input:
-        "results/dem/{dem}.nc",
+        vpaths.DEM,
     output:
-        "results/dem/{dem}/lammps/in.{kind}",
+        vpaths.DEM_DECK,
     log:
-        "results/dem/logs/{dem}.{kind}.log",
+        vpaths.log(vpaths.DEM_DIR, "{dem}.{kind}"),
     wildcard_constraints:
-        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+        dem=_names(PROJECT.dem, "no-dem"),
         kind="pair|wall",
     params:
         code=CODE,
@@ -48,13 +42,13 @@ rule dem_deck:
 
 rule dem_yade:
     input:
-        "results/dem/{dem}.nc",
+        vpaths.DEM,
     output:
-        "results/dem/{dem}/yade/collision.py",
+        vpaths.DEM_YADE,
     log:
-        "results/dem/logs/{dem}.yade.log",
+        vpaths.log(vpaths.DEM_DIR, "{dem}.yade"),
     wildcard_constraints:
-        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+        dem=_names(PROJECT.dem, "no-dem"),
     params:
         code=CODE,
     script:
@@ -65,29 +59,29 @@ rule dem_manifest:
     input:
         get_dem_targets,
     output:
-        "results/dem/{dem}/MANIFEST.txt",
+        vpaths.DEM_MANIFEST,
     log:
-        "results/dem/logs/{dem}.manifest.log",
+        vpaths.log(vpaths.DEM_DIR, "{dem}.manifest"),
     wildcard_constraints:
-        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+        dem=_names(PROJECT.dem, "no-dem"),
     script:
         "../scripts/dem_manifest.py"
 
 
 rule dem_figure:
     input:
-        "results/dem/{dem}.nc",
+        vpaths.DEM,
     output:
         png=report(
-            "results/dem/{dem}.png",
+            vpaths.fmt(vpaths.DEM_FIGURE, dem="{dem}", ext="png"),
             caption="../report/dem.rst",
             category="DEM",
         ),
-        pdf="results/dem/{dem}.pdf",
+        pdf=vpaths.fmt(vpaths.DEM_FIGURE, dem="{dem}", ext="pdf"),
     log:
-        "results/dem/logs/{dem}.figure.log",
+        vpaths.log(vpaths.DEM_DIR, "{dem}.figure"),
     wildcard_constraints:
-        dem="|".join(re.escape(d) for d in sorted(PROJECT.dem)) or "no-dem",
+        dem=_names(PROJECT.dem, "no-dem"),
     params:
         plots_code=PLOTS_CODE,
     script:

@@ -25,9 +25,12 @@ for _scene, _sc in SCENES.items():
                 )
                 for f in _figs
             ],
-            pdf=[vpaths.fmt(vpaths.FIGURE, scene=_scene, fig=f, ext="pdf") for f in _figs],
+            pdf=[
+                vpaths.fmt(vpaths.FIGURE, scene=_scene, fig=f, ext="pdf")
+                for f in _figs
+            ],
         log:
-            f"results/{_scene}/logs/figures.log",
+            vpaths.log(vpaths.fmt(vpaths.SCENE_DIR, scene=_scene), "figures"),
         params:
             scene=_scene,
             figures=_figs,
@@ -43,6 +46,6 @@ rule manifest:
     output:
         vpaths.MANIFEST,
     log:
-        "results/{scene}/logs/manifest.log",
+        vpaths.log(vpaths.SCENE_DIR, "manifest"),
     script:
         "../scripts/manifest.py"

@@ -8,7 +8,7 @@ rule config_material:
     output:
         vpaths.material(MATERIAL_DIR),
     log:
-        f"{MATERIAL_DIR}/logs/{{name}}.log",
+        vpaths.log(MATERIAL_DIR, "{name}"),
     wildcard_constraints:
         name=_names(CATALOGUE.specs, "no-config-material"),
     params:
@@ -26,9 +26,9 @@ rule fit_material:
         nc=vpaths.material(MATERIAL_DIR, "{material}"),
         table=vpaths.material_table(MATERIAL_DIR, "{material}"),
     log:
-        f"{MATERIAL_DIR}/logs/{{material}}.log",
+        vpaths.log(MATERIAL_DIR, "{material}"),
     benchmark:
-        f"{MATERIAL_DIR}/benchmarks/{{material}}.tsv"
+        vpaths.benchmark(MATERIAL_DIR, "{material}")
     # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
     priority: 10
     params:
@@ -46,9 +46,9 @@ rule fit_samples:
     output:
         vpaths.samples(MATERIAL_DIR),
     log:
-        f"{MATERIAL_DIR}/logs/samples/{{material}}-b{{n}}-s{{seed}}.log",
+        vpaths.log(MATERIAL_DIR, "samples/{material}-b{n}-s{seed}"),
     benchmark:
-        f"{MATERIAL_DIR}/benchmarks/samples/{{material}}-b{{n}}-s{{seed}}.tsv"
+        vpaths.benchmark(MATERIAL_DIR, "samples/{material}-b{n}-s{seed}")
     wildcard_constraints:
         n="[0-9]+",
         seed="[0-9]+",
@@ -67,7 +67,7 @@ rule fit_metrics:
     output:
         vpaths.FIT_METRICS,
     log:
-        "results/{scene}/logs/fit_metrics.log",
+        vpaths.log(vpaths.SCENE_DIR, "fit_metrics"),
     params:
         code=CODE,
         names=get_scene_fitted_names,

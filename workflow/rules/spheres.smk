@@ -5,9 +5,9 @@ rule spheres:
     output:
         vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="spheres"),
     log:
-        "results/{scene}/logs/spheres.log",
+        vpaths.log(vpaths.SCENE_DIR, "spheres"),
     benchmark:
-        "results/{scene}/benchmarks/spheres.tsv"
+        vpaths.benchmark(vpaths.SCENE_DIR, "spheres")
     # heads a chain (figures, manifest), like the shards
     priority: 5
     params:

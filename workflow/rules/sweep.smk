@@ -8,9 +8,9 @@ rule sweep_shard:
         nc=vpaths.SHARD,
         index=vpaths.SHARD_INDEX,
     log:
-        "results/{scene}/logs/shards/{shard}.log",
+        vpaths.log(vpaths.SCENE_DIR, "shards/{shard}"),
     benchmark:
-        "results/{scene}/benchmarks/shards/{shard}.tsv"
+        vpaths.benchmark(vpaths.SCENE_DIR, "shards/{shard}")
     # a shard heads a chain (aggregate, figures, manifest): before the figures of other scenes, so
     # that the last minute of -j2 is not one scene's chain on one core
     priority: 5
@@ -29,9 +29,9 @@ rule aggregate:
     output:
         vpaths.SWEEP,
     log:
-        "results/{scene}/logs/aggregate.log",
+        vpaths.log(vpaths.SCENE_DIR, "aggregate"),
     benchmark:
-        "results/{scene}/benchmarks/aggregate.tsv"
+        vpaths.benchmark(vpaths.SCENE_DIR, "aggregate")
     priority: 5
     params:
         rows=get_shard_rows,
@@ -49,9 +49,9 @@ rule moduli:
     output:
         vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="moduli"),
     log:
-        "results/{scene}/logs/moduli.log",
+        vpaths.log(vpaths.SCENE_DIR, "moduli"),
     benchmark:
-        "results/{scene}/benchmarks/moduli.tsv"
+        vpaths.benchmark(vpaths.SCENE_DIR, "moduli")
     params:
         code=CODE,
         materials=get_moduli_materials,
@@ -66,9 +66,9 @@ rule histories:
     output:
         vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="histories"),
     log:
-        "results/{scene}/logs/histories.log",
+        vpaths.log(vpaths.SCENE_DIR, "histories"),
     benchmark:
-        "results/{scene}/benchmarks/histories.tsv"
+        vpaths.benchmark(vpaths.SCENE_DIR, "histories")
     # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
     priority: 10
     params:

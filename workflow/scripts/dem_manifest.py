@@ -5,4 +5,4 @@ from vcor.io.manifest import write_manifest
 
 smk = snakemake  # noqa: F821
 with job_log(smk):
-    write_manifest(f"dem/{smk.wildcards.dem}", smk.input, smk.output[0])
+    write_manifest(f"DEM entry {smk.wildcards.dem}", smk.input, smk.output[0])

@@ -5,4 +5,4 @@ from vcor.io.manifest import write_manifest
 
 smk = snakemake  # noqa: F821
 with job_log(smk):
-    write_manifest(smk.wildcards.scene, smk.input, smk.output[0])
+    write_manifest(f"scene {smk.wildcards.scene}", smk.input, smk.output[0])

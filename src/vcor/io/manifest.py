@@ -10,9 +10,10 @@ from .receipts import atomic_text
 __all__ = ["write_manifest"]
 
 
-def write_manifest(scene: str, paths, out) -> None:
-    """List a scene's outputs with their sizes (bytes) and SHA-256 digests in ``out`` (what to archive)."""
-    lines = [f"# scene {scene}: outputs (bytes, sha256)"]
+def write_manifest(what: str, paths, out) -> None:
+    """List the outputs of ``what`` (``scene <name>``, ``DEM entry <name>``) with their sizes (bytes)
+    and SHA-256 digests in ``out`` (what to archive)."""
+    lines = [f"# {what}: outputs (bytes, sha256)"]
     for path in paths:
         data = Path(path).read_bytes()
         lines.append(f"{path}\t{len(data)}\t{hashlib.sha256(data).hexdigest()}")

@@ -16,12 +16,18 @@ __all__ = [
     "DEM",
     "DEM_DECK",
     "DEM_FIGURE",
+    "DEM_MANIFEST",
+    "DEM_PARAMETERS",
     "DEM_TABLE",
+    "DEM_YADE",
     "FIGURE",
     "FIT_METRICS",
     "MANIFEST",
     "ORDERS",
+    "CALIBRATIONS_DIR",
+    "DEM_DIR",
     "RESULTS",
+    "SCENE_DIR",
     "SHARD",
     "SHARD_DIR",
     "SHARD_INDEX",
@@ -34,8 +40,11 @@ __all__ = [
     "samples",
 ]
 
-#: the folder every result is written to
+#: the folder every result is written to, and its parts: a scene's, the calibrations', the DEM entries'
 RESULTS = "results"
+SCENE_DIR = "results/{scene}"
+CALIBRATIONS_DIR = "results/calibrations"
+DEM_DIR = "results/dem"
 
 #: a scene's datasets (sweep, moduli, histories, spheres, convergence)
 DATASET = "results/{scene}/{dataset}.nc"
@@ -57,8 +66,12 @@ CALIBRATION_FIGURE = "results/calibrations/{cal}.{ext}"
 #: DEM entries
 DEM = "results/dem/{dem}.nc"
 DEM_TABLE = "results/dem/{dem}/table.csv"
+DEM_PARAMETERS = "results/dem/{dem}/parameters.csv"
 DEM_DECK = "results/dem/{dem}/lammps/in.{kind}"
+DEM_YADE = "results/dem/{dem}/yade/collision.py"
 DEM_FIGURE = "results/dem/{dem}.{ext}"
+#: the one target that builds every output of a DEM entry
+DEM_MANIFEST = "results/dem/{dem}/MANIFEST.txt"
 
 
 def fmt(pattern: str, **wildcards) -> str:

@@ -11,7 +11,7 @@ What a config builds (the workflow's default target):
 * every scene's datasets, figures, tables and manifest, and the files of the materials it uses;
 * every fit (its material file and parameter table) and every calibration (its record, figure and
   material file), whether or not a scene uses them: a config that names a fit asks for it;
-* every DEM entry's dataset, COR table, LAMMPS deck and figure.
+* every DEM entry's dataset, COR table, parameters file, LAMMPS deck, Yade script, figure and manifest.
 
 The ``materials:`` block defines materials for the others to use; it builds nothing by itself.
 """
@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..dem.laws import MODELS
 from ..materials.catalogue import Catalogue
 from ..plots import needs
 from . import paths
@@ -137,12 +138,20 @@ class Project:
         return out
 
     def dem_targets(self, name: str) -> list[str]:
-        """The outputs of a ``dem:`` entry: its dataset, COR table, LAMMPS deck and figure."""
-        target = self.dem[name].get("target", "rigid")
+        """The outputs of a ``dem:`` entry: its dataset, COR table, parameters file, figure, the LAMMPS
+        deck when it fits a LAMMPS law and the Yade script when it fits Yade's (not its manifest, which
+        lists these)."""
+        spec = self.dem[name]
+        target = spec.get("target", "rigid")
+        models = spec.get("models", MODELS)
         kind = "pair" if isinstance(target, dict) and "sphere" in target else "wall"
-        return [paths.fmt(paths.DEM, dem=name), paths.fmt(paths.DEM_TABLE, dem=name),
-                paths.fmt(paths.DEM_DECK, dem=name, kind=kind),
-                *(paths.fmt(paths.DEM_FIGURE, dem=name, ext=e) for e in ("png", "pdf"))]
+        out = [paths.fmt(p, dem=name) for p in (paths.DEM, paths.DEM_TABLE, paths.DEM_PARAMETERS)]
+        out += [paths.fmt(paths.DEM_FIGURE, dem=name, ext=e) for e in ("png", "pdf")]
+        if any(m.startswith("lammps-") for m in models):
+            out.append(paths.fmt(paths.DEM_DECK, dem=name, kind=kind))
+        if "yade-mindlin" in models:
+            out.append(paths.fmt(paths.DEM_YADE, dem=name))
+        return out
 
     def dem_materials(self, name: str) -> list[str]:
         """Names of the catalogue a ``dem:`` entry's bodies use (the sphere's, a target body's)."""
@@ -163,6 +172,6 @@ class Project:
         for scene in self.scenes:
             out += self.scene_targets(scene) + [paths.fmt(paths.MANIFEST, scene=scene)]
         for name in self.dem:
-            out += self.dem_targets(name)
+            out += self.dem_targets(name) + [paths.fmt(paths.DEM_MANIFEST, dem=name)]
         out += self.fit_targets() + self.calibration_targets()
         return list(dict.fromkeys(out))

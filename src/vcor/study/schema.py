@@ -142,6 +142,9 @@ def explain(error, schema: dict) -> str:
     """One line for a jsonschema ``ValidationError`` (module docstring)."""
     where, given, rule = _where(error.absolute_path), error.instance, error.validator
     sub = error.schema if isinstance(error.schema, dict) else {}
+    if "propertyNames" in error.absolute_schema_path and rule == "enum":  # a key that is not a known name
+        names = error.validator_value
+        return f"{where}.{given}: unknown name; allowed: {names}{_hint(given, names)}"
     if rule in ("oneOf", "anyOf"):
         near = _alternatives(error)
         if len(near) == 1:
@@ -155,11 +158,6 @@ def explain(error, schema: dict) -> str:
         key = extra[0] if extra else "?"
         return f"{where}.{key}: unknown key; allowed: {allowed}{_hint(key, allowed)}" if where != "the config" \
             else f"{key}: unknown section; allowed: {allowed}{_hint(key, allowed)}"
-    if rule == "propertyNames":
-        names = error.validator_value.get("enum", [])
-        bad = [k for k in given if k not in names] if names else []
-        key = bad[0] if bad else "?"
-        return f"{where}.{key}: unknown name; allowed: {names}{_hint(key, names)}"
     if rule == "required":
         missing = [k for k in error.validator_value if k not in given]
         return f"{where}: missing key {missing[0]!r} (required: {error.validator_value})"
