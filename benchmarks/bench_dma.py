@@ -1,21 +1,21 @@
-"""Measured DMA data: vcor's two methods against pyvisco 2.1.3 on pyvisco's raw example
+"""Measured DMA data: vcor's fit against pyvisco 2.1.3 on pyvisco's raw example
 (``data/pyvisco/freq_user_raw.csv``, 21 sets, T_ref = -5 deg C), and how mastercurves 0.2.3 shifts
 the same sets.
 
 Rows of the main table, each fitted in its own fresh process (``OPENBLAS_NUM_THREADS=1``, an empty
 ``NUMBA_CACHE_DIR``), ``--runs`` times:
 
-* vcor ``method: spectrum`` with ``instrument_lag: true`` (the default config's fit), without it, and
-  ``method: free``: :func:`vcor.fitting.fits.run_fit` on the fit spec
-  ``{model: prony, method: ..., data: {file, T_ref: -5, instrument_lag?}}`` (the workflow's fit rule;
-  with the lag, the master curve is the data with the fitted lag removed);
+* vcor ``method: spectrum`` with ``instrument_lag: true`` (the default config's fit) and without it:
+  :func:`vcor.fitting.fits.run_fit` on the fit spec ``{model: prony, data: {file, T_ref: -5,
+  instrument_lag?}}`` (the workflow's fit rule; with the lag, the master curve is the data with the
+  fitted lag removed);
 * pyvisco: ``master.get_aT`` (its own shifts), ``get_curve``, ``smooth(win=1)``,
   ``prony.discretize(window="round")`` and ``prony.fit(opt=False)``; and the same followed by
   ``opt.nprony(window="min", opt=1.5)``, run with ``/tmp/spec/venv/bin/python`` where it exists;
 * mastercurves: shifts only (Gaussian-process superposition of ln E' against ln f).
 
 Every fit is measured against its own master curve (its own shifts) by one function,
-:func:`vcor.fitting.spectrum.fit_metrics`, in this process: rms relative errors of E', E'' and
+:func:`vcor.fitting.spectrum.model.fit_metrics`, in this process: rms relative errors of E', E'' and
 tan delta over the master-curve points, and local extrema of the fitted tan delta on 2000
 log-spaced frequencies over the data's reduced range. "fit" is the time from reading the file to the
 Prony terms, measured inside the worker; "process" is the worker's wall time (imports included).
@@ -49,7 +49,6 @@ MASTERCURVES = "mastercurves==0.2.3"
 METHODS = {
     "spectrum-lag": ("vcor `method: spectrum`, `instrument_lag: true` (the default config's fit)", "vcor"),
     "spectrum": ("vcor `method: spectrum`, data as measured", "vcor"),
-    "free": ("vcor `method: free`", "vcor"),
     "pyvisco-fit": ("pyvisco 2.1.3: `get_aT` + `prony.fit`", "venv"),
     "pyvisco-nprony": ("pyvisco 2.1.3: `get_aT` + `prony.fit` + `opt.nprony`", "venv"),
     "mastercurves": ("mastercurves 0.2.3 (E', `fixed_noise` 0.04)", "venv"),
@@ -65,8 +64,8 @@ def _worker_vcor(method):
 
     t0 = time.perf_counter()
     lag = method == "spectrum-lag"
-    result, data, _ = fits.run_fit({"model": "prony", "method": method.removesuffix("-lag"),
-                                    "data": {"file": str(DATA), "T_ref": T_REF, "instrument_lag": lag}})
+    result, data, _ = fits.run_fit({"model": "prony", "data": {"file": str(DATA), "T_ref": T_REF,
+                                                                "instrument_lag": lag}})
     fit_time = time.perf_counter() - t0
     m = result.material
     return {"fit": fit_time, "import": t0 - t_import, "E_inf": m.E_inf, "E": list(m.E), "tau": [1 / b for b in m.beta],
@@ -125,7 +124,7 @@ def _worker_mastercurves(sets_file, variants):
 
 def _worker(argv):
     kind = argv[0]
-    if kind in ("spectrum-lag", "spectrum", "free"):
+    if kind in ("spectrum-lag", "spectrum"):
         return _worker_vcor(kind)
     if kind in ("pyvisco-fit", "pyvisco-nprony"):
         return _worker_pyvisco(kind == "pyvisco-nprony")
@@ -198,14 +197,14 @@ def detail_tables(first):
     merging, weights, the tan delta excess by measured frequency, mastercurves."""
     import numpy as np
 
-    from vcor.fitting import dma, dmafit, spectrum, superpose
+    from vcor.fitting import dma, spectrum
 
     table = dma.read_table(DATA)
     raw = table.columns
-    sets = superpose.split_sets(raw)
+    sets = dma.split_sets(raw)
     T = np.array([s.T for s in sets])
-    fit = dmafit.fit_dma(raw, T_REF, lag=True)          # the default config's fit
-    fit0 = dmafit.fit_dma(raw, T_REF)                   # the data as measured
+    fit = dma.fit_dma(raw, T_REF, lag=True)          # the default config's fit
+    fit0 = dma.fit_dma(raw, T_REF)                   # the data as measured
     s1 = fit.spline_shifts
     blocks = []
 
@@ -216,7 +215,7 @@ def detail_tables(first):
     def merged_metrics(fx):
         e_inf, e, beta = fx.prony_terms()
         mc_ = corrected(fx)
-        return spectrum.fit_metrics(e_inf, e, 1 / beta, mc_.f_reduced, mc_.E_stor, mc_.E_loss)
+        return spectrum.fit_metrics(e_inf, e, 1 / beta, mc_.f_red, mc_.E_stor, mc_.E_loss)
 
     # shifts per set
     pv = first.get("pyvisco-fit")
@@ -230,7 +229,7 @@ def detail_tables(first):
                      f"{s1.set_rms['E_stor'][k]:.4f}",
                      f"{pv['log_aT'][k]:.2f}" if pv else "-",
                      f"{mc['E_stor:0.04']['log_aT'][k]:.2f} ± {mc['E_stor:0.04']['std'][k]:.2f}" if mc else "-"])
-    sup = {name: superpose.superposition_rms(raw, la)["E_stor"] for name, la in
+    sup = {name: dma.superposition_rms(raw, la)["E_stor"] for name, la in
            [("stage 1", s1.log_aT), ("final, lag fitted", fit.log_aT), ("final, data as measured", fit0.log_aT)]
            + ([("pyvisco `get_aT`", np.asarray(pv["log_aT"]))] if pv else [])
            + ([("mastercurves", mc["E_stor:0.04"]["log_aT"])] if mc else [])}
@@ -258,7 +257,7 @@ def detail_tables(first):
             ["Arrhenius, all sets", f"E_a = {fit.arrhenius['E_a'] / 1e3:.0f} kJ/mol", f"{fit.arrhenius['rms']:.2f}",
              f"{np.max(np.abs(fit.arrhenius['residual'])):.2f}"]]
     hot = T >= T_REF
-    w_hot = superpose.wlf_fit(T[hot], fit.log_aT[hot], T_REF, sigma=fit.log_aT_std[hot])
+    w_hot = dma.wlf_fit(T[hot], fit.log_aT[hot], T_REF, sigma=fit.log_aT_std[hot])
     rows.append([f"WLF, sets at T ≥ T_ref ({hot.sum()})", f"C1 = {w_hot['C1']:.4g}, C2 = {w_hot['C2']:.4g} K",
                  f"{w_hot['rms']:.2f}", f"{np.max(np.abs(w_hot['residual'])):.2f}"])
     blocks += ["**Shift functions fitted to the final shifts** (lag fitted; weighted by their standard errors; "
@@ -269,8 +268,8 @@ def detail_tables(first):
     mcurve = corrected(fit)
     rows = []
     for lam in ("gcv1se", "gcv", "lcurve", 100.0):
-        sp_ = spectrum.fit_spectrum(mcurve.f_reduced, mcurve.E_stor, mcurve.E_loss,
-                                    components=(1.0, dmafit.LOSS_WEIGHT), lam=lam)
+        sp_ = spectrum.fit_spectrum(mcurve.f_red, mcurve.E_stor, mcurve.E_loss,
+                                    components=(1.0, dma.LOSS_WEIGHT), lam=lam)
         m = sp_.metrics
         rows.append([f"`{lam}`" if isinstance(lam, str) else f"fixed {lam:g}", f"{sp_.lam:.3g}",
                      _pct(m["E_stor_rms"]), _pct(m["E_loss_rms"]), m["tan_delta_extrema"]])
@@ -280,7 +279,7 @@ def detail_tables(first):
 
     # merging, at the final shifts and at the shipped shift factors (given: the spectrum alone)
     shipped = dma.superpose(table, T_REF, dma.read_table(SHIPPED)).log_aT
-    f_pv = dmafit.fit_dma(raw, T_REF, log_aT=shipped)
+    f_pv = dma.fit_dma(raw, T_REF, log_aT=shipped)
     rows = []
     for label, fx, densities in (("final (joint, lag fitted)", fit, (1.0, 1.5, 2.0, 3.0)),
                                  ("pyvisco's shipped", f_pv, (2.0, 3.0))):
@@ -301,8 +300,8 @@ def detail_tables(first):
     # weights of E'', and shifts refined with the spectrum or not
     rows = []
     for shifts, kk in (("joint (final)", True), ("stage 1 only", False)):
-        for label, comp in (("1/100 (default)", (1.0, dmafit.LOSS_WEIGHT)), ("1 (equal)", (1.0, 1.0))):
-            f2 = fit if kk and comp[1] == dmafit.LOSS_WEIGHT else dmafit.fit_dma(raw, T_REF, components=comp,
+        for label, comp in (("1/100 (default)", (1.0, dma.LOSS_WEIGHT)), ("1 (equal)", (1.0, 1.0))):
+            f2 = fit if kk and comp[1] == dma.LOSS_WEIGHT else dma.fit_dma(raw, T_REF, components=comp,
                                                                                  kk_refine=kk, lag=True)
             m = merged_metrics(f2)
             rows.append([shifts, label, f"{1e6 * f2.lag:.1f}", _pct(m["E_stor_rms"]), _pct(m["E_loss_rms"]),
@@ -341,7 +340,7 @@ def detail_tables(first):
             rows.append([variant.replace("E_stor", "E'").replace("tan_delta", "tan δ").replace(":", ", noise "),
                          f"{v['fit']:.1f}", f"{np.max(dev[warm]):.2f}", f"{np.max(dev):.2f}",
                          f"{v['std'][0]:.2f}", f"{int(np.sum(~np.isfinite(v['std'])))}", str(bound),
-                         f"{superpose.superposition_rms(raw, v['log_aT'])['E_stor']:.4f}"])
+                         f"{dma.superposition_rms(raw, v['log_aT'])['E_stor']:.4f}"])
         a, b = mc["E_stor:0.04"]["std"][0], mc["E_stor:0.01"]["std"][0]
         blocks += ["**mastercurves 0.2.3** (`Multiply(bounds=(1e-4, 1), scale=\"log\")`, states cold to hot, "
                    "anchored at T_ref like vcor's) against vcor's stage-1 shifts.",
@@ -356,13 +355,13 @@ def _mastercurves_shifts(T, timed):
     """The mastercurves runs as log10 a_T anchored at T_ref and errors from the reference set."""
     import numpy as np
 
-    from vcor.fitting import superpose
+    from vcor.fitting import dma
 
     if timed is None:
         return None
     runs = dict(timed)
     runs.update(run_worker("mastercurves", str(SETS_FILE), "E_stor:0.01", "tan_delta:0.04")[0])
-    A = superpose.anchor_matrix(T, T_REF)
+    A = dma.anchor_matrix(T, T_REF)
     k = int(np.argmin(np.abs(T - T_REF)))
     out = {}
     for variant, r in runs.items():
@@ -391,13 +390,13 @@ def main():
     if args.runs < 1:
         p.error("--runs must be >= 1")
     sys.path.insert(0, str(ROOT / "src"))
-    from vcor.fitting import dma, superpose
+    from vcor.fitting import dma
 
     with tempfile.TemporaryDirectory(prefix="vcor-bench-dma-") as tmp:
         SETS_FILE = Path(tmp) / "sets.json"
         SETS_FILE.write_text(json.dumps([{"T": s.T, "f": s.f.tolist(), "E_stor": s.E_stor.tolist(),
                                           "E_loss": s.E_loss.tolist()}
-                                         for s in superpose.split_sets(dma.read_table(DATA).columns)]))
+                                         for s in dma.split_sets(dma.read_table(DATA))]))
         rows, first = main_table(args.runs)
         details = detail_tables(first)
     command = timing.invocation()

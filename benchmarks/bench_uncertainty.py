@@ -138,16 +138,16 @@ def coverage(args) -> list[str]:
 
 def _parametric(res, rng, noise=0.01):
     """Data drawn from the true noise law about the full-data fit (sets as vcor.fitting.resample.wild_sample)."""
-    from vcor.fitting.superpose import DMASet
+    from vcor.fitting.dma import DMASet
 
-    return [DMASet(s.T, s.f, fs * (1 + noise * rng.standard_normal(s.f.size)),
-                   fl * (1 + noise * rng.standard_normal(s.f.size)), s.label, s.weight)
+    return [DMASet(T=s.T, f=s.f, E_stor=fs * (1 + noise * rng.standard_normal(s.f.size)),
+                   E_loss=fl * (1 + noise * rng.standard_normal(s.f.size)), label=s.label, weight=s.weight)
             for s, fs, fl in zip(res.sets, res.fit_stor, res.fit_loss)]
 
 
 def spread(args) -> list[str]:
     import vcor
-    from vcor.fitting import dma, dmafit, resample
+    from vcor.fitting import dma, resample
     from vcor.materials import Prony
 
     seeds = 3 if args.quick else min(args.seeds, 10)
@@ -161,7 +161,7 @@ def spread(args) -> list[str]:
             for seed in range(seeds):
                 _write_csv(Path(d) / "dma.csv", material, seed, 0.01)
                 raw = dma.read_table(Path(d) / "dma.csv")
-                full = dmafit.fit_dma(raw, WLF[2])
+                full = dma.fit_dma(raw, WLF[2])
                 err.append(vcor.simulate(full.material(), V0, rigid=True).cor - want)
                 res = resample.residuals(raw, full)
                 rng = np.random.default_rng(seed)
@@ -169,7 +169,7 @@ def spread(args) -> list[str]:
                         "bayesian": lambda: resample.resample(raw, rng, T_ref=WLF[2]),
                         "parametric": lambda: _parametric(res, rng)}
                 for mode, make in draw.items():
-                    cor = [vcor.simulate(dmafit.fit_dma(make(), WLF[2], smoothing=full.smoothing, start=full).material(),
+                    cor = [vcor.simulate(dma.fit_dma(make(), WLF[2], smoothing=full.smoothing, start=full).material(),
                                          V0, rigid=True).cor for _ in range(n)]
                     sd[mode].append(np.std(cor, ddof=1))
                 print(f"spread {label}, seed {seed}: error {err[-1]:+.4f}", file=sys.stderr, flush=True)

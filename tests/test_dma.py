@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import vcor
-from vcor.fitting import dma, dmafit
+from vcor.fitting import dma
 from vcor.materials import shift as tts
 
 DATA = Path(__file__).resolve().parents[1] / "data/pyvisco"
@@ -53,8 +53,8 @@ def test_bad_data_names_file_line_and_column(tmp_path, text, words):
 def test_superposition_needs_two_temperatures(tmp_path):
     path = tmp_path / "one.csv"
     path.write_text(RAW_HEAD + "".join(f"{f},{8000 + f},{90 + f},20,0\n" for f in (0.1, 1, 10)))
-    with pytest.raises(ValueError, match="two or more temperatures, got 1"):
-        dma.superpose(dma.read_table(path), 20.0)
+    with pytest.raises(ValueError, match=r"one\.csv: superposition needs sets at two or more temperatures, got 1"):
+        dma.split_sets(dma.read_table(path))
 
 
 TRUE = vcor.materials.Prony(2e6, (5e6, 20e6, 60e6, 150e6, 400e6), (1e1, 1e3, 1e5, 1e7, 1e9))
@@ -76,46 +76,45 @@ def _synthetic(path, seed):
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_synthetic_prony_wlf_material_is_recovered(tmp_path, seed):
-    """Five temperatures, 1 % noise: log shift factors within 0.1 of the true
-    ones, and the COR at three temperatures within 1 % of the known material's."""
-    sp = dma.superpose(_synthetic(tmp_path / "s.csv", seed), T_REF)
-    true = tts.wlf_log_aT(sp.T, T_REF, C1, C2)
-    assert np.max(np.abs(sp.log_aT - true)) <= 0.1, (sp.log_aT, true)
-    c1, c2, _ = dma.wlf_fit(sp.T, sp.log_aT, T_REF)
-    fit = dma.fit_master(sp)
+    """Five temperatures, 1 % noise in E' and in E'' (so both weigh alike, ``components=(1, 1)``: the
+    weights are inverse variances): log shift factors within 0.1 of the true ones, and the COR at three
+    temperatures (the fitted WLF law) within 1 % of the known material's."""
+    fit = dma.fit_dma(_synthetic(tmp_path / "s.csv", seed), T_REF, components=(1.0, 1.0))
+    true = tts.wlf_log_aT(fit.T, T_REF, C1, C2)
+    assert np.max(np.abs(fit.log_aT - true)) <= 0.1, (fit.log_aT, true)
+    c1, c2 = fit.wlf["C1"], fit.wlf["C2"]
     worst = 0.0
     for T in (0.0, 20.0, 40.0):
-        got = vcor.simulate(tts.time_shifted(fit.material, float(tts.wlf_log_aT(T, T_REF, c1, c2))), 1.0,
+        got = vcor.simulate(tts.time_shifted(fit.material(), float(tts.wlf_log_aT(T, T_REF, c1, c2))), 1.0,
                             method="adaptive", rigid=True).cor
         ref = vcor.simulate(tts.time_shifted(TRUE, float(tts.wlf_log_aT(T, T_REF, C1, C2))), 1.0,
                             method="adaptive", rigid=True).cor
         worst = max(worst, abs(got / ref - 1))
-    print(f"\nseed {seed}: shift error {np.max(np.abs(sp.log_aT - true)):.3f}, WLF C1 {c1:.2f} C2 {c2:.1f} K, "
-          f"COR worst {worst:.2%}, fit rms |E*| {fit.metrics['abs_E_star_rms']:.2%}")
+    print(f"\nseed {seed}: shift error {np.max(np.abs(fit.log_aT - true)):.3f}, WLF C1 {c1:.2f} C2 {c2:.1f} K, "
+          f"COR worst {worst:.2%}, fit rms E' {fit.spectrum.metrics['E_stor_rms']:.2%}")
     assert worst <= 0.01
 
 
-def test_method_free_records_its_tan_delta_extrema():
-    """A fit by ``method: free`` records the local extrema of its tan delta over the master curve's range,
-    as ``method: spectrum`` does; on pyvisco's raw data the free relaxation times ripple between the
-    terms, the smooth spectrum does not (docs/user-guide/dma.md, the comparison table)."""
+def test_method_free_is_refused_naming_its_replacement():
+    """``method: free`` is refused in one line naming the key and ``method: spectrum``; a spectrum fit
+    records the local extrema of its tan delta over the master curve's range."""
     from vcor.fitting import fits
 
-    got = {}
-    for method in ("free", "spectrum"):
-        result, data, _ = fits.run_fit({"model": "prony", "method": method,
-                                        "data": {"file": str(DATA / "freq_user_raw.csv"), "T_ref": -5.0}})
-        f = data.omega / (2 * np.pi)
-        assert result.metrics["tan_delta_extrema"] == dmafit.tan_delta_extrema(result.material, f.min(), f.max())
-        got[method] = result.metrics["tan_delta_extrema"]
-    print(f"\ntan delta extrema over the master curve: free {got['free']}, spectrum {got['spectrum']}")
-    assert got["free"] > got["spectrum"]
+    raw = {"file": str(DATA / "freq_user_raw.csv"), "T_ref": -5.0}
+    with pytest.raises(ValueError) as err:
+        fits.check_fit_spec({"model": "prony", "method": "free", "data": raw}, where="fits.x")
+    message = str(err.value)
+    assert "\n" not in message and all(w in message for w in ("fits.x.method", "'free'", "method: spectrum")), message
+    result, data, _ = fits.run_fit({"model": "prony", "data": raw})
+    f = data.omega / (2 * np.pi)
+    assert result.metrics["tan_delta_extrema"] == dma.tan_delta_extrema(result.material, f.min(), f.max())
 
 
 def test_pyvisco_raw_sets_superposed_both_ways():
     """README table: our shift factors against pyvisco's, and how well each superposes E'."""
     raw = dma.read_table(DATA / "freq_user_raw.csv")
-    ours = dma.superpose(raw, -5.0)
+    fit = dma.fit_dma(raw, -5.0)
+    ours = dma.superpose(raw, -5.0, log_aT=fit.log_aT)
     theirs = dma.superpose(raw, -5.0, dma.read_table(DATA / "freq_user_master__shift_factors.csv"))
     print("\n T [C]  log_aT ours  pyvisco")
     for t, a, b in zip(ours.T, ours.log_aT, theirs.log_aT):
@@ -123,9 +122,8 @@ def test_pyvisco_raw_sets_superposed_both_ways():
     print(f"rms log10 E' mismatch in overlaps: ours {ours.overlap_rms:.4f}, pyvisco's factors {theirs.overlap_rms:.4f}")
     assert ours.overlap_rms < theirs.overlap_rms  # README: ours lay E' on one curve more tightly
     assert np.all(np.diff(ours.log_aT) < 0)  # a_T falls with temperature
-    fit = dma.fit_master(ours)
-    print(f"master-curve Prony fit ({len(fit.material.E)} terms): {fit.metrics}")
-    assert fit.metrics["abs_E_star_rms"] < 0.1
+    print(f"smooth spectrum at our shifts ({fit.reduced.n_modes} modes): {fit.spectrum.metrics}")
+    assert fit.spectrum.metrics["E_stor_rms"] < 0.1
 
 
 def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):

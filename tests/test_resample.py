@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from synthetic_dma import SMOOTH, T_REF, TEMPS, TRUE, synthetic, write_csv
 
-from vcor.fitting import dmafit, resample
+from vcor.fitting import dma, resample
 from vcor.io.netcdf import scalar_dataset_check
 from vcor.materials.files import from_file
 from vcor.materials.shift import shift_from_file
@@ -32,10 +32,9 @@ def test_resample_schemes():
 
 @pytest.fixture(scope="module")
 def fitted():
-    from vcor.fitting import dmafit
 
     data = synthetic(0)
-    return data, dmafit.fit_dma(data, T_REF)
+    return data, dma.fit_dma(data, T_REF)
 
 
 def test_leverage_is_the_fits_response_to_its_own_point(fitted):
@@ -69,11 +68,11 @@ def test_fitted_shifts_and_lag_add_their_leverage():
     """The shifts and the instrument lag a fit refines are parameters: with them in the hat matrix every
     point's leverage grows, and the leverages' sum (the fit's degrees of freedom) grows by their number,
     four shifts (the set nearest T_ref is held) and one lag, within 0.15."""
-    from vcor.fitting import spectrum, superpose
+    from vcor.fitting import spectrum
 
     data = synthetic(0, 0.01, material=SMOOTH, lag=20e-6)
-    full = dmafit.fit_dma(data, T_REF, lag=True)
-    sets = superpose.split_sets(data)
+    full = dma.fit_dma(data, T_REF, lag=True)
+    sets = dma.split_sets(data)
     fr = np.concatenate([s.f * 10.0 ** la for s, la in zip(sets, full.log_aT)])
     es, el = np.concatenate([s.E_stor for s in sets]), np.concatenate([s.E_loss for s in sets])
     f_meas = np.concatenate([s.f for s in sets])

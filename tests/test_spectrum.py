@@ -14,9 +14,8 @@ import numpy as np
 import pytest
 from synthetic_dma import SMOOTH, T_REF, TRUE, synthetic
 
-from vcor.fitting import dmafit
+from vcor.fitting import dma
 from vcor.fitting import spectrum as spc
-from vcor.fitting import superpose as sp
 from vcor.materials.shift import wlf_log_aT
 
 RAW = Path(__file__).resolve().parents[1] / "data/pyvisco/freq_user_raw.csv"
@@ -73,7 +72,7 @@ def test_merging_keeps_the_curve_and_reports_the_change():
 
 def test_joint_refinement_keeps_synthetic_shifts_and_a_noise_free_set_is_recovered():
     for seed, noise, tol in ((0, 0.0, 0.02),):
-        fit = dmafit.fit_dma(synthetic(seed, noise), T_REF, components=(1.0, 1.0))
+        fit = dma.fit_dma(synthetic(seed, noise), T_REF, components=(1.0, 1.0))
         print(f"\nnoise {noise}: worst shift error {np.max(np.abs(fit.log_aT - TRUE)):.4f} decade, "
               f"E' rms {fit.spectrum.metrics['E_stor_rms']:.4f}")
         assert np.max(np.abs(fit.log_aT - TRUE)) < tol
@@ -83,11 +82,11 @@ def test_joint_refinement_keeps_synthetic_shifts_and_a_noise_free_set_is_recover
 def test_joint_refinement_is_start_independent():
     """Stage 2 starts from stage 1, which takes no start: any start given to stage 1 ends at the same fit."""
     data = synthetic(3)
-    base = sp.global_shifts(data, T_REF)
-    other = sp.global_shifts(data, T_REF, start=np.zeros(5))
-    sets = sp.split_sets(data)
-    a = spc.fit_with_shifts(sets, T_REF, base.log_aT, lam=1e-3, final_lam=1e-3)
-    b = spc.fit_with_shifts(sets, T_REF, other.log_aT, lam=1e-3, final_lam=1e-3)
+    base = dma.global_shifts(data, T_REF)
+    other = dma.global_shifts(data, T_REF, start=np.zeros(5))
+    sets = dma.split_sets(data)
+    a = dma.fit_with_shifts(sets, T_REF, base.log_aT, lam=1e-3, final_lam=1e-3)
+    b = dma.fit_with_shifts(sets, T_REF, other.log_aT, lam=1e-3, final_lam=1e-3)
     assert np.max(np.abs(a.log_aT - b.log_aT)) < 1e-6
 
 
@@ -100,12 +99,12 @@ def test_an_instrument_lag_is_told_from_the_material():
     ripples between five sparse modes (which the smooth fit cannot follow) biases the lag: the printed
     bias stays within 3 of its standard errors."""
     for lag in (0.0, 30e-6):
-        fit = dmafit.fit_dma(synthetic(0, 0.0, material=SMOOTH, lag=lag), T_REF, lag=True)
+        fit = dma.fit_dma(synthetic(0, 0.0, material=SMOOTH, lag=lag), T_REF, lag=True)
         print(f"\nsmooth, noise-free, lag {1e6 * lag:g} us: fitted {1e6 * fit.lag:.2f} +- {1e6 * fit.lag_std:.2f} us, "
               f"worst shift error {np.max(np.abs(fit.log_aT - TRUE)):.4f} decade")
         assert abs(fit.lag - lag) < 1e-6 and np.max(np.abs(fit.log_aT - TRUE)) < 0.01
     temps = np.linspace(-10, 50, 11)
-    got = [dmafit.fit_dma(synthetic(seed, 0.005, temps=temps, material=SMOOTH, lag=30e-6), T_REF, lag=True)
+    got = [dma.fit_dma(synthetic(seed, 0.005, temps=temps, material=SMOOTH, lag=30e-6), T_REF, lag=True)
            for seed in range(4)]
     lags, stds = np.array([g.lag for g in got]), np.array([g.lag_std for g in got])
     print("0.5 % noise, 11 sets, lag 30 us: " + ", ".join(f"{1e6 * a:.1f} +- {1e6 * b:.1f}" for a, b in zip(lags, stds)))
@@ -113,14 +112,14 @@ def test_an_instrument_lag_is_told_from_the_material():
     assert abs(lags.mean() - 30e-6) < 2 * np.sqrt(np.sum(stds**2)) / lags.size
     for g in got:
         assert np.max(np.abs(g.log_aT - wlf_log_aT(temps, T_REF, 8.86, 101.6))) < 0.1
-    sparse = dmafit.fit_dma(synthetic(0, 0.0), T_REF, lag=True)
+    sparse = dma.fit_dma(synthetic(0, 0.0), T_REF, lag=True)
     print(f"sparse five modes, noise-free, no lag: fitted {1e6 * sparse.lag:.1f} +- {1e6 * sparse.lag_std:.1f} us")
     assert abs(sparse.lag) < 3 * sparse.lag_std
 
 
 def test_given_shifts_hold_while_the_lag_is_fitted():
     """With shift factors given, lag=True fits the spectrum and the lag at those shifts, which stay."""
-    fit = dmafit.fit_dma(synthetic(0, 0.0, material=SMOOTH, lag=20e-6), T_REF, log_aT=TRUE, lag=True)
+    fit = dma.fit_dma(synthetic(0, 0.0, material=SMOOTH, lag=20e-6), T_REF, log_aT=TRUE, lag=True)
     assert np.array_equal(fit.log_aT, TRUE) and np.all(fit.log_aT_std == 0)
     assert abs(fit.lag - 20e-6) < 1e-6
 
@@ -128,7 +127,7 @@ def test_given_shifts_hold_while_the_lag_is_fitted():
 def test_too_few_points_for_the_modes_are_refused():
     data = synthetic(0, 0.0, temps=np.array([-10.0, 5.0, 20.0]), f=np.geomspace(0.1, 100, 3))
     with pytest.raises(ValueError, match="9 frequency points are fewer than the .* modes"):
-        dmafit.fit_dma(data, T_REF, log_aT=TRUE[:3])
+        dma.fit_dma(data, T_REF, log_aT=TRUE[:3])
 
 
 _WORKER = """

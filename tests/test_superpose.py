@@ -1,4 +1,4 @@
-"""Start-free global superposition (vcor.fitting.superpose): synthetic Prony + WLF sets recovered,
+"""Start-free global superposition (vcor.fitting.dma.shifts): synthetic Prony + WLF sets recovered,
 start-independence, refusal of sets that share no range, fall-back quantities, WLF/Arrhenius fits,
 and the tabulated shift function (vcor.materials.shift)."""
 
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from synthetic_dma import C1, C2, T_REF, TEMPS, TRUE, synthetic
 
-from vcor.fitting import superpose as sp
-from vcor.materials.shift import GAS_CONSTANT, ShiftFunction, wlf_log_aT
+from vcor.fitting import dma as sp
+from vcor.materials.shift import GAS_CONSTANT, ZERO_CELSIUS, ShiftFunction, wlf_log_aT
 
 
 def test_noise_free_synthetic_shifts_are_recovered():
@@ -73,7 +73,7 @@ def test_wlf_and_arrhenius_fits_recover_their_constants():
     T = np.linspace(-10, 60, 8)
     w = sp.wlf_fit(T, wlf_log_aT(T, 20.0, C1, C2), 20.0)
     assert w["C1"] == pytest.approx(C1, rel=1e-6) and w["C2"] == pytest.approx(C2, rel=1e-6)
-    y = 150e3 / (GAS_CONSTANT * math.log(10)) * (1 / (T + 273.15) - 1 / (20 + 273.15))
+    y = 150e3 / (GAS_CONSTANT * math.log(10)) * (1 / (T + ZERO_CELSIUS) - 1 / (20 + ZERO_CELSIUS))
     a = sp.arrhenius_fit(T, y, 20.0)
     assert a["E_a"] == pytest.approx(150e3, rel=1e-9) and a["rms"] < 1e-12
 

@@ -164,7 +164,7 @@ def _check_free(material, free: dict, m: int, where: str = "free") -> tuple[list
     return names, np.array(start), np.array(lo), np.array(hi)
 
 
-@dataclass
+@dataclass(frozen=True, kw_only=True)
 class Calibration:
     """Result of :func:`calibrate` (SI; module docstring for the statistics)."""
 
@@ -251,47 +251,24 @@ class _Model:
         return out
 
 
-def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = None, options: dict | None = None,
-              where: str = "free") -> Calibration:
-    """Fit the ``free`` parameters (name -> [lower, upper]) of ``material`` (its values are the start) to
-    ``data`` (module docstring). ``geometry``: keywords of ``vcor.simulate``; ``options``: solver options
-    (default: ``adaptive``, as everywhere)."""
-    from scipy.optimize import least_squares
-    from scipy.stats import norm
-    from scipy.stats import t as student_t
-
-    base = _preset(material) if isinstance(material, str) else material
-    geometry = dict(geometry or {})
-    options = dict(options or {})
-    names, start, lo, hi = _check_free(base, free, len(data.v0), where)
-    model = _Model(base, names, start, geometry, options)
-    model.material(np.zeros(len(names)))  # the start must be a valid material (else: an error now)
-    w = 1.0 / data.cor_std if data.cor_std is not None else np.ones_like(data.cor)
-
-    def residual(x):
-        try:
-            mat = model.material(x)
-        except ValueError:
-            return np.full(data.cor.size, _REFUSED)
-        return (model.cor(x, data.v0, mat) - data.cor) * w
-
-    xlo, xhi = model.to_x(lo), model.to_x(hi)
-    t_start = time.perf_counter()
-    fit = least_squares(residual, np.zeros(len(names)), bounds=(xlo, xhi), jac="3-point", diff_step=1e-4,
-                        x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=200)
-    wall = time.perf_counter() - t_start
-    x, J, r = fit.x, fit.jac, fit.fun
-    m, n = J.shape
-    dof = m - n
-    chi2 = float(r @ r)
-    sigma_known = data.cor_std is not None
+def _covariance(J, r, sigma_known, dof):
+    """(cov of x, singular values, right singular vectors, which are below :data:`COND_LIMIT`): the
+    Gauss-Newton covariance, directions the data do not constrain left out; scaled by chi2/dof unless
+    the COR errors are stated."""
     _, sv, Vt = np.linalg.svd(J, full_matrices=False)
     small = sv < COND_LIMIT * (sv[0] if sv.size and sv[0] > 0 else 1.0)
     inv = np.where(small, 0.0, 1.0 / np.where(small, 1.0, sv) ** 2)
     cov = (Vt.T * inv) @ Vt
     if not sigma_known:
-        cov = cov * (chi2 / dof if dof > 0 else math.nan)
-    sx = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+        cov = cov * (float(r @ r) / dof if dof > 0 else math.nan)
+    return cov, sv, Vt, small
+
+
+def _identified(names, fit, box, sx, linear, svd):
+    """(identified, notes) per parameter: not identified when a singular direction involves it, at a bound,
+    with no degrees of freedom left, or known to worse than a factor :data:`FACTOR_LIMIT`."""
+    sv, Vt, small = svd
+    n = len(names)
     notes = [""] * n
     identified = np.ones(n, dtype=bool)
     for k in np.flatnonzero(small):
@@ -301,30 +278,86 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
                 identified[i] = False
                 notes[i] = (f"the data constrain only a combination of {involved} (Jacobian singular value "
                             f"{sv[k]:.2e} of {sv[0]:.2e})")
+    x, (xlo, xhi) = fit.x, box
     span = xhi - xlo
     for i in range(n):
         if identified[i] and (fit.active_mask[i] != 0 or min(x[i] - xlo[i], xhi[i] - x[i]) < 1e-6 * span[i]):
             identified[i], notes[i] = False, "the estimate is at its bound: the data push it beyond the allowed range"
         elif identified[i] and not math.isfinite(sx[i]):
             identified[i], notes[i] = False, "no degrees of freedom left to estimate the COR errors (give cor_std)"
-        elif identified[i] and sx[i] > math.log(FACTOR_LIMIT) and not model.linear[i]:
+        elif identified[i] and sx[i] > math.log(FACTOR_LIMIT) and not linear[i]:
             identified[i], notes[i] = False, f"1-sigma uncertainty larger than a factor {FACTOR_LIMIT:g}"
-    q = float(norm.ppf(0.975) if sigma_known else (student_t.ppf(0.975, dof) if dof > 0 else math.nan))
+    return identified, notes
+
+
+def _intervals(model, x, sx, identified, q):
+    """(estimate, stderr, lower95, upper95) in the parameters' own units (inf where not identified)."""
     p = model.params(x)
     lower, upper = model.params(x - q * sx), model.params(x + q * sx)
     stderr = np.where(model.linear, sx, p * sx)
-    lower = np.where(identified, lower, -np.inf)
-    upper = np.where(identified, upper, np.inf)
-    stderr = np.where(identified, stderr, np.inf)
+    return (p, np.where(identified, stderr, np.inf), np.where(identified, lower, -np.inf),
+            np.where(identified, upper, np.inf))
+
+
+def _correlation(cov, sx):
     with np.errstate(invalid="ignore", divide="ignore"):
         corr = cov / np.outer(sx, sx)
     corr[~np.isfinite(corr)] = np.nan
     np.fill_diagonal(corr, 1.0)
+    return corr
+
+
+def _solve(model, data, box):
+    """The weighted least-squares fit in x (``scipy.optimize.least_squares``) and its wall time, s."""
+    from scipy.optimize import least_squares
+
+    w = 1.0 / data.cor_std if data.cor_std is not None else np.ones_like(data.cor)
+
+    def residual(x):
+        try:
+            mat = model.material(x)
+        except ValueError:
+            return np.full(data.cor.size, _REFUSED)
+        return (model.cor(x, data.v0, mat) - data.cor) * w
+
+    t_start = time.perf_counter()
+    fit = least_squares(residual, np.zeros(len(model.names)), bounds=box, jac="3-point", diff_step=1e-4,
+                        x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=200)
+    return fit, time.perf_counter() - t_start
+
+
+def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = None, options: dict | None = None,
+              where: str = "free") -> Calibration:
+    """Fit the ``free`` parameters (name -> [lower, upper]) of ``material`` (its values are the start) to
+    ``data`` (module docstring). ``geometry``: keywords of ``vcor.simulate``; ``options``: solver options
+    (default: ``adaptive``, as everywhere)."""
+    from scipy.stats import norm
+    from scipy.stats import t as student_t
+
+    base = _preset(material) if isinstance(material, str) else material
+    geometry = dict(geometry or {})
+    options = dict(options or {})
+    names, start, lo, hi = _check_free(base, free, len(data.v0), where)
+    model = _Model(base, names, start, geometry, options)
+    model.material(np.zeros(len(names)))  # the start must be a valid material (else: an error now)
+    box = (model.to_x(lo), model.to_x(hi))
+    fit, wall = _solve(model, data, box)
+    x, J, r = fit.x, fit.jac, fit.fun
+    dof = J.shape[0] - J.shape[1]
+    sigma_known = data.cor_std is not None
+    cov, sv, Vt, small = _covariance(J, r, sigma_known, dof)
+    sx = np.sqrt(np.clip(np.diag(cov), 0.0, None))
+    identified, notes = _identified(names, fit, box, sx, model.linear, (sv, Vt, small))
+    q = float(norm.ppf(0.975) if sigma_known else (student_t.ppf(0.975, dof) if dof > 0 else math.nan))
+    p, stderr, lower, upper = _intervals(model, x, sx, identified, q)
     mat = model.material(x)
     cor_fit = model.cor(x, data.v0)
-    return Calibration(names, p, stderr, lower, upper, corr, identified, notes, start, np.stack([lo, hi], axis=1),
-                       mat, data, cor_fit, data.cor - cor_fit, chi2, dof, sigma_known, sv, cov, model.nfev, wall,
-                       str(fit.message), geometry, options, base)
+    return Calibration(names=names, estimate=p, stderr=stderr, lower95=lower, upper95=upper,
+                       correlation=_correlation(cov, sx), identified=identified, notes=notes, start=start,
+                       bounds=np.stack([lo, hi], axis=1), material=mat, data=data, cor_fit=cor_fit,
+                       residual=data.cor - cor_fit, chi2=float(r @ r), dof=dof, sigma_known=sigma_known,
+                       singular_values=sv, cov_x=cov, nfev=model.nfev, wall_time=wall, message=str(fit.message),
+                       geometry=geometry, options=options, base=base)
 
 
 def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -463,7 +496,7 @@ def bridges_ice(g_cm_s):
     return BRIDGES_ICE[0] * np.asarray(g_cm_s, float) ** BRIDGES_ICE[1]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class GStarFit:
     """g* (in the units of g) of the Ramirez model fitted to eps(g): ``model`` "numeric" (vcor's exact
     eps, separation ``rule``) or "pade" (Ramirez Eq. 35, the paper's procedure); ``stderr`` from the
@@ -504,5 +537,6 @@ def fit_g_star(g, eps, *, model: str = "numeric", rule: str = "overlap", start: 
     J = fit.jac
     sx = math.sqrt(s2 / float(J[:, 0] @ J[:, 0]))
     gs = math.exp(fit.x[0])
-    return GStarFit(gs, gs * sx, float(np.sqrt(np.mean(r**2))), model, rule if model == "numeric" else "-",
-                    (float(g.min()), float(g.max())), int(g.size))
+    return GStarFit(g_star=gs, stderr=gs * sx, rms=float(np.sqrt(np.mean(r**2))), model=model,
+                    rule=rule if model == "numeric" else "-", g_range=(float(g.min()), float(g.max())),
+                    n_points=int(g.size))

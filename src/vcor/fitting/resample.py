@@ -9,7 +9,7 @@ full-data fit's residuals. Every point keeps its frequency and its set; its modu
 separately for E' and E'' (:math:`\hat E` the full-data spectrum at the point's reduced frequency, as
 the instrument measures it when the fit has an instrument lag,
 :math:`h` its leverage in that fit, with the fitted shifts and lag among the parameters,
-:func:`vcor.fitting.spectrum.leverage`; :math:`\bar\rho_k` the
+:func:`vcor.fitting.spectrum.leverage.leverage`; :math:`\bar\rho_k` the
 set's mean, a per-set modulus scale error such as a geometry or clamping error), with independent
 weights :math:`v_k` per set and :math:`v_{ki}` per point, drawn from Webb's six-point distribution
 (:math:`\pm\sqrt{1/2}, \pm 1, \pm\sqrt{3/2}`, mean 0, variance 1; Webb 2016, for few clusters; the
@@ -28,7 +28,7 @@ within sets, as integer multiplicities (it drops sets: on pyvisco's example 149 
 leave two neighbours with no common E', E'' or tan delta range). Both resample the pairs
 (point, value) and understate the scatter where leverage is high, as above.
 
-Every sample is refitted by :func:`vcor.fitting.dmafit.fit_dma` with the full-data fit's smoothing
+Every sample is refitted by :func:`vcor.fitting.dma.pipeline.fit_dma` with the full-data fit's smoothing
 parameters held fixed (spline mu, joint and final lambda) and its spectrum as the start. The spread of
 the samples is the data's: it does not cover the model's own error (linear viscoelasticity,
 horizontal-only shifts, a smooth spectrum) nor a Poisson-ratio choice downstream.
@@ -50,9 +50,8 @@ from threadpoolctl import threadpool_limits
 
 from ..materials.models import Prony
 from ..materials.shift import ShiftFunction
-from . import dma, dmafit, fits
-from . import spectrum as _spectrum
-from . import superpose as _superpose
+from . import dma, fits
+from .spectrum.leverage import leverage
 
 __all__ = ["MODES", "WEBB", "Residuals", "bootstrap", "resample", "residuals", "sample_materials", "samples_dataset",
            "wild_sample"]
@@ -91,9 +90,9 @@ def residuals(raw, full) -> Residuals:
     ----------
     raw : mapping, object with ``.columns`` or list of DMASet
     full : DMAFit
-        The fit of ``raw`` (:func:`vcor.fitting.dmafit.fit_dma`).
+        The fit of ``raw`` (:func:`vcor.fitting.dma.pipeline.fit_dma`).
     """
-    sets = _superpose.split_sets(raw)
+    sets = dma.split_sets(raw)
     fr = np.concatenate([s.f * 10.0 ** la for s, la in zip(sets, full.log_aT)])
     es = np.concatenate([s.E_stor for s in sets])
     el = np.concatenate([s.E_loss for s in sets])
@@ -108,8 +107,8 @@ def residuals(raw, full) -> Residuals:
         index = np.array([k - (k > k_held) if k != k_held else -1 for k in range(len(sets))])
         shift_index = np.concatenate([np.full(s.f.size, index[k]) for k, s in enumerate(sets)])
     lag = (f_meas, full.lag, True) if joint is not None and joint.lag_fitted else None
-    hs, hl = _spectrum.leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dmafit.LOSS_WEIGHT), lag=lag,
-                                shift_index=shift_index)
+    hs, hl = leverage(full.spectrum, fr, es, el, weight=w, components=(1.0, dma.LOSS_WEIGHT), lag=lag,
+                      shift_index=shift_index)
     rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
     cut = np.cumsum([s.f.size for s in sets])[:-1]
     return Residuals(sets, np.split(e.real, cut), np.split(e.imag, cut), np.split(rs, cut), np.split(rl, cut))
@@ -122,8 +121,8 @@ def wild_sample(res: Residuals, rng) -> list:
         vk, v = rng.choice(WEBB), rng.choice(WEBB, s.f.size)
         w = np.ones(s.f.size) if s.weight is None else s.weight
         ms, ml = np.average(rs, weights=w), np.average(rl, weights=w)
-        out.append(_superpose.DMASet(s.T, s.f, fs * np.exp(vk * ms + v * (rs - ms)), fl * np.exp(vk * ml + v * (rl - ml)),
-                                     s.label, s.weight))
+        out.append(dma.DMASet(T=s.T, f=s.f, E_stor=fs * np.exp(vk * ms + v * (rs - ms)),
+                              E_loss=fl * np.exp(vk * ml + v * (rl - ml)), label=s.label, weight=s.weight))
     return out
 
 
@@ -199,7 +198,7 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
     Parameters
     ----------
     raw : mapping or object with ``.columns``
-        Raw sets (:func:`vcor.fitting.superpose.split_sets`).
+        Raw sets (:func:`vcor.fitting.dma.sets.split_sets`).
     T_ref : float
         Reference temperature, deg C.
     n : int
@@ -214,7 +213,7 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
         Samples that cannot be superposed are redrawn; more than this many (default ``n``) raise.
     lag : bool
         Fit the instrument's time lag in the full-data fit and in every sample
-        (:func:`vcor.fitting.dmafit.fit_dma`).
+        (:func:`vcor.fitting.dma.pipeline.fit_dma`).
 
     Returns
     -------
@@ -227,7 +226,7 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
         raise ValueError(f"the number of bootstrap samples must be an integer >= 1, got {n!r}")
     if mode not in MODES:
         raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
-    full = dmafit.fit_dma(raw, T_ref, log_aT=log_aT, lag=lag)
+    full = dma.fit_dma(raw, T_ref, log_aT=log_aT, lag=lag)
     res = residuals(raw, full) if mode == "wild" else None
     rng = np.random.default_rng(seed)
     samples, fails, times = [], [], []
@@ -236,7 +235,7 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
         data = wild_sample(res, rng) if res is not None else resample(raw, rng, T_ref=T_ref, mode=mode)
         t0 = time.perf_counter()
         try:
-            samples.append(dmafit.fit_dma(data, T_ref, log_aT=log_aT, smoothing=full.smoothing, start=full, lag=lag))
+            samples.append(dma.fit_dma(data, T_ref, log_aT=log_aT, smoothing=full.smoothing, start=full, lag=lag))
             times.append(time.perf_counter() - t0)
         except ValueError as exc:
             fails.append(str(exc))
@@ -286,36 +285,59 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         more temperatures, sets that cannot be superposed, fewer points than modes (each naming the
         fit).
     """
-    import xarray as xr
-
     where = f"fits.{name}"
+    raw, T_ref, given = _bootstrap_data(spec, where, base_dir)
+    d = spec["data"]
+    try:
+        full, samples, info = bootstrap(raw, T_ref, n, seed, log_aT=given, lag=bool(d.get("instrument_lag", False)))
+    except ValueError as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    ds = _samples_variables(full, samples)
+    shift_model = d.get("shift_model", fits.SHIFT_MODELS[0])
+    ds.attrs.update({
+        "fit_name": name, "spec": json.dumps(spec, sort_keys=True), "n": int(n), "seed": int(seed),
+        "mode": MODES[0], "T_ref": T_ref, "shift_model": shift_model,
+        "smoothing": json.dumps(full.smoothing, sort_keys=True, default=float),
+        "instrument_lag_full_s": float(full.lag), "instrument_lag_std_full_s": float(full.lag_std),
+        "failures": json.dumps(info["failures"]),
+        "material": json.dumps(full.material().to_dict()),
+        "shift": json.dumps(dma.shift_function(full, shift_model).to_dict()),
+    })
+    return ds
+
+
+def _bootstrap_data(spec, where, base_dir):
+    """(raw table, T_ref [deg C], given shifts or None) of a measured-data fit spec a bootstrap can resample;
+    ValueError naming ``where`` otherwise."""
     fits.check_fit_spec(spec, base_dir=base_dir, where=where)
     d = spec.get("data") or {}
     if "file" not in d:
         raise ValueError(f"{where}: a bootstrap resamples measured data (data: {{file, T_ref}}), got {d!r}")
-    if spec.get("method", "spectrum") != "spectrum":
-        raise ValueError(f"{where}.method: the bootstrap refits by method spectrum, got {spec['method']!r}")
     raw = dma.read_table(Path(base_dir) / d["file"])
     if not raw.is_raw:
         raise ValueError(f"{where}: {raw.path} is a master curve (no T, Set columns): a bootstrap over sets needs "
                          f"raw sets at two or more temperatures")
     T_ref = float(d["T_ref"])
-    shift_model = d.get("shift_model", fits.SHIFT_MODELS[0])
     given = None
     if "shift_file" in d:
-        given = dma.superpose(raw, T_ref, dma.read_table(Path(base_dir) / d["shift_file"])).log_aT
-    try:
-        full, samples, info = bootstrap(raw, T_ref, n, seed, log_aT=given, lag=bool(d.get("instrument_lag", False)))
-    except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+        T = np.array([s.T for s in dma.split_sets(raw)])
+        given = dma.given_shifts(dma.read_table(Path(base_dir) / d["shift_file"]), T, T_ref)
+    return raw, T_ref, given
+
+
+def _samples_variables(full, samples):
+    """The samples' Prony terms (padded to the widest), shifts, shift laws and lags as a dataset (docstring of
+    :func:`samples_dataset`)."""
+    import xarray as xr
+
+    n = len(samples)
     terms = [s.prony_terms() for s in samples]
     width = max(len(e) for _, e, _ in terms)
     E = np.zeros((n, width))
     beta = np.full((n, width), math.nan)
     for i, (_, e, b) in enumerate(terms):
         E[i, :len(e)], beta[i, :len(b)] = e, b
-    T = full.T
-    ds = xr.Dataset(
+    return xr.Dataset(
         {"E_inf": ("sample", np.array([t[0] for t in terms]), {"units": "Pa", "long_name": "equilibrium modulus E_inf"}),
          "E": (("sample", "mode"), E, {"units": "Pa", "long_name": "Prony term modulus (0: padding)"}),
          "beta": (("sample", "mode"), beta, {"units": "s-1", "long_name": "Prony relaxation rate (NaN: padding)"}),
@@ -333,17 +355,7 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
                         {"units": "1", "long_name": "linearised standard error of log10 a_T (full data)"})},
         coords={"sample": ("sample", np.arange(n), {"units": "1", "long_name": "bootstrap sample"}),
                 "mode": ("mode", np.arange(width), {"units": "1", "long_name": "Prony term index (by rate)"}),
-                "T_set": ("T_set", T, {"units": "degC", "long_name": "temperature of the measured set"})})
-    ds.attrs.update({
-        "fit_name": name, "spec": json.dumps(spec, sort_keys=True), "n": int(n), "seed": int(seed),
-        "mode": MODES[0], "T_ref": T_ref, "shift_model": shift_model,
-        "smoothing": json.dumps(full.smoothing, sort_keys=True, default=float),
-        "instrument_lag_full_s": float(full.lag), "instrument_lag_std_full_s": float(full.lag_std),
-        "failures": json.dumps(info["failures"]),
-        "material": json.dumps(full.material().to_dict()),
-        "shift": json.dumps(dmafit.shift_function(full, shift_model).to_dict()),
-    })
-    return ds
+                "T_set": ("T_set", full.T, {"units": "degC", "long_name": "temperature of the measured set"})})
 
 
 def sample_materials(ds) -> list:

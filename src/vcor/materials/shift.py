@@ -38,11 +38,13 @@ import numpy as np
 from ..checks import number, positive
 from .models import Material
 
-__all__ = ["GAS_CONSTANT", "SHIFT_MODELS", "TABLE_TOLERANCE", "ShiftFunction", "at_temperature", "shift_from_file",
-           "table_log_aT", "time_shifted", "wlf_log_aT"]
+__all__ = ["GAS_CONSTANT", "SHIFT_MODELS", "TABLE_TOLERANCE", "ZERO_CELSIUS", "ShiftFunction", "at_temperature",
+           "shift_from_file", "table_log_aT", "time_shifted", "wlf_log_aT"]
 
 #: molar gas constant, J/(mol K)
 GAS_CONSTANT = 8.314462618
+#: 0 deg C in K: temperatures are given in deg C, absolute ones (Arrhenius) are T + ZERO_CELSIUS
+ZERO_CELSIUS = 273.15
 #: the shift-function models
 SHIFT_MODELS = ("wlf", "arrhenius", "table")
 #: how far (K) a table reaches beyond its first and last temperature (module docstring)
@@ -106,7 +108,7 @@ class ShiftFunction:
         missing = [k for k in need if k not in spec]
         if missing or extra:
             raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; takes {list(need)}")
-        T_ref = number(f"{where}.T_ref", spec["T_ref"], -273.15, unit="deg C")
+        T_ref = number(f"{where}.T_ref", spec["T_ref"], -ZERO_CELSIUS, unit="deg C")
         if spec["model"] == "table":
             _check_table(spec["T"], spec["log_aT"], T_ref, where)
             return cls.table(T_ref, spec["T"], spec["log_aT"])
@@ -119,7 +121,7 @@ class ShiftFunction:
         (Arrhenius, open), [T_1 - 0.5, T_K + 0.5] (table, closed; module docstring)."""
         if self.model == "table":
             return self.T[0] - TABLE_TOLERANCE, self.T[-1] + TABLE_TOLERANCE
-        lo = self.T_ref - self.C2 if self.model == "wlf" else -273.15
+        lo = self.T_ref - self.C2 if self.model == "wlf" else -ZERO_CELSIUS
         return lo, math.inf
 
     def log_aT(self, T: float) -> float:
@@ -137,7 +139,7 @@ class ShiftFunction:
                              f"(T_ref = {self.T_ref:g} deg C), got {T!r}")
         if self.model == "wlf":
             return float(wlf_log_aT(T, self.T_ref, self.C1, self.C2))
-        return self.E_a / (GAS_CONSTANT * math.log(10.0)) * (1.0 / (T + 273.15) - 1.0 / (self.T_ref + 273.15))
+        return self.E_a / (GAS_CONSTANT * math.log(10.0)) * (1.0 / (T + ZERO_CELSIUS) - 1.0 / (self.T_ref + ZERO_CELSIUS))
 
     @functools.cached_property
     def _interpolant(self):
@@ -177,7 +179,7 @@ def _check_table(T, log_aT, T_ref, where):
         raise ValueError(f"{where}: T and log_aT must be lists of numbers, got {T!r} and {log_aT!r}") from None
     if x.ndim != 1 or x.shape != y.shape or x.size < 2:
         raise ValueError(f"{where}: T and log_aT must be lists of equal length >= 2, got {np.shape(x)} and {np.shape(y)}")
-    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y)) and np.all(np.diff(x) > 0) and x[0] > -273.15):
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y)) and np.all(np.diff(x) > 0) and x[0] > -ZERO_CELSIUS):
         raise ValueError(f"{where}.T: temperatures (deg C) must be finite, above -273.15 and strictly increasing, "
                          f"with finite log_aT; got T = {x.tolist()}")
     if not x[0] <= T_ref <= x[-1]:
