@@ -103,8 +103,8 @@ def test_wild_sample_keeps_the_design_and_the_residuals_second_moment(fitted):
         m = res.rho_stor[k].mean()
         want = m**2 + (res.rho_stor[k] - m) ** 2
         assert got == pytest.approx(want, rel=0.12)
-    clean = resample.Residuals(res.sets, res.fit_stor, res.fit_loss, [0 * r for r in res.rho_stor],
-                               [0 * r for r in res.rho_loss])
+    clean = resample.Residuals(sets=res.sets, fit_stor=res.fit_stor, fit_loss=res.fit_loss,
+                               rho_stor=[0 * r for r in res.rho_stor], rho_loss=[0 * r for r in res.rho_loss])
     again = resample.wild_sample(clean, rng)
     assert all(np.array_equal(a.E_stor, b) for a, b in zip(again, res.fit_stor))
 

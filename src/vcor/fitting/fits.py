@@ -165,7 +165,8 @@ def _measured_result(material, mc, d, settings, t_start):
                    measured=True, T_point=mc.T_point)
     met = metrics(material, data)
     met["tan_delta_extrema"] = dma.tan_delta_extrema(material, float(mc.f_red.min()), float(mc.f_red.max()))
-    return FitResult(material, met, settings, n_terms=len(material.E), fit_time=time.perf_counter() - t_start), data
+    return FitResult(material=material, metrics=met, settings=settings, n_terms=len(material.E),
+                     fit_time=time.perf_counter() - t_start), data
 
 
 def _run_master(mc, d):

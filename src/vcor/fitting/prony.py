@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import least_squares, nnls
@@ -39,7 +39,7 @@ def _axis_and_values(axis_name, unit, axis, values_name, values, dtype):
     return x, v
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FitData:
     """Relaxation data E(t) (Pa at s) and/or complex-modulus data E*(omega) (Pa at rad/s)."""
 
@@ -134,8 +134,11 @@ def _residuals(material, data, domain):
     return np.concatenate(parts)
 
 
-@dataclass
+@dataclass(frozen=True, kw_only=True)
 class FitResult:
+    """A fitted material, its metrics (:func:`metrics`), the fit's settings, the number of terms, the wall
+    time (s) and, for an automatic N, the (N, worst error) pairs tried."""
+
     material: _materials.Material
     metrics: dict
     settings: dict
@@ -215,15 +218,12 @@ def fit_prony(data: FitData, n_terms: int | None = None, *, tol: float = 0.01, n
             best = res
             if res.max_error <= tol:
                 break
-        best.tried = tried
         best.settings.update(n_terms="auto", tol=tol, n_max=n_max)
         if best.max_error > tol:
             best.settings["warning"] = f"no N <= {n_max} met tol = {tol}"
-        best.fit_time = time.perf_counter() - t_start
-        return best
+        return replace(best, tried=tried, fit_time=time.perf_counter() - t_start)
     res = _fit_prony_n(data, int(n_terms), domain)
-    res.fit_time = time.perf_counter() - t_start
-    return res
+    return replace(res, fit_time=time.perf_counter() - t_start)
 
 
 #: evaluation budget of the nonlinear polish (keeps every fit well under a second)
@@ -250,8 +250,8 @@ def _fit_prony_n(data, n, domain):
     start = make(x0)
     if max(metrics(start, data).values()) < max(metrics(mat, data).values()):
         mat = start  # the polish may stop in a worse corner; never return worse than the start
-    return FitResult(mat, metrics(mat, data), {"model": "prony", "n_terms": n, "domain": domain,
-                                               "nfev": int(sol.nfev)}, n_terms=n)
+    return FitResult(material=mat, metrics=metrics(mat, data), n_terms=n,
+                     settings={"model": "prony", "n_terms": n, "domain": domain, "nfev": int(sol.nfev)})
 
 
 def fit_cerf(data: FitData, *, domain: str = "both", start=(0.442e6, 0.6765e9, 700.0)) -> FitResult:
@@ -268,9 +268,9 @@ def fit_cerf(data: FitData, *, domain: str = "both", start=(0.442e6, 0.6765e9, 7
     sol = least_squares(lambda x: _residuals(make(x), data, domain), x0, method="trf", x_scale="jac",
                         xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=300)
     mat = make(sol.x)
-    return FitResult(mat, metrics(mat, data), {"model": "cerf", "domain": domain, "nfev": int(sol.nfev),
-                                               "optimizer_status": int(sol.status), "start": list(start)},
-                     fit_time=time.perf_counter() - t_start)
+    settings = {"model": "cerf", "domain": domain, "nfev": int(sol.nfev), "optimizer_status": int(sol.status),
+                "start": list(start)}
+    return FitResult(material=mat, metrics=metrics(mat, data), settings=settings, fit_time=time.perf_counter() - t_start)
 
 
 def fit(spec: dict, data: FitData | None = None) -> FitResult:

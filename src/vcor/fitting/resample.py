@@ -62,7 +62,7 @@ MODES = ("wild", "bayesian", "classical")
 WEBB = np.array([-math.sqrt(1.5), -1.0, -math.sqrt(0.5), math.sqrt(0.5), 1.0, math.sqrt(1.5)])
 
 
-@dataclass
+@dataclass(frozen=True, kw_only=True)
 class Residuals:
     """What :func:`wild_sample` needs of the full-data fit, per set (ascending temperature).
 
@@ -111,7 +111,8 @@ def residuals(raw, full) -> Residuals:
                       shift_index=shift_index)
     rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
     cut = np.cumsum([s.f.size for s in sets])[:-1]
-    return Residuals(sets, np.split(e.real, cut), np.split(e.imag, cut), np.split(rs, cut), np.split(rl, cut))
+    return Residuals(sets=sets, fit_stor=np.split(e.real, cut), fit_loss=np.split(e.imag, cut), rho_stor=np.split(rs, cut),
+                     rho_loss=np.split(rl, cut))
 
 
 def wild_sample(res: Residuals, rng) -> list:
