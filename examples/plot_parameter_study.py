@@ -86,7 +86,7 @@ fig.tight_layout()
 # -------------------------
 # The scene asks for ``fig4``; ``snakemake -j2 results/my-first/MANIFEST.txt`` would draw it into
 # ``results/my-first/figures/``. Here it is drawn from the same dataset by the same function
-# (:data:`vcor.plots.FIGURES`).
+# (``vcor.plots.FIGURES``).
 
 draw, needs = plots.FIGURES["fig4"]
 fig = draw(ds, {"material": "sls"})
