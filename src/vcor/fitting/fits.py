@@ -83,7 +83,8 @@ def _check_measured(spec: dict, where: str) -> tuple[dict, float, str]:
     if unknown or "T_ref" not in d:
         raise ValueError(f"{where}.data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
     if spec.get("model") != "prony":
-        raise ValueError(f"{where}.model: a fit to measured data is a Prony fit (model: prony), got {spec.get('model')!r}")
+        raise ValueError(f"{where}.model: a fit to measured data is a Prony fit (model: prony), "
+                         f"got {spec.get('model')!r}")
     _check_method(spec, where)
     shift_model = d.get("shift_model", SHIFT_MODELS[0])
     if shift_model not in SHIFT_MODELS:
@@ -212,7 +213,8 @@ def _run_sets(raw, shifts, d, T_ref, shift_model):
         settings["instrument_lag"] = {"lag_s": fitted.lag, "lag_std_s": fitted.lag_std,
                                       "data": "the master curve is the measured data times exp(-i 2 pi f lag)"}
     result, data = _measured_result(fitted.material(), mc, d, settings, t_start)
-    attrs = {"shift": json.dumps(shift.to_dict()), "superposition": _superposition_attrs(fitted, mc, shift, shift_model)}
+    attrs = {"shift": json.dumps(shift.to_dict()),
+             "superposition": _superposition_attrs(fitted, mc, shift, shift_model)}
     return result, data, attrs
 
 

@@ -270,7 +270,8 @@ def fit_cerf(data: FitData, *, domain: str = "both", start=(0.442e6, 0.6765e9, 7
     mat = make(sol.x)
     settings = {"model": "cerf", "domain": domain, "nfev": int(sol.nfev), "optimizer_status": int(sol.status),
                 "start": list(start)}
-    return FitResult(material=mat, metrics=metrics(mat, data), settings=settings, fit_time=time.perf_counter() - t_start)
+    return FitResult(material=mat, metrics=metrics(mat, data), settings=settings,
+                     fit_time=time.perf_counter() - t_start)
 
 
 def fit(spec: dict, data: FitData | None = None) -> FitResult:

@@ -111,8 +111,8 @@ def residuals(raw, full) -> Residuals:
                       shift_index=shift_index)
     rs, rl = np.log(es / e.real) / (1 - hs), np.log(el / e.imag) / (1 - hl)
     cut = np.cumsum([s.f.size for s in sets])[:-1]
-    return Residuals(sets=sets, fit_stor=np.split(e.real, cut), fit_loss=np.split(e.imag, cut), rho_stor=np.split(rs, cut),
-                     rho_loss=np.split(rl, cut))
+    return Residuals(sets=sets, fit_stor=np.split(e.real, cut), fit_loss=np.split(e.imag, cut),
+                     rho_stor=np.split(rs, cut), rho_loss=np.split(rl, cut))
 
 
 def wild_sample(res: Residuals, rng) -> list:

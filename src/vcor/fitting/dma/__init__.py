@@ -17,6 +17,6 @@ from .sets import QUANTITIES, DMASet, MasterCurve, given_shifts, master_curve, s
 from .shifts import ShiftResult, anchor_matrix, global_shifts, pairwise_shifts, superposition_rms
 
 __all__ = ["LOSS_WEIGHT", "MAX_LAG_PHASE", "MODES_PER_DECADE", "QUANTITIES", "DMAFit", "DMASet", "DMATable",
-           "JointFit", "MasterCurve", "ShiftResult", "anchor_matrix", "arrhenius_fit", "check_data", "fit_curve", "fit_dma", "fit_with_shifts", "given_shifts",
-           "global_shifts", "master_curve", "pairwise_shifts", "read_table", "shift_function", "split_sets",
+           "JointFit", "MasterCurve", "ShiftResult", "anchor_matrix", "arrhenius_fit", "check_data", "fit_curve",
+           "fit_dma", "fit_with_shifts", "given_shifts", "global_shifts", "master_curve", "pairwise_shifts", "read_table", "shift_function", "split_sets",
            "superpose", "superposition_rms", "tan_delta_extrema", "wlf_fit"]

@@ -39,8 +39,12 @@ from ..spectrum.residual import Design, Residual, second_differences
 from ..spectrum.smooth import SpectrumFit, component_weights, fit_spectrum, log_spectrum
 from .shifts import anchor_matrix, step_matrix
 
-__all__ = ["MAX_ITER", "MAX_LAG_PHASE", "SHIFT_ROOM", "JointFit", "fit_with_shifts"]
+__all__ = ["LOSS_WEIGHT", "MAX_ITER", "MAX_LAG_PHASE", "SHIFT_ROOM", "JointFit", "fit_with_shifts"]
 
+#: weight a'' of the relative E'' residuals against E': inverse variances for relative errors of about 1 % in
+#: E' and 10 % in E'' (:mod:`vcor.fitting.dma.pipeline`: on pyvisco's data E'' carries an instrument phase
+#: error and does not superpose, and equal weights let those errors set the shifts)
+LOSS_WEIGHT = 0.01
 #: largest instrument phase error (rad) at the highest measured frequency that :func:`fit_with_shifts`
 #: may fit (17 deg; a lag that large says the data need an instrument correction, not a fit)
 MAX_LAG_PHASE = 0.3
@@ -156,7 +160,8 @@ class _JointProblem:
 
     def value(self, p):
         design, E_inf, E = self.unpack(p)
-        return np.concatenate([self.residual.value(design, E_inf, E), math.sqrt(self.lam) * (self.Dm @ p[self.ie + 1:])])
+        roughness = math.sqrt(self.lam) * (self.Dm @ p[self.ie + 1:])
+        return np.concatenate([self.residual.value(design, E_inf, E), roughness])
 
     def jacobian(self, p):
         design, E_inf, E = self.unpack(p)
@@ -223,7 +228,7 @@ def _notes(problem, d, p, at_bound, min_overlap, ok):
     return notes
 
 
-def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, 0.01), per_decade=PER_DECADE, margin=MARGIN,
+def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT), per_decade=PER_DECADE, margin=MARGIN,
                     min_overlap=0.5, lam=None, final_lam="gcv1se", start_spectrum=None, lag=False,
                     free_shifts=True) -> JointFit:
     r"""Refine shift factors (and an instrument lag) together with the spectrum (module docstring).
@@ -242,7 +247,7 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, 0.01), per_de
         Start shifts (decades), one per set; the shifts themselves with ``free_shifts=False``.
     components : (a', a'') or "uncertainty"
         Component weights (scalars or per-point arrays in the order of the concatenated sets).
-        Default (1, 0.01): inverse-variance weights for relative E' errors of ~1 % and E'' errors of
+        Default (1, :data:`LOSS_WEIGHT`): inverse-variance weights for relative E' errors of ~1 % and E'' errors of
         ~10 % (on pyvisco's data the fits leave 1 % and 16 %: E'' does not superpose and rises at
         the top of every set; equal weights let those E'' errors set the shifts);
         "uncertainty": :func:`vcor.fitting.spectrum.smooth.loss_weights` (per point).

@@ -45,15 +45,13 @@ from ...materials.models import Prony
 from ..spectrum.model import MARGIN, N_DENSE, PER_DECADE, count_extrema
 from ..spectrum.modes import reduce_modes
 from ..spectrum.smooth import fit_spectrum, loss_weights
-from .joint import fit_with_shifts
+from .joint import LOSS_WEIGHT, fit_with_shifts
 from .laws import arrhenius_fit, wlf_fit
 from .sets import master_curve, split_sets
 from .shifts import global_shifts
 
 __all__ = ["LOSS_WEIGHT", "MODES_PER_DECADE", "DMAFit", "fit_curve", "fit_dma", "tan_delta_extrema"]
 
-#: weight a'' of the relative E'' residuals against E' (module docstring)
-LOSS_WEIGHT = 0.01
 #: modes per decade of the merged Prony series (fewer bring back tan delta ripple)
 MODES_PER_DECADE = 2.0
 
