@@ -48,7 +48,7 @@ ax.plot(v0, fits["lammps-coeff-restitution"]["cor"], "--", color="C1", label="LA
 ax.set_xscale("log")
 ax.set_xlabel("impact speed v0 [m/s]")
 ax.set_ylabel("COR")
-ax.legend(fontsize=8)
+ax.legend(fontsize=8, loc="lower right")
 fig.tight_layout()
 
 # %%

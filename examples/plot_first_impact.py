@@ -38,7 +38,6 @@ contact = ~h.ghost
 fig, ax = plt.subplots(figsize=(5.5, 4))
 ax.plot(h.s[contact] * 1e3, h.F[contact], color="C0", label="contact")
 ax.plot(h.s[h.ghost] * 1e3, h.F[h.ghost], color="C0", ls=":", label="after separation (not physical)")
-ax.annotate("loading", xy=(0.45 * res.s_max * 1e3, 0.62 * res.f_max), color="C0")
 ax.set_xlabel("indentation s [mm]")
 ax.set_ylabel("contact force F [N]")
 ax.set_title(f"SLS plate, v0 = 10 m/s: COR = {res.cor:.3f}, s_max/r = {res.s_max / GEOMETRY_DEFAULTS['r']:.2f}")

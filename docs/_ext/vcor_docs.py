@@ -21,6 +21,8 @@ Directives (MyST: ```` ```{vcor-solver-options} ````):
     (``workflow/report/figures/<name>.rst``).
 ``vcor-value`` (a role)
     the value of a constant of the package, e.g. ``{vcor-value}`vcor.solvers.adaptive.FLOOR_BITS```.
+``TableCodeBreaks`` (a post-transform)
+    break opportunities in code inside table cells, so that long names wrap inside the page.
 ``vcor-config-reference``
     every key of ``workflow/schemas/config.schema.yaml`` with its type, allowed values and default; the
     directive's body (YAML: key path -> meaning) gives the meaning. A schema key without a meaning, or
@@ -37,6 +39,7 @@ import yaml
 from docutils import nodes
 from docutils.parsers.rst import Directive
 from docutils.statemachine import StringList
+from sphinx.transforms.post_transforms import SphinxPostTransform
 
 ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
@@ -384,7 +387,41 @@ def _resolve(name: str):
     raise ImportError(name)
 
 
+# ----------------------------------------------------------------------------- code in tables
+#: where a name in a table cell may break: after a path separator, a dot, an underscore, "::" or a comma
+_BREAK_AFTER = re.compile(r"(?<=[/._,])(?=[^/._,])|(?<=::)")
+
+
+class TableCodeBreaks(SphinxPostTransform):
+    """Break opportunities (``<wbr>``, not copied with the text) in code inside table cells, so that a
+    test id or a file name wraps at its separators instead of widening the table past the page."""
+
+    default_priority = 900
+    formats = ("html",)
+
+    def run(self, **kwargs):
+        for literal in list(self.document.findall(nodes.literal)):
+            if not any(isinstance(a, nodes.entry) for a in _ancestors(literal)) or len(literal.children) != 1:
+                continue
+            text = literal.astext()
+            pieces = _BREAK_AFTER.split(text)
+            if len(pieces) < 2:
+                continue
+            literal.children = []
+            for i, piece in enumerate(pieces):
+                if i:
+                    literal += nodes.raw("", "<wbr>", format="html")
+                literal += nodes.Text(piece)
+
+
+def _ancestors(node):
+    while node.parent is not None:
+        node = node.parent
+        yield node
+
+
 def setup(app):
+    app.add_post_transform(TableCodeBreaks)
     app.config.autosummary_context = {"vcor_hidden_modules": HIDDEN_MODULES}
     app.add_role("vcor-value", value_role)
     app.add_directive("vcor-solver-options", SolverOptionsTable)
