@@ -180,7 +180,7 @@ def _check_table(T, log_aT, T_ref, where):
     if x.ndim != 1 or x.shape != y.shape or x.size < 2:
         raise ValueError(f"{where}: T and log_aT must be lists of equal length >= 2, got {np.shape(x)} and {np.shape(y)}")
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y)) and np.all(np.diff(x) > 0) and x[0] > -ZERO_CELSIUS):
-        raise ValueError(f"{where}.T: temperatures (deg C) must be finite, above -273.15 and strictly increasing, "
+        raise ValueError(f"{where}.T: temperatures (deg C) must be finite, above {-ZERO_CELSIUS:g} and strictly increasing, "
                          f"with finite log_aT; got T = {x.tolist()}")
     if not x[0] <= T_ref <= x[-1]:
         raise ValueError(f"{where}.T_ref: {T_ref:g} deg C lies outside the table's {x[0]:g}..{x[-1]:g} deg C")

@@ -43,7 +43,10 @@ class Design:
         # the model as measured: E* rotated by the instrument's phase error, E*_m = E* e^{i phase}
         cp, sp = (np.ones(n), np.zeros(n)) if phase is None else (np.cos(phase), np.sin(phase))
         self.wt, self.cp, self.sp = wt, cp, sp
-        self.Ks, self.Kl = cp[:, None] * ks - sp[:, None] * kl, sp[:, None] * ks + cp[:, None] * kl
+        if phase is None:      # cos 0 = 1, sin 0 = 0: the rotation below would return ks, kl unchanged
+            self.Ks, self.Kl = ks, kl
+        else:
+            self.Ks, self.Kl = cp[:, None] * ks - sp[:, None] * kl, sp[:, None] * ks + cp[:, None] * kl
         self.Kt = None if t is None else np.exp(-np.divide.outer(t, tau))
 
     def measured(self, E_inf, E):
