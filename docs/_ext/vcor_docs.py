@@ -420,8 +420,36 @@ def _ancestors(node):
         yield node
 
 
+# ----------------------------------------------------------------------------- module data in the API
+#: a module constant's value is shown in its signature when it reads as a value: short, and not the repr
+#: of a function, class or object (a method table such as ``METHODS`` is described by its docstring)
+MAX_VALUE_LENGTH = 100
+_OBJECT_REPR = re.compile(r"<[\w.]+[ >]|object at 0x")
+
+
+class HideReprValues(SphinxPostTransform):
+    """Drop ``= value`` from the signature of module data and attributes whose value is a long table or
+    holds Python reprs (``<function solve>``): the API reference then shows the name, the type and the
+    docstring, not a dump."""
+
+    default_priority = 800
+
+    def run(self, **kwargs):
+        from sphinx import addnodes
+
+        for desc in self.document.findall(addnodes.desc):
+            if desc.get("objtype") not in ("data", "attribute"):
+                continue
+            for sig in desc.findall(addnodes.desc_signature):
+                for ann in list(sig.findall(addnodes.desc_annotation)):
+                    text = ann.astext().strip()
+                    if text.startswith("=") and (len(text) > MAX_VALUE_LENGTH or _OBJECT_REPR.search(text)):
+                        ann.parent.remove(ann)
+
+
 def setup(app):
     app.add_post_transform(TableCodeBreaks)
+    app.add_post_transform(HideReprValues)
     app.config.autosummary_context = {"vcor_hidden_modules": HIDDEN_MODULES}
     app.add_role("vcor-value", value_role)
     app.add_directive("vcor-solver-options", SolverOptionsTable)
