@@ -10,10 +10,11 @@ weights :math:`a', a''` the data rows are
 the Prony model :math:`E^*(\omega) = E_\infty + \sum_j E_j\,i\omega\tau_j/(1 + i\omega\tau_j)` as an
 instrument with a phase error :math:`\varphi_i` measures it (0 without one), optionally followed by
 relaxation rows :math:`\sqrt{a_t}\,(E(t_l)/E_l - 1)`.  The parameters are :math:`\ln E_\infty` and
-:math:`H_j = \ln E_j`; the smooth fit (:mod:`.smooth`) uses exactly these, the joint fit
-(:mod:`vcor.fitting.dma.joint`) and the leverages (:mod:`.leverage`) add columns for the shift of every set
-(:meth:`Residual.shift_columns`, :math:`\partial E^*(\omega 10^{s})/\partial s = \ln 10\;\omega\,
-\partial E^*/\partial\omega`) and for an instrument lag (:meth:`Residual.lag_column`).
+:math:`H_j = \ln E_j`; the smooth fit (:mod:`vcor.fitting.spectrum.smooth`) uses exactly these, the
+joint fit (:mod:`vcor.fitting.dma.joint`) and the leverages (:mod:`vcor.fitting.spectrum.leverage`) add
+columns for the shift of every set (:meth:`Residual.shift_columns`,
+:math:`\partial E^*(\omega 10^{s})/\partial s = \ln 10\;\omega\,\partial E^*/\partial\omega`) and for
+an instrument lag (:meth:`Residual.lag_column`).
 """
 
 from __future__ import annotations
