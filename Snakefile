@@ -28,3 +28,20 @@ rule all:
     default_target: True
     input:
         get_all_targets(),
+
+
+# at the end of a run, successful or not: what each scene's sweep holds and where (vcor.study.summary)
+onsuccess:
+    from snakemake.logging import logger
+    import vcor.study.summary as vsummary
+
+    for _line in vsummary.run_summary(PROJECT):
+        logger.info(_line)
+
+
+onerror:
+    from snakemake.logging import logger
+    import vcor.study.summary as vsummary
+
+    for _line in vsummary.run_summary(PROJECT):
+        logger.info(_line)

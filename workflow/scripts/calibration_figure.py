@@ -7,6 +7,7 @@ from vcor.io import receipts
 from vcor.io.joblog import job_log
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     cal = xr.load_dataset(receipts.verified(smk.input[0]))
     plots.save(plots.calibration(cal), smk.output.png, smk.output.pdf)
+    log.note(f"drew {smk.output.png} and {smk.output.pdf} from {smk.input[0]}")

@@ -7,7 +7,7 @@ from vcor.io.joblog import job_log
 from vcor.study import convergence
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     spec = smk.params.spec
     mats = spec["materials"]
     per_material = [xr.load_dataset(receipts.verified(p)) for p in smk.input]
@@ -16,3 +16,5 @@ with job_log(smk):
     netcdf.write_dataset(ds, smk.output.nc, title="vcor work-precision study", command="snakemake rule convergence",
                          extra_attrs={"convergence_config": spec})
     receipts.atomic_text(smk.output.orders, convergence.orders_table(ds))
+    log.note(f"combined the work-precision study of {len(mats)} materials at {len(spec['v0'])} impact speeds: "
+             f"{smk.output.nc}; observed orders: {smk.output.orders}")

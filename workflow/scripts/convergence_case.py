@@ -5,13 +5,16 @@ import xarray as xr
 from vcor.io import netcdf
 from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
-from vcor.study import convergence
+from vcor.study import convergence, summary
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     name, v0s = smk.params.material, [float(v) for v in smk.params.v0]
     catalogue = Catalogue(**smk.params.catalogue)
     cases = [convergence.study(name, v, catalogue=catalogue) for v in v0s]
     ds = xr.concat([c.expand_dims(v0=[v]) for c, v in zip(cases, v0s)], dim="v0")
     netcdf.write_dataset(ds, smk.output[0], title="vcor work-precision case", extra_attrs={"material": name},
                          command="snakemake rule convergence_case")
+    done = summary.outcome_of(ds)
+    log.note(f"work-precision ladder of {name} at v0 = {', '.join(f'{v:g}' for v in v0s)} m/s: {done.points} runs "
+             f"({done.text()}): {smk.output[0]}")

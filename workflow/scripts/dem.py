@@ -5,13 +5,16 @@ from vcor.dem import export
 from vcor.io import netcdf
 from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
-from vcor.study import dem
+from vcor.study import dem, summary
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     name, spec = smk.wildcards.dem, smk.params.spec
     collisions, fits, temps = dem.run_dem(name, spec, Catalogue(**smk.params.catalogue))
     ds = export.dem_dataset(name, collisions, fits, temps, config=spec)
     netcdf.write_dataset(ds, smk.output.nc, title=f"vcor DEM parameters, {name}", command="snakemake rule dem")
     export.table_csv(smk.output.table, collisions, temps)
     export.parameters_csv(smk.output.parameters, ds)
+    done = summary.outcome_of(ds)
+    log.note(f"DEM entry {name}: {done.points} collisions solved ({done.text()}), {ds.sizes['model']} contact laws "
+             f"fitted: {smk.output.nc}")

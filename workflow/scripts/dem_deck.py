@@ -7,5 +7,6 @@ from vcor.io import receipts
 from vcor.io.joblog import job_log
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     lammps.write_deck(smk.output[0], xr.load_dataset(receipts.verified(smk.input[0])))
+    log.note(f"wrote the LAMMPS deck {smk.output[0]} from {smk.input[0]}")

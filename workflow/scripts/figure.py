@@ -16,10 +16,12 @@ def load(path):
     return loaded[path]
 
 
-with job_log(smk):
+with job_log(smk) as log:
     inp, params = smk.input, smk.params
     for fig, png, pdf in zip(params.figures, smk.output.png, smk.output.pdf):
         lists = {"material_fit": f"{fig}_fits", "material_samples": f"{fig}_samples"}
         files = {n: list(getattr(inp, lists[n], [])) if n in lists else inp[n] for n in plots.FIGURES[fig][1]}
         data = {n: [load(p) for p in f] if isinstance(f, list) else load(f) for n, f in files.items()}
         plots.save(plots.draw(fig, data, params.options[fig]), png, pdf)
+    log.note(f"drew {len(params.figures)} figures of scene {params.scene} ({', '.join(params.figures)}; png and "
+             f"pdf) from {', '.join(sorted(loaded))}")

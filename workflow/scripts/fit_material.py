@@ -7,7 +7,7 @@ from vcor.io import netcdf, receipts
 from vcor.io.joblog import job_log
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     name, spec = smk.wildcards.material, smk.params.spec
     result, data, attrs = fits.run_fit(spec)
     print(f"fit {name}: {result.fit_time:.3f} s, {result.settings}", file=sys.stderr)
@@ -17,3 +17,4 @@ with job_log(smk):
                          command="vcor.fitting.fits (deterministic: no time stamp)", identity=smk.params.identity)
     table = f"# {name}: {result.material.to_dict()}\n" + fits.metrics_table([(name, result.material, result.metrics)])
     receipts.atomic_text(smk.output.table, table)
+    log.note(f"fitted {name}: {smk.output.nc}, {smk.output.table}")

@@ -5,7 +5,8 @@ from vcor.io import receipts
 from vcor.io.joblog import job_log
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     for path in smk.input:
         receipts.verified(path)
     receipts.atomic_text(smk.output[0], fits.scene_metrics_table(smk.params.names, smk.params.material_dir))
+    log.note(f"tabulated the error metrics of {len(smk.params.names)} fitted materials: {smk.output[0]}")

@@ -3,10 +3,10 @@
 from vcor.io import netcdf
 from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
-from vcor.study import datasets, scene
+from vcor.study import datasets, scene, summary
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     h, settings = smk.params.histories, smk.params.settings
     catalogue = Catalogue(**smk.params.catalogue)
     ds = datasets.histories_dataset([tuple(r) for r in h["runs"]], h["v0"], options=settings["solver"],
@@ -15,3 +15,5 @@ with job_log(smk):
              "materials": scene.material_params(sorted({r[0] for r in h["runs"]}), catalogue)}
     netcdf.write_dataset(ds, smk.output[0], title=f"vcor histories, scene {smk.wildcards.scene}", extra_attrs=attrs,
                          command="snakemake rule histories")
+    log.note(f"solved {len(h['runs'])} time histories of scene {smk.wildcards.scene} at v0 = {h['v0']:g} m/s "
+             f"({summary.outcome_of(ds).text()}): {smk.output[0]}")

@@ -5,10 +5,10 @@ import json
 from vcor.io import netcdf, receipts
 from vcor.io.joblog import job_log
 from vcor.materials import Catalogue
-from vcor.study import runner, scene
+from vcor.study import runner, scene, summary
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     points, settings = smk.params.points, smk.params.settings
     catalogue = Catalogue(**smk.params.catalogue)
     ds = runner.run_points(points, settings, catalogue)
@@ -16,4 +16,5 @@ with job_log(smk):
                                                                         catalogue)}
     netcdf.write_dataset(ds, smk.output.nc, title="vcor sweep shard", extra_attrs=attrs,
                          command="snakemake rule sweep_shard", identity=smk.wildcards.shard)
+    log.note(f"solved {len(points)} points of scene {smk.wildcards.scene}: {summary.outcome_of(ds).text()}")
     receipts.atomic_text(smk.output.index, json.dumps({"points": points, "settings": settings}, indent=1))
