@@ -6,4 +6,5 @@ from vcor.io.manifest import write_manifest
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     write_manifest(f"DEM entry {smk.wildcards.dem}", smk.input, smk.output[0])
-    log.note(f"listed the sizes and SHA-256 of DEM entry {smk.wildcards.dem}'s outputs ({len(smk.input)}) in {smk.output[0]}")
+    log.note(f"listed the sizes and SHA-256 of DEM entry {smk.wildcards.dem}'s outputs ({len(smk.input)}) "
+             f"in {smk.output[0]}")

@@ -1,0 +1,97 @@
+"""A run says what it did: a summary per scene at the end of Snakemake's output (successful or failed
+run), job logs that say what each job computed, no ``Shell command: None`` lines, and the core count
+the command line asks for."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from conftest import make_project, smk
+from vcor.solvers.validity import FLAGS
+from vcor.status import STATUS_CODES
+
+#: one sweep of two impacts of the paper's SLS plate: 1 m/s (inside the model's range) and 50 m/s
+#: (s_max / r and v0 / wave speed beyond the stated limits: flagged)
+TINY = {"scenes": {"tiny": {"materials": ["sls"], "grid": {"v0": [1.0, 50.0]}}}}
+HEADER = "vcor: what the results hold"
+
+
+def _expected_line(path, scene: str) -> str:
+    """The summary line of ``scene`` as counted here from its sweep dataset's status and validity."""
+    with xr.open_dataset(path / f"results/{scene}/sweep.nc") as ds:
+        status, flags = ds["status"].values.ravel(), ds["validity"].values.ravel()
+    ok = status == STATUS_CODES["ok"]
+    flagged = ok & (flags != 0)
+    reasons = [f"{name} {np.count_nonzero(flagged & (flags & mask != 0))}" for name, mask in FLAGS.items()
+               if np.any(flagged & (flags & mask != 0))]
+    failed = [f"{name} {np.count_nonzero(status == c)}" for name, c in STATUS_CODES.items()
+              if name != "ok" and np.any(status == c)]
+    text = (f"{np.count_nonzero(ok & ~flagged)} ok, {np.count_nonzero(flagged)} flagged"
+            + (f" ({', '.join(reasons)})" if reasons else "")
+            + f", {np.count_nonzero(~ok)} failed" + (f" ({', '.join(failed)})" if failed else ""))
+    return f"  scene {scene}: {status.size} points, {text}: results/{scene}/sweep.nc"
+
+
+def _tail(text: str) -> list[str]:
+    """The lines from the summary's header to the end of the output."""
+    lines = text.splitlines()
+    starts = [i for i, line in enumerate(lines) if line.startswith(HEADER)]
+    assert len(starts) == 1, text[-3000:]
+    return lines[starts[0]:]
+
+
+def _summary_is_last(text: str, scene_lines: list[str]) -> None:
+    """The summary's lines come after every job, followed only by Snakemake's closing lines."""
+    tail = _tail(text)
+    assert tail[1:1 + len(scene_lines)] == scene_lines, "\n".join(tail)
+    rest = tail[1 + len(scene_lines):]
+    allowed = ("Complete log(s):", "Elapsed time:", "WorkflowError:", "At least one job did not complete")
+    assert all(line.startswith(allowed) for line in rest if line.strip()), "\n".join(tail)
+
+
+@pytest.mark.slow
+def test_summary_logs_and_cores(tmp_path):
+    path = make_project(tmp_path / "p", TINY)
+    out = smk(path)  # the profile's 2 cores
+    text = out.stdout + out.stderr
+    assert "Provided cores: 2" in text, text[-3000:]
+    assert "Shell command: None" not in text
+    line = _expected_line(path, "tiny")
+    # the 50 m/s impact is flagged (s_max / r > 0.1), the 1 m/s one is not: the line shows both kinds
+    assert " 1 ok, 1 flagged (large_indentation 1" in line, line
+    _summary_is_last(text, [line])
+    # the shard's job log says what it solved, with the same counts and its time
+    (log,) = (path / "results/tiny/logs/shards").glob("*.log")
+    note = line.split(": ", 1)[1].rsplit(": ", 1)[0].removeprefix("2 points, ")
+    assert re.fullmatch(rf"solved 2 points of scene tiny: {re.escape(note)}, in \S+ s\n", log.read_text())
+    assert "in results/tiny/MANIFEST.txt" in (path / "results/tiny/logs/manifest.log").read_text()
+
+    out = smk(path, "-j1", "--forcerun", "manifest")
+    text = out.stdout + out.stderr
+    assert re.search(r"^Provided cores: 1\b", text, re.M), text[-3000:]
+    assert "Provided cores: 2" not in text and "Shell command: None" not in text
+    _summary_is_last(text, [line])
+
+
+@pytest.mark.slow
+def test_summary_after_a_failed_job(tmp_path):
+    # a fit to a single measured frequency cannot succeed: its job fails, the sweep of the other scene runs
+    cfg = {"fits": {"broken": {"model": "prony", "data": {"file": "data/one-point.csv", "T_ref": 20}}}, **TINY}
+    path = make_project(tmp_path / "p", cfg)
+    (path / "data/one-point.csv").write_text("f,E_stor,E_loss\n1,1e6,1e5\n")
+    out = smk(path, "-j1", check=False)
+    text = out.stdout + out.stderr
+    assert out.returncode != 0 and "Error in rule fit_material" in text, text[-3000:]
+    _summary_is_last(text, [_expected_line(path, "tiny")])
+
+
+@pytest.mark.slow
+def test_no_summary_without_a_dataset(tmp_path):
+    # a run that builds no sweep, DEM entry or calibration prints no summary header
+    path = make_project(tmp_path / "p", {"fits": {"cerf": {"model": "cerf"}}})
+    out = smk(path, "-j1")
+    assert HEADER not in out.stdout + out.stderr
