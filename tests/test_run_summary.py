@@ -11,13 +11,34 @@ import pytest
 import xarray as xr
 
 from conftest import make_project, smk
+from vcor import status as vstatus
+from vcor.solvers import validity as vvalidity
 from vcor.solvers.validity import FLAGS
 from vcor.status import STATUS_CODES
+from vcor.study.summary import outcome_of
 
 #: one sweep of two impacts of the paper's SLS plate: 1 m/s (inside the model's range) and 50 m/s
 #: (s_max / r and v0 / wave speed beyond the stated limits: flagged)
 TINY = {"scenes": {"tiny": {"materials": ["sls"], "grid": {"v0": [1.0, 50.0]}}}}
 HEADER = "vcor: what the results hold"
+
+
+def test_outcome_counts_ok_flagged_and_failed_by_name():
+    # six points: ok; ok + large_indentation; ok + large_indentation + fast_impact; no-separation with a
+    # flag bit set (a bootstrap sample's flag: not ok, so failed, not flagged); step-budget; failed
+    codes = [vstatus.code(s) for s in ("ok", "ok", "ok", "no-separation", "step-budget", "failed")]
+    big, fast = FLAGS["large_indentation"], FLAGS["fast_impact"]
+    flags = [0, big, big | fast, fast, 0, 0]
+    ds = xr.Dataset({"status": ("p", np.array(codes, np.int8), vstatus.cf_attrs()),
+                     "validity": ("p", np.array(flags, np.int8), vvalidity.cf_attrs())})
+    out = outcome_of(ds)
+    assert (out.points, out.ok, out.flagged, out.failed) == (6, 1, 2, 3)
+    assert out.reasons == {"large_indentation": 2, "fast_impact": 1}
+    assert out.statuses == {"no-separation": 1, "failed": 1, "step-budget": 1}
+    assert out.text() == ("1 ok, 2 flagged (large_indentation 2, fast_impact 1), "
+                          "3 failed (no-separation 1, failed 1, step-budget 1)")
+    # without a validity variable every ok point counts as ok
+    assert outcome_of(ds[["status"]]).text() == "3 ok, 0 flagged, 3 failed (no-separation 1, failed 1, step-budget 1)"
 
 
 def _expected_line(path, scene: str) -> str:
