@@ -3,7 +3,7 @@
 import xarray as xr
 
 from vcor.io import netcdf, receipts
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.study import convergence
 
 smk = snakemake  # noqa: F821
@@ -16,5 +16,5 @@ with job_log(smk) as log:
     netcdf.write_dataset(ds, smk.output.nc, title="vcor work-precision study", command="snakemake rule convergence",
                          extra_attrs={"convergence_config": spec})
     receipts.atomic_text(smk.output.orders, convergence.orders_table(ds))
-    log.note(f"combined the work-precision study of {len(mats)} materials at {len(spec['v0'])} impact speeds: "
-             f"{smk.output.nc}; observed orders: {smk.output.orders}")
+    log.note(f"combined the work-precision study of {count(len(mats), 'material')} at "
+             f"{count(len(spec['v0']), 'impact speed')}: {smk.output.nc}; observed orders: {smk.output.orders}")

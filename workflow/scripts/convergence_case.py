@@ -3,7 +3,7 @@
 import xarray as xr
 
 from vcor.io import netcdf
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
 from vcor.study import convergence, summary
 
@@ -16,5 +16,6 @@ with job_log(smk) as log:
     netcdf.write_dataset(ds, smk.output[0], title="vcor work-precision case", extra_attrs={"material": name},
                          command="snakemake rule convergence_case")
     done = summary.outcome_of(ds)
-    log.note(f"work-precision ladder of {name} at v0 = {', '.join(f'{v:g}' for v in v0s)} m/s: {done.points} runs "
-             f"({done.text()}): {smk.output[0]}")
+    speeds = ", ".join(f"{v:g}" for v in v0s)
+    log.note(f"work-precision ladder of {name} at v0 = {speeds} m/s: {count(done.points, 'run')}: {done.text()}; "
+             f"{smk.output[0]}")

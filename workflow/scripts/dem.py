@@ -3,7 +3,7 @@ the dataset, the COR table and the parameters file."""
 
 from vcor.dem import export
 from vcor.io import netcdf
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
 from vcor.study import dem, summary
 
@@ -16,5 +16,5 @@ with job_log(smk) as log:
     export.table_csv(smk.output.table, collisions, temps)
     export.parameters_csv(smk.output.parameters, ds)
     done = summary.outcome_of(ds)
-    log.note(f"DEM entry {name}: {done.points} collisions solved ({done.text()}), {ds.sizes['model']} contact laws "
-             f"fitted: {smk.output.nc}")
+    log.note(f"DEM entry {name}: solved {count(done.points, 'collision')}: {done.text()}; fitted "
+             f"{count(ds.sizes['model'], 'contact law')}: {smk.output.nc}")

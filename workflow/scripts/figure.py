@@ -4,7 +4,7 @@ import xarray as xr
 
 from vcor import plots
 from vcor.io import receipts
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 
 smk = snakemake  # noqa: F821
 loaded = {}  # one load per file: several figures of a scene read the same dataset
@@ -23,5 +23,5 @@ with job_log(smk) as log:
         files = {n: list(getattr(inp, lists[n], [])) if n in lists else inp[n] for n in plots.FIGURES[fig][1]}
         data = {n: [load(p) for p in f] if isinstance(f, list) else load(f) for n, f in files.items()}
         plots.save(plots.draw(fig, data, params.options[fig]), png, pdf)
-    log.note(f"drew {len(params.figures)} figures of scene {params.scene} ({', '.join(params.figures)}; png and "
-             f"pdf) from {', '.join(sorted(loaded))}")
+    log.note(f"drew {count(len(params.figures), 'figure')} of scene {params.scene} ({', '.join(params.figures)}; "
+             f"png and pdf) from {', '.join(sorted(loaded))}")

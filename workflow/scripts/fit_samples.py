@@ -2,7 +2,7 @@
 
 from vcor.fitting import resample
 from vcor.io import netcdf
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
@@ -11,4 +11,4 @@ with job_log(smk) as log:
     netcdf.write_dataset(ds, smk.output[0], title=f"vcor bootstrap samples of {name}", timestamp=False,
                          command="vcor.fitting.resample (deterministic: no time stamp)",
                          identity=smk.params.identity)
-    log.note(f"refitted {name} to {n} bootstrap samples of its data (seed {seed}): {smk.output[0]}")
+    log.note(f"refitted {name} to {count(n, 'bootstrap sample')} of its data (seed {seed}): {smk.output[0]}")

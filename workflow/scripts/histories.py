@@ -1,7 +1,7 @@
 """Time histories of a scene's listed runs, with the ghost part after separation (thin)."""
 
 from vcor.io import netcdf
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
 from vcor.study import datasets, scene, summary
 
@@ -15,5 +15,6 @@ with job_log(smk) as log:
              "materials": scene.material_params(sorted({r[0] for r in h["runs"]}), catalogue)}
     netcdf.write_dataset(ds, smk.output[0], title=f"vcor histories, scene {smk.wildcards.scene}", extra_attrs=attrs,
                          command="snakemake rule histories")
-    log.note(f"solved {len(h['runs'])} time histories of scene {smk.wildcards.scene} at v0 = {h['v0']:g} m/s "
-             f"({summary.outcome_of(ds).text()}): {smk.output[0]}")
+    runs = count(len(h["runs"]), "time history", "time histories")
+    log.note(f"solved {runs} of scene {smk.wildcards.scene} at v0 = {h['v0']:g} m/s: "
+             f"{summary.outcome_of(ds).text()}; {smk.output[0]}")

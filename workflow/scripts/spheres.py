@@ -1,7 +1,7 @@
 """eps(b) of viscoelastic spheres: numerics, series, Pade (thin: vcor.study.datasets does the work)."""
 
 from vcor.io import netcdf
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.study import datasets, scene, summary
 
 smk = snakemake  # noqa: F821
@@ -11,5 +11,5 @@ with job_log(smk) as log:
                                   steps_per_contact=spec["steps_per_contact"], ice=spec.get("ice"))
     netcdf.write_dataset(ds, smk.output[0], title=f"vcor viscoelastic spheres, scene {smk.wildcards.scene}",
                          extra_attrs={"spheres_config": spec}, command="snakemake rule spheres")
-    log.note(f"solved eps(b) of scene {smk.wildcards.scene} at {ds.sizes['b']} values of b, "
-             f"{len(spec['rules'])} separation rules ({summary.outcome_of(ds).text()}): {smk.output[0]}")
+    log.note(f"solved eps(b) of scene {smk.wildcards.scene} at {ds.sizes['b']} values of b with "
+             f"{count(len(spec['rules']), 'separation rule')}: {summary.outcome_of(ds).text()}; {smk.output[0]}")

@@ -3,7 +3,7 @@
 import json
 
 from vcor.io import netcdf, receipts
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
 from vcor.study import runner, scene, summary
 
@@ -16,5 +16,5 @@ with job_log(smk) as log:
                                                                         catalogue)}
     netcdf.write_dataset(ds, smk.output.nc, title="vcor sweep shard", extra_attrs=attrs,
                          command="snakemake rule sweep_shard", identity=smk.wildcards.shard)
-    log.note(f"solved {len(points)} points of scene {smk.wildcards.scene}: {summary.outcome_of(ds).text()}")
+    log.note(f"solved {count(len(points), 'point')} of scene {smk.wildcards.scene}: {summary.outcome_of(ds).text()}")
     receipts.atomic_text(smk.output.index, json.dumps({"points": points, "settings": settings}, indent=1))

@@ -16,12 +16,17 @@ import sys
 import time
 import traceback
 
-__all__ = ["JobLog", "job_log", "seconds"]
+__all__ = ["JobLog", "count", "job_log", "seconds"]
 
 
 def seconds(t: float) -> str:
     """A duration for a log line: ``0.042 s``, ``1.3 s``, ``75 s`` (two significant digits below 10 s)."""
     return f"{t:.2g} s" if t < 10 else f"{t:.0f} s"
+
+
+def count(n: int, noun: str, plural: str | None = None) -> str:
+    """``1 figure``, ``3 figures``; ``plural`` for a noun that does not take an s (``histories``)."""
+    return f"{n} {noun if n == 1 else plural or noun + 's'}"
 
 
 class JobLog:
