@@ -1,6 +1,6 @@
 """A run says what it did: a summary per scene at the end of Snakemake's output (successful or failed
-run), job logs that say what each job computed, no ``Shell command: None`` lines, and the core count
-the command line asks for."""
+run), job logs that say what each job computed, no ``Shell command: None`` lines, the core count the
+command line asks for, and a report that names the scene's dataset and says when it has no figures."""
 
 from __future__ import annotations
 
@@ -96,6 +96,12 @@ def test_summary_logs_and_cores(tmp_path):
     assert re.search(r"^Provided cores: 1\b", text, re.M), text[-3000:]
     assert "Provided cores: 2" not in text and "Shell command: None" not in text
     _summary_is_last(text, [line])
+
+    # the report of a scene without figures says it has none and names the scene's dataset
+    smk(path, "--report", "report.html")
+    html = (path / "report.html").read_text(errors="replace")
+    assert "This report holds no figures" in html and "figures below" not in html
+    assert "results/tiny/sweep.nc" in html and "results/tiny/MANIFEST.txt" in html
 
 
 @pytest.mark.slow
