@@ -95,10 +95,11 @@ def read_outcome(path) -> Outcome:
 
 
 def _line(kind: str, name: str, path: Path, shown: str) -> str:
+    """One summary line; a dataset that cannot be read says so (the end of a run must not fail on it)."""
     try:
         out = read_outcome(path)
-    except (OSError, ValueError, KeyError) as exc:
-        return f"  {kind} {name}: cannot read {shown}: {exc}"
+    except Exception as exc:  # noqa: BLE001 - reported on the line, see the docstring
+        return f"  {kind} {name}: cannot read {shown}: {type(exc).__name__}: {exc}"
     return f"  {kind} {name}: {out.points} points, {out.text()}: {shown}"
 
 
