@@ -46,10 +46,14 @@ def test_a_config_of_only_materials_and_dem_builds_the_dem_entry():
     assert "results/dem/pair/lammps/in.pair" in project.all_targets()
 
 
-def test_a_config_of_only_fits_builds_every_fit():
-    project = check({"fits": {"f{n}": {"model": "prony", "n_terms": [2, 3]}}})
+def test_a_config_of_only_fits_builds_every_fit_and_a_scene_only_the_fits_it_uses():
+    fits = {"f{n}": {"model": "prony", "n_terms": [2, 3]}}
+    project = check({"fits": fits})
     assert project.all_targets() == ["results/materials/f2.nc", "results/materials/f2.txt",
                                      "results/materials/f3.nc", "results/materials/f3.txt"]
+    with_scene = check({"fits": fits, "scenes": {"s": {"materials": ["f2"], "grid": {"v0": [1.0]}}}})
+    built = with_scene.all_targets()
+    assert "results/materials/f2.nc" in built and not any("f3" in t for t in built)
 
 
 @pytest.mark.parametrize("config", [{}, {"scenes": {}}, {"materials": {"m": MY_SLS}}, {"shard_size": 10}])

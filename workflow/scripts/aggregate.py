@@ -5,13 +5,13 @@ from pathlib import Path
 import xarray as xr
 
 from vcor.io import netcdf, receipts
-from vcor.io.joblog import job_log
+from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
-from vcor.study import aggregation
+from vcor.study import aggregation, summary
 from vcor.study.grid import Grid
 
 smk = snakemake  # noqa: F821
-with job_log(smk):
+with job_log(smk) as log:
     cfg, catalogue = smk.params.scene, Catalogue(**smk.params.catalogue)
     # every shard is checked against its receipt (its bytes and its id) before it is used
     shards = [xr.load_dataset(receipts.verified(p, Path(p).stem)) for p in smk.input.shards]
@@ -20,3 +20,6 @@ with job_log(smk):
     attrs = aggregation.dataset_attrs(smk.wildcards.scene, cfg, catalogue)
     netcdf.write_dataset(ds, smk.output[0], title=f"vcor sweep, scene {smk.wildcards.scene}", extra_attrs=attrs,
                          command="snakemake rule aggregate")
+    done = summary.outcome_of(ds)
+    log.note(f"combined {count(len(shards), 'shard')} of scene {smk.wildcards.scene} into {smk.output[0]}: "
+             f"{count(done.points, 'point')}, {done.text()}")

@@ -9,8 +9,10 @@ path comes from :mod:`vcor.study.paths`.
 What a config builds (the workflow's default target):
 
 * every scene's datasets, figures, tables and manifest, and the files of the materials it uses;
-* every fit (its material file and parameter table) and every calibration (its record, figure and
-  material file), whether or not a scene uses them: a config that names a fit asks for it;
+* every calibration (its record, figure and material file);
+* a fit when a scene, a DEM entry or a calibration uses it (nothing is computed that no output
+  needs), and every fit of a config that has no scenes, DEM entries or calibrations (a config of fits
+  asks for them);
 * every DEM entry's dataset, COR table, parameters file, LAMMPS deck, Yade script, figure and manifest.
 
 The ``materials:`` block defines materials for the others to use; it builds nothing by itself.
@@ -173,5 +175,7 @@ class Project:
             out += self.scene_targets(scene) + [paths.fmt(paths.MANIFEST, scene=scene)]
         for name in self.dem:
             out += self.dem_targets(name) + [paths.fmt(paths.DEM_MANIFEST, dem=name)]
-        out += self.fit_targets() + self.calibration_targets()
+        if not (self.scenes or self.dem or self.catalogue.calibrations):
+            out += self.fit_targets()
+        out += self.calibration_targets()
         return list(dict.fromkeys(out))
