@@ -107,7 +107,8 @@ def test_summary_logs_and_cores(tmp_path):
 @pytest.mark.slow
 def test_summary_after_a_failed_job(tmp_path):
     # a fit to a single measured frequency cannot succeed: its job fails, the sweep of the other scene runs
-    cfg = {"fits": {"broken": {"model": "prony", "data": {"file": "data/one-point.csv", "T_ref": 20}}}, **TINY}
+    cfg = {"fits": {"broken": {"model": "prony", "data": {"file": "data/one-point.csv", "T_ref": 20}}},
+           "scenes": {**TINY["scenes"], "uses-broken": {"materials": ["broken"], "grid": {"v0": [1.0]}}}}
     path = make_project(tmp_path / "p", cfg)
     (path / "data/one-point.csv").write_text("f,E_stor,E_loss\n1,1e6,1e5\n")
     out = smk(path, "-j1", check=False)

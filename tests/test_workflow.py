@@ -177,8 +177,8 @@ def test_noop_rerun_and_extension_recomputes_only_new_points(tiny_run, tmp_path)
         ids = {"sls": Catalogue().identity("sls")}
         plan = shards.plan_shards(cfg["scenes"]["tiny"], tiny_run / "results/tiny/shards", 3, ids)
         new = [k for k in plan if not (tiny_run / f"results/tiny/shards/{k}.nc").exists()]
-        assert len(new) == 1 and sum(len(plan[k]) for k in new) == 2
-        assert all(p["v0"] == 20.0 for k in new for p in plan[k])
+        assert len(new) == 1 and sum(len(plan[k].points) for k in new) == 2
+        assert all(p["v0"] == 20.0 for k in new for p in plan[k].points)
         lines = {ln.split()[0]: int(ln.split()[1]) for ln in text.splitlines() if len(ln.split()) == 2
                  and ln.split()[1].isdigit()}
         assert lines.get("sweep_shard") == 1, text

@@ -128,4 +128,6 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict,
         chunk = rest[i : i + shard_size]
         sid = f"{h}-{content_hash([point_key(p) for p in chunk])}"
         plan[sid] = Shard(id=sid, points=chunk, rows=[p["index"] for p in chunk])
-    return plan
+    # in the order of their ids: the aggregate's inputs and rows do not depend on which shards were
+    # found and which planned (a healed archive re-runs nothing more)
+    return dict(sorted(plan.items()))
