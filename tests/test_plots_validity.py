@@ -181,3 +181,19 @@ def test_history_figures_name_a_flagged_run_and_its_reason():
     assert len(flagged) == 1 and flagged[0].startswith("sls (method1)")
     labels = _legend_texts(plots.draw("fig3", {"histories": hist}, runs))
     assert [("outside the model's range" in t) for t in labels] == [False, True]
+
+
+def test_the_dem_figure_marks_flagged_speeds_of_vcors_curve():
+    """The DEM figure draws vcor's COR in the same style: a collision fast enough to leave Hertz's
+    range (s_max/r > 0.1) shows open markers and the legend entry."""
+    from vcor.dem import export, fit
+    from vcor.plots.dem import dem as dem_figure
+
+    col = fit.collision("sls", [0.1, 1.0, 10.0, 40.0], sphere={"r": 0.005}, target="rigid")
+    ds = export.dem_dataset("t", [col], [fit.fit_laws(col)])
+    flagged = (ds["status"].values == 0) & (ds["validity"].values != 0)
+    assert flagged.any() and not flagged.all()
+    fig = dem_figure(ds)
+    opened, _ = _flagged_artists(fig)
+    assert opened
+    assert any("outside the model's range" in t for t in _legend_texts(fig))

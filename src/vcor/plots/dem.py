@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 
-from .common import mark_failed, plt
+from .common import flag_legend, plt, sweep_line, validity_of
 
 __all__ = ["dem"]
 
@@ -43,12 +43,13 @@ def dem(ds):
                              sharex=True, squeeze=False, gridspec_kw={"height_ratios": [3, 2]})
     models = [str(m) for m in ds["model"].values]
     v0 = ds["v0"].values
+    flags = 0
     for j, it in enumerate(cols):
         sel = ds if it is None else ds.isel(T=it)
         top, bottom = axes[0, j], axes[1, j]
-        ok = sel["status"].values == 0
-        top.plot(v0, sel["cor"].values, "k-o", ms=3, label="vcor (hereditary)")
-        mark_failed(top, v0, ok)
+        vcor_line = sweep_line(top, v0, sel["cor"].values, sel["status"].values, validity_of(sel),
+                               label="vcor (hereditary)", color="k")
+        flags |= vcor_line.flags
         bottom.axhspan(-0.01, 0.01, color="0.9")
         bottom.axhline(0.0, color="0.5", lw=0.8)
         drawn = set()
@@ -73,8 +74,8 @@ def dem(ds):
         note = _trend_note(sel, models)
         top.set_title((f"T = {float(ds['T'].values[it]):g} °C" if it is not None else ds.attrs.get("dem", "")) + note,
                       fontsize=8 if note else 9, color="C3" if note else "black")
-        if j == 0:
-            top.legend(fontsize=7, loc="lower left")
+    flag_legend(axes[0, 0], flags)  # the reasons of every column's flagged points, once
+    axes[0, 0].legend(fontsize=7, loc="lower left")
     contact = json.loads(ds.attrs.get("contact", "{}"))
     fig.suptitle(f"DEM entry {ds.attrs.get('dem', '')}: {contact.get('kind', '')}, m_eff = "
                  f"{contact.get('m_eff_kg', float('nan')):.3g} kg, R_eff = {contact.get('r_eff_m', float('nan')):.3g} m",
