@@ -134,6 +134,7 @@ def test_scene_point_with_bodies():
     assert geometry["rho_b"] == 1100.0 and geometry["nu_plate"] == 0.5
 
 
+@pytest.mark.slow
 def test_workflow_scene_with_bodies(tmp_path):
     """A scene with sphere and plate bodies runs through the workflow; the sweep's COR is the one of
     vcor.simulate with the same bodies."""
@@ -150,6 +151,7 @@ def test_workflow_scene_with_bodies(tmp_path):
         assert ds["cor"].sel(material="sls", v0=v0).item() == want.cor
 
 
+@pytest.mark.slow
 def test_workflow_body_may_name_a_config_material(tmp_path):
     """A body naming a config material: its parameters are inlined into the scene's settings, so editing
     the material changes the shard names (its content is part of their identity)."""

@@ -124,6 +124,7 @@ def test_bad_calibration_specs_name_the_key(tmp_path, free, words):
         assert w in str(exc.value), (w, str(exc.value))
 
 
+@pytest.mark.slow
 def test_workflow_calibrates_and_a_scene_uses_the_result(tmp_path, clean):
     """A calibrations block: the record (estimate, stderr, correlation, data, fit, residuals, band), the
     figure, and the calibrated material used by name in a scene; bad data stop the run before any job."""

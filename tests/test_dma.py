@@ -126,6 +126,7 @@ def test_pyvisco_raw_sets_superposed_both_ways():
     assert fit.spectrum.metrics["E_stor_rms"] < 0.1
 
 
+@pytest.mark.slow
 def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
     """A fit to raw DMA sets in the config (superposition, WLF, Prony master curve): the material
     file carries its shift function, and a scene sweeps T with it."""

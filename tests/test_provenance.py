@@ -63,6 +63,7 @@ def project(tmp_path_factory):
     return path, pkg, env
 
 
+@pytest.mark.slow
 def test_changed_code_recomputes_the_shards_and_the_aggregate_carries_one_fingerprint(project):
     path, pkg, env = project
     _run(path, env)

@@ -106,6 +106,7 @@ def test_significant_reversals_count_the_turns_the_band_supports():
     assert significant_reversals([0.5, 0.5, 0.6, 0.6, 0.5], 0.05) == 1    # flat steps skipped
 
 
+@pytest.mark.slow
 def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
     """A fit to synthetic DMA data (the instrument lag fitted) with 4 bootstrap samples: the samples file
     (with every sample's lag), the sample axis in the shards, the reduced sweep (median, band, samples;

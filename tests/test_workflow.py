@@ -15,6 +15,8 @@ import vcor
 from vcor.materials import Catalogue
 from vcor.study import shards
 
+pytestmark = pytest.mark.slow  # each test runs Snakemake
+
 ROOT = Path(__file__).resolve().parents[1]
 SNAKEMAKE = [sys.executable, "-m", "snakemake"]
 
