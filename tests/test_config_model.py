@@ -122,6 +122,7 @@ HOSTILE = [
     (_scene(grid={"v0": [1, 1, 1]}), ["scenes.s.grid.v0", "1 listed more than once"]),
     (_scene(grid={"v0": [1.0, 0.1 * 3, 0.3]}), ["scenes.s.grid.v0", "0.3 listed more than once"]),
     (_scene(materials=["sl"]), ["scenes.s.materials", "unknown material 'sl'"]),
+    (_scene(grid={"v0": [1.0], "bta": [600, 1200]}), ["scenes.s.grid.bta", "did you mean 'beta'"]),
     ({"shard_size": 0, **_scene()}, ["shard_size", ">= 1"]),
     ({"dem": {"d": {"sphere": {"material": "sls"}}}}, ["dem.d", "missing key 'v0'"]),
     ({"calibrations": {"c": {"data": "x.csv", "material": "sls"}}}, ["calibrations.c", "missing key 'free'"]),

@@ -68,7 +68,7 @@ FIT_MODELS = tuple(FIT_SCALARS)
 DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model", "instrument_lag"}
 #: methods of a measured-data fit (module docstring); the first is the default
 FIT_METHODS = ("spectrum",)
-#: methods no longer fitted, and what replaces each (the one-line refusal names it)
+#: method names vcor does not fit, and what replaces each (the one-line refusal names it)
 REMOVED_METHODS = {"free": "method: spectrum replaces it (smooth spectrum with start-free shifts: on pyvisco's "
                            "data E' 0.89 % rms against 6.6 % and 3 tan delta extrema against 50); drop the key"}
 #: shift functions a measured-data fit may store; the first is the default

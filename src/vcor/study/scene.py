@@ -21,6 +21,7 @@ This module validates scenes and builds points; shard identity and planning are 
 
 from __future__ import annotations
 
+import difflib
 import itertools
 
 from ..contact.bodies import impact_inputs, scene_bodies
@@ -147,8 +148,10 @@ def _check_axis_names(where, scene, grid: Grid, catalogue):
         lacking = sorted(m for m, names in params.items() if key not in names)
         if lacking:
             allowed = (sorted(fixed) if block == "grid" else []) + shared
+            close = difflib.get_close_matches(key, allowed, n=1)
             raise ValueError(f"{where}.{block}.{key}: materials {lacking} have no parameter {key!r}; "
-                             f"allowed {'grid axes' if block == 'grid' else 'tie targets'}: {allowed}")
+                             f"allowed {'grid axes' if block == 'grid' else 'tie targets'}: {allowed}"
+                             + (f"; did you mean {close[0]!r}?" if close else ""))
 
 
 def _known(catalogue, name) -> bool:
