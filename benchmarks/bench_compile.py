@@ -1,7 +1,7 @@
 """Compile cost of every solver path: a fresh process with an empty numba cache runs every method and
 path once (one-call and general adaptive path, histories, a thin plate, every preset kind); the
 table gives its wall time per run and the median, and the kernels that numba compiled more than once
-(none is expected; tests/test_adaptive.py::test_each_kernel_is_compiled_once checks the same workload).
+(none is expected; tests/solvers/test_adaptive.py::test_each_kernel_is_compiled_once checks the same workload).
 
 Run: python benchmarks/bench_compile.py [--runs 2] [--quick] [--out FILE]
      python benchmarks/bench_compile.py --workload [--quick]   (one in-process run: prints every kernel

@@ -1,4 +1,5 @@
-"""Shared fixtures: a seeded random generator, and a copy of the project to run Snakemake in."""
+"""Shared fixtures: a seeded random generator, and the one way the tests copy the project and run
+Snakemake in it (``make_project``, ``smk``; session-scoped, so module fixtures can use them)."""
 
 import shutil
 import subprocess
@@ -12,6 +13,8 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 #: Snakemake as the tests run it: the same Python, so the installed vcor is the one under test
 SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+#: what a copy of the project holds: the workflow, its profiles and the shipped data
+PROJECT_PARTS = ("Snakefile", "workflow", "profiles", "data")
 
 
 @pytest.fixture
@@ -19,11 +22,9 @@ def rng():
     return np.random.default_rng(20261121)
 
 
-def make_project(path: Path, config: dict | None = None) -> Path:
-    """A copy of the workflow (Snakefile, workflow/, profiles/, data/) in ``path``, with ``config`` as
-    its config.yaml when given (the repository's otherwise)."""
+def _make_project(path: Path, config: dict | None = None) -> Path:
     path.mkdir(parents=True, exist_ok=True)
-    for name in ("Snakefile", "workflow", "profiles", "data"):
+    for name in PROJECT_PARTS:
         src = ROOT / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, path / name)
     if config is None:
@@ -33,11 +34,31 @@ def make_project(path: Path, config: dict | None = None) -> Path:
     return path
 
 
-def smk(path: Path, *args, check: bool = True, timeout: int = 600) -> subprocess.CompletedProcess:
-    """Run Snakemake in the project at ``path``; AssertionError with its output's end if it fails and
-    ``check``."""
+def _smk(path: Path, *args, check: bool = True, timeout: int = 600, env: dict | None = None
+         ) -> subprocess.CompletedProcess:
     out = subprocess.run(SNAKEMAKE + ["-d", str(path), *args], cwd=path, capture_output=True, text=True,
-                         timeout=timeout, check=False)
+                         timeout=timeout, check=False, env=env)
     if check and out.returncode != 0:
         raise AssertionError(f"snakemake {args} failed:\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}")
     return out
+
+
+@pytest.fixture(scope="session")
+def root() -> Path:
+    """The repository's top folder."""
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def make_project():
+    """``make_project(path, config=None) -> path``: a copy of the workflow (``PROJECT_PARTS``) in
+    ``path``, with ``config`` (a dict) as its config.yaml, or the repository's when None."""
+    return _make_project
+
+
+@pytest.fixture(scope="session")
+def smk():
+    """``smk(path, *args, check=True, timeout=600, env=None)``: Snakemake run in the project at ``path``
+    (its profile found by Snakemake itself); AssertionError with the end of its output when it fails and
+    ``check``."""
+    return _smk

@@ -17,7 +17,7 @@ a_T). Shift functions (T in deg C, C2 in K, E_a in J/mol):
   with its slope (so COR(T) has no kinks at the sets), and is monotone wherever the table is, so it
   adds no extremum of a_T between sets. Shift factors curve in T (WLF): on WLF shifts 15 K apart,
   straight lines between the sets are up to 0.10 decade off, PCHIP 0.02
-  (``python -m pytest -s tests/test_superpose.py -k tabulated`` prints both). It is not
+  (``python -m pytest -s tests/fitting/test_superpose.py -k tabulated`` prints both). It is not
   extrapolated: outside [T_1 - 0.5 K, T_K + 0.5 K] it refuses, naming the range. The 0.5 K
   (:data:`TABLE_TOLERANCE`) is the scatter of a DMA set's temperature readings about their mean (the
   set's temperature); within it the end pieces are continued. A measured set's shift function is a

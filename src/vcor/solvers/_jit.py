@@ -7,7 +7,7 @@
   the adaptive march, where the call and its arguments were a measurable share of an impact);
 * ``jit_sum``: the same plus fastmath *reassociation* only, for the two sums over many exponential
   modes of the adaptive march, which numba then vectorises (their order does not matter to the
-  result beyond rounding: ``tests/test_adaptive.py::test_reassociated_sums_are_safe``).
+  result beyond rounding: ``tests/solvers/test_adaptive.py::test_reassociated_sums_are_safe``).
 
 With ``NUMBA_DISABLE_JIT=1`` the kernels run as plain Python (coverage, debugging).
 """

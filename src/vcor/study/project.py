@@ -31,7 +31,7 @@ from .uncertainty import samples_file, uncertainty_of
 
 __all__ = ["BUILDS", "DATASETS", "DEFAULTS", "Project", "Scene"]
 
-#: defaults of the config's top-level keys (the schema states the same; tests/test_config_model.py)
+#: defaults of the config's top-level keys (the schema states the same; tests/study/test_config_model.py)
 DEFAULTS = {"shard_size": 1000, "material_dir": "results/materials"}
 #: datasets a scene may build (besides its sweep), each from a config block of the same name
 DATASETS = ("moduli", "histories", "spheres", "convergence")

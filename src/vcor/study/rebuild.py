@@ -6,7 +6,7 @@ source, parameters, shift function, spec, identity; :meth:`vcor.materials.Catalo
 :func:`scene_from_dataset` turns these back into a scene and a catalogue in which every material
 that is not a preset is a config material with the recorded parameters and shift function, so a
 fit's or calibration's file is not needed. Re-running the rebuilt scene with the same code gives
-the dataset's numbers bit for bit (``tests/test_provenance.py``).
+the dataset's numbers bit for bit (``tests/workflow/test_provenance.py``).
 """
 
 from __future__ import annotations

@@ -47,7 +47,7 @@ def leverage(fit: SpectrumFit, f, E_stor, E_loss, *, weight=None, components=(1.
     :math:`J (J^\top J + \mathrm{diag}(J^\top r) + \lambda L^\top L)^{-1} J^\top` (exact for
     moduli :math:`e^{H_j}`: each residual's second derivative in :math:`H_j` equals its first): the
     linear response of the fitted value to its own data value, which a refit follows within a few per
-    cent where the Gauss-Newton value is up to 18 % off (``tests/test_resample.py``); it is not bounded
+    cent where the Gauss-Newton value is up to 18 % off (``tests/fitting/test_resample.py``); it is not bounded
     by 1 where the fit is barely determined, so the bootstrap's residual correction takes the
     Gauss-Newton value, the one that correction is defined with.
 

@@ -16,7 +16,7 @@ from vcor.solvers.options import (
     solver_options,
 )
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text())
 SOLVER = SCHEMA["properties"]["scenes"]["additionalProperties"]["properties"]["solver"]["properties"]
 

@@ -13,7 +13,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-import yaml
 
 import vcor
 from vcor import provenance
@@ -21,16 +20,14 @@ from vcor.materials import Catalogue
 from vcor.materials.catalogue import content_hash
 from vcor.study import aggregation, runner, scene, shards
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCENE = {"materials": ["sls"], "grid": {"v0": [2.0, 10.0]}, "shard_size": 1}
 CONFIG = {"shard_size": 1, "material_dir": "results/materials", "scenes": {"tiny": SCENE}}
 TARGET = "results/tiny/sweep.nc"
 
 
-def _run(path, env, *args):
-    out = subprocess.run([sys.executable, "-m", "snakemake", "-d", str(path), "-j1", *args, TARGET], cwd=path,
-                         env=env, capture_output=True, text=True, timeout=600, check=False)
-    assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
+def _run(smk, path, env, *args):
+    out = smk(path, "-j1", *args, TARGET, env=env)
     return out.stdout + out.stderr
 
 
@@ -48,13 +45,9 @@ def _jobs(text, rule):
 
 
 @pytest.fixture(scope="module")
-def project(tmp_path_factory):
+def project(make_project, tmp_path_factory):
     """A workflow copy whose scripts import a private copy of the package (on PYTHONPATH)."""
-    path = tmp_path_factory.mktemp("prov")
-    for name in ("Snakefile", "workflow", "profiles"):
-        src = ROOT / name
-        (shutil.copytree if src.is_dir() else shutil.copy)(src, path / name)
-    (path / "config.yaml").write_text(yaml.safe_dump(CONFIG, sort_keys=False))
+    path = make_project(tmp_path_factory.mktemp("prov"), CONFIG)
     pkg = path / "pkg"
     shutil.copytree(Path(vcor.__file__).parent, pkg / "vcor", ignore=shutil.ignore_patterns("__pycache__"))
     env = {**os.environ, "PYTHONPATH": str(pkg), "NUMBA_CACHE_DIR": str(path / "numba-cache")}
@@ -64,20 +57,20 @@ def project(tmp_path_factory):
 
 
 @pytest.mark.slow
-def test_changed_code_recomputes_the_shards_and_the_aggregate_carries_one_fingerprint(project):
+def test_changed_code_recomputes_the_shards_and_the_aggregate_carries_one_fingerprint(smk, project):
     path, pkg, env = project
-    _run(path, env)
+    _run(smk, path, env)
     first, _ = _fingerprint(env)
-    assert _jobs(_run(path, env, "-n"), "sweep_shard") == 0  # nothing to do: finished shards are reused
+    assert _jobs(_run(smk, path, env, "-n"), "sweep_shard") == 0  # nothing to do: finished shards are reused
     # a change of the computing code (a comment is enough: the fingerprint hashes the source), in a
     # module without numba kernels so that the re-run reuses the compiled ones
     with open(pkg / "vcor" / "solvers" / "validity.py", "a") as fh:
         fh.write("\n# provenance test: a changed line\n")
     second, _ = _fingerprint(env)
     assert second != first
-    dry = _run(path, env, "-n")
+    dry = _run(smk, path, env, "-n")
     assert _jobs(dry, "sweep_shard") == 2 and _jobs(dry, "aggregate") == 1, dry[-2000:]
-    _run(path, env)
+    _run(smk, path, env)
     ds = xr.open_dataset(path / TARGET)
     assert ds.attrs["code_fingerprint"] == second and second in ds.attrs["source"]
     # every shard the new plan uses carries the new fingerprint; the stale ones are not inputs

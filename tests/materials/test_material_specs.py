@@ -6,7 +6,6 @@ import json
 import pytest
 import xarray as xr
 import yaml
-from test_workflow import make_project, smk
 
 import vcor
 from vcor import cli
@@ -111,7 +110,7 @@ CONFIG = {
 
 
 @pytest.mark.slow
-def test_workflow_uses_config_materials_like_presets(tmp_path):
+def test_workflow_uses_config_materials_like_presets(make_project, smk, tmp_path):
     path = make_project(tmp_path, CONFIG)
     (path / "data").mkdir(exist_ok=True)
     (path / "data/prony3.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
@@ -127,7 +126,7 @@ def test_workflow_uses_config_materials_like_presets(tmp_path):
 
 
 @pytest.mark.slow
-def test_workflow_refuses_a_bad_config_material(tmp_path):
+def test_workflow_refuses_a_bad_config_material(make_project, smk, tmp_path):
     bad = {**CONFIG, "materials": {"my-sls": {"model": "sls", "E_glassy": 15e6, "alpha": 3000, "beta": 1200}},
            "scenes": {"own": {"materials": ["my-sls"], "grid": {"v0": [5.0]}}}}
     out = smk(make_project(tmp_path, bad), "-n", check=False)
@@ -163,7 +162,7 @@ T_CONFIG = {
 
 
 @pytest.mark.slow
-def test_temperature_axis_shifts_the_material(tmp_path):
+def test_temperature_axis_shifts_the_material(make_project, smk, tmp_path):
     """A material with a shift function; T (deg C) as a grid axis, E(t; T) = E(t / a_T)."""
     from vcor.materials import shift as tts
 
@@ -186,7 +185,7 @@ def test_temperature_axis_shifts_the_material(tmp_path):
     (lambda c: c["materials"]["warm-prony"]["shift"].update(C2=-5), ["materials.warm-prony.shift.C2", "(0, inf)"]),
 ])
 @pytest.mark.slow
-def test_temperature_axis_errors_name_the_key(tmp_path, change, words):
+def test_temperature_axis_errors_name_the_key(make_project, smk, tmp_path, change, words):
     import copy
 
     cfg = copy.deepcopy(T_CONFIG)

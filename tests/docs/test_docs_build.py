@@ -159,10 +159,10 @@ def _code_files():
 TEST_HISTORY = {k: v for k, v in CODE_HISTORY.items() if k != "commit hash"}
 
 
-@pytest.mark.parametrize("path", _code_files() + sorted((ROOT / "tests").glob("*.py")),
+@pytest.mark.parametrize("path", _code_files() + sorted((ROOT / "tests").rglob("*.py")),
                          ids=lambda p: str(p.relative_to(ROOT)))
 def test_code_tells_no_history(path):
-    words = TEST_HISTORY if path.parent.name == "tests" else CODE_HISTORY
+    words = TEST_HISTORY if path.relative_to(ROOT).parts[0] == "tests" else CODE_HISTORY
     if path.name == Path(__file__).name:
         return  # this file spells the patterns out
     hits = [f"line {n} ({kind}): {line.strip()[:160]}" for n, line in enumerate(path.read_text().splitlines(), 1)

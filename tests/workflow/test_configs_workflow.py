@@ -11,9 +11,10 @@ from pathlib import Path
 import pytest
 import yaml
 
-from conftest import ROOT, make_project, smk
 
 pytestmark = pytest.mark.slow
+
+ROOT = Path(__file__).resolve().parents[2]
 
 FENCE = re.compile(r"(?P<before>[^\n]*)\n```yaml\n(?P<body>.*?)```", re.S)
 
@@ -34,12 +35,12 @@ def doc_configs():
 
 
 @pytest.fixture(scope="module")
-def project(tmp_path_factory):
+def project(make_project, tmp_path_factory):
     return make_project(tmp_path_factory.mktemp("docs-configs"))
 
 
 @pytest.mark.parametrize("where, text", doc_configs(), ids=[w for w, _ in doc_configs()])
-def test_every_config_of_the_docs_runs_on_its_own(project, where, text):
+def test_every_config_of_the_docs_runs_on_its_own(smk, project, where, text):
     assert isinstance(yaml.safe_load(text), dict), where
     (project / "my.yaml").write_text(text)
     out = smk(project, "-n", "-j1", "--configfile", "my.yaml", check=False)
@@ -63,7 +64,7 @@ HOSTILE = {
 
 
 @pytest.mark.parametrize("name", list(HOSTILE))
-def test_every_refusal_of_a_config_is_at_most_five_lines(project, name):
+def test_every_refusal_of_a_config_is_at_most_five_lines(smk, project, name):
     (project / "bad.yaml").write_text(HOSTILE[name])
     out = smk(project, "-n", "-j1", "--configfile", "bad.yaml", check=False)
     lines = [line for line in (out.stdout + out.stderr).splitlines() if line.strip()]

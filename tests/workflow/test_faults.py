@@ -15,7 +15,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from test_workflow import make_project
 
 pytestmark = pytest.mark.slow  # each test runs Snakemake
 
@@ -27,17 +26,13 @@ CONFIG = {
     "scenes": {"s": {"materials": ["my-sls", "tiny-prony"], "grid": {"v0": [2.0, 10.0, 20.0]},
                      "figures": {"fig8": {}}}},
 }
+#: plain ``snakemake`` in the project folder, as a user starts it (for the concurrent runs)
 SNAKEMAKE = [sys.executable, "-m", "snakemake"]
 #: what the workflow writes besides the per-job logs and benchmarks (compared after every fault)
 KEPT = ("results/s/sweep.nc", "results/materials/my-sls.nc", "results/materials/tiny-prony.nc",
         "results/s/figures/fig8.png", "results/s/figures/fig8.pdf", "results/s/MANIFEST.txt",
         "results/s/fit_metrics.txt")
 
-
-def run(path, *args, timeout=600):
-    """Plain ``snakemake`` in the project folder: the default profile (2 cores, rerun-incomplete,
-    keep-going) is found by Snakemake itself."""
-    return subprocess.run(SNAKEMAKE + list(args), cwd=path, capture_output=True, text=True, timeout=timeout, check=False)
 
 
 def values(path) -> dict:
@@ -75,11 +70,11 @@ def assert_restored(path, baseline):
 
 
 @pytest.fixture(scope="module")
-def baseline(tmp_path_factory):
+def baseline(smk, make_project, tmp_path_factory):
     root = tmp_path_factory.mktemp("faults")
     (root / "p").mkdir()
     path = make_project(root / "p", CONFIG)
-    out = run(path)
+    out = smk(path, check=False)
     assert out.returncode == 0, out.stderr[-3000:]
     return path
 
@@ -147,18 +142,18 @@ ROWS = [
 
 
 @pytest.mark.parametrize("fault, target, inject, words", ROWS, ids=[r[0] for r in ROWS])
-def test_fault_row(baseline, tmp_path, fault, target, inject, words):
+def test_fault_row(smk, baseline, tmp_path, fault, target, inject, words):
     path = tmp_path / "p"
     shutil.copytree(baseline, path, symlinks=True)
     inject(shard(path) if target == "shard" else path / target)
-    out = run(path)
+    out = smk(path, check=False)
     assert out.returncode == 0, (fault, out.stderr[-3000:])
     for w in words:
         assert w in out.stderr, (fault, w, out.stderr[-3000:])
     assert_restored(path, baseline)
     if fault not in IDEMPOTENT:
         return
-    again = run(path)  # and it stays healed: nothing more to do
+    again = smk(path, check=False)  # and it stays healed: nothing more to do
     assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr, again.stderr[-2000:]
 
 
@@ -167,7 +162,7 @@ def _start(path):
                             start_new_session=True)
 
 
-def test_sigkill_mid_run_then_plain_snakemake_recovers(baseline, tmp_path):
+def test_sigkill_mid_run_then_plain_snakemake_recovers(smk, baseline, tmp_path):
     """SIGKILL to the whole run while its shards are being written; the docs' recovery line (plain
     snakemake) removes the stale Snakemake lock, recomputes the unfinished outputs and restores the
     archive."""
@@ -182,14 +177,14 @@ def test_sigkill_mid_run_then_plain_snakemake_recovers(baseline, tmp_path):
     proc.communicate()
     assert proc.returncode == -signal.SIGKILL
     assert not (path / "results/s/sweep.nc").exists()
-    out = run(path)
+    out = smk(path, check=False)
     assert out.returncode == 0, out.stderr[-3000:]
     assert_restored(path, baseline)
     # nothing half-written was left under a final name
     assert not list(path.rglob("*.part"))
 
 
-def test_two_runs_at_once_the_second_stops_at_the_project_lock(baseline, tmp_path):
+def test_two_runs_at_once_the_second_stops_at_the_project_lock(smk, baseline, tmp_path):
     path = tmp_path / "p"
     shutil.copytree(baseline, path, symlinks=True)
     (path / "results/s/sweep.nc").unlink()
@@ -199,7 +194,7 @@ def test_two_runs_at_once_the_second_stops_at_the_project_lock(baseline, tmp_pat
     while time.time() < deadline and not (path / ".snakemake/vcor-run.lock").is_file():
         time.sleep(0.05)
     time.sleep(0.5)
-    second = run(path)
+    second = smk(path, check=False)
     _out, err = first.communicate(timeout=600)
     assert first.returncode == 0, err[-3000:]
     assert second.returncode != 0
@@ -217,7 +212,7 @@ def _mount_tmpfs(where: Path, size: str) -> bool:
     return done.returncode == 0
 
 
-def test_full_disk_fails_loudly_and_the_next_run_completes(baseline, tmp_path):
+def test_full_disk_fails_loudly_and_the_next_run_completes(smk, baseline, tmp_path):
     """A project on a nearly full file system (a small tmpfs): the run fails, the job's error (no space
     left) reaches the terminal and its log, no file that looks complete is left; with space again,
     plain snakemake completes the archive."""
@@ -232,14 +227,14 @@ def test_full_disk_fails_loudly_and_the_next_run_completes(baseline, tmp_path):
         filler = mnt / "filler"
         with open(filler, "wb") as fh:  # leave ~40 kB: the shards fit, the figures do not
             fh.write(b"\0" * (free - 40_000))
-        out = run(path)
+        out = smk(path, check=False)
         assert out.returncode != 0
         assert "No space left on device" in out.stderr, out.stderr[-3000:]
         for rel in KEPT:
             p = path / rel
             assert not p.exists() or p.stat().st_size > 0, rel
         filler.unlink()
-        out = run(path)
+        out = smk(path, check=False)
         assert out.returncode == 0, out.stderr[-3000:]
         assert_restored(path, baseline)
     finally:

@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from conftest import make_project, smk
 from vcor import status as vstatus
 from vcor.solvers import validity as vvalidity
 from vcor.solvers.validity import FLAGS
@@ -75,7 +74,7 @@ def _summary_is_last(text: str, scene_lines: list[str]) -> None:
 
 
 @pytest.mark.slow
-def test_summary_logs_and_cores(tmp_path):
+def test_summary_logs_and_cores(make_project, smk, tmp_path):
     path = make_project(tmp_path / "p", TINY)
     out = smk(path)  # the profile's 2 cores
     text = out.stdout + out.stderr
@@ -105,7 +104,7 @@ def test_summary_logs_and_cores(tmp_path):
 
 
 @pytest.mark.slow
-def test_summary_after_a_failed_job(tmp_path):
+def test_summary_after_a_failed_job(make_project, smk, tmp_path):
     # a fit to a single measured frequency cannot succeed: its job fails, the sweep of the other scene runs
     cfg = {"fits": {"broken": {"model": "prony", "data": {"file": "data/one-point.csv", "T_ref": 20}}},
            "scenes": {**TINY["scenes"], "uses-broken": {"materials": ["broken"], "grid": {"v0": [1.0]}}}}
@@ -118,7 +117,7 @@ def test_summary_after_a_failed_job(tmp_path):
 
 
 @pytest.mark.slow
-def test_no_summary_without_a_dataset(tmp_path):
+def test_no_summary_without_a_dataset(make_project, smk, tmp_path):
     # a run that builds no sweep, DEM entry or calibration prints no summary header
     path = make_project(tmp_path / "p", {"fits": {"cerf": {"model": "cerf"}}})
     out = smk(path, "-j1")

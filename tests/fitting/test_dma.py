@@ -11,7 +11,7 @@ import vcor
 from vcor.fitting import dma
 from vcor.materials import shift as tts
 
-DATA = Path(__file__).resolve().parents[1] / "data/pyvisco"
+DATA = Path(__file__).resolve().parents[2] / "data/pyvisco"
 
 
 def test_reads_pyvisco_files_in_si():
@@ -157,7 +157,7 @@ def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
     # default is a table of the per-set log a_T)
     import yaml
 
-    schema = yaml.safe_load((Path(__file__).resolve().parents[1] / "workflow/schemas/config.schema.yaml").read_text())
+    schema = yaml.safe_load((Path(__file__).resolve().parents[2] / "workflow/schemas/config.schema.yaml").read_text())
     default = schema["properties"]["fits"]["additionalProperties"]["properties"]["data"]["properties"]["shift_model"]
     assert shift.model == default.get("default", "table")
     assert max(abs(shift.log_aT(T) - float(tts.wlf_log_aT(T, T_REF, C1, C2))) for T in TEMPS) < 0.1

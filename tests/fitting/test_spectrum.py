@@ -18,7 +18,7 @@ from vcor.fitting import dma
 from vcor.fitting import spectrum as spc
 from vcor.materials.shift import wlf_log_aT
 
-RAW = Path(__file__).resolve().parents[1] / "data/pyvisco/freq_user_raw.csv"
+RAW = Path(__file__).resolve().parents[2] / "data/pyvisco/freq_user_raw.csv"
 
 
 def _lognormal(n=40, noise=0.0, seed=0):

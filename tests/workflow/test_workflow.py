@@ -1,7 +1,6 @@
 """Workflow end to end on a tiny config (copied into a temporary folder), dry runs, bad configs."""
 
 import json
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -17,8 +16,7 @@ from vcor.study import shards
 
 pytestmark = pytest.mark.slow  # each test runs Snakemake
 
-ROOT = Path(__file__).resolve().parents[1]
-SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+ROOT = Path(__file__).resolve().parents[2]
 
 TINY = {
     "shard_size": 3,
@@ -52,23 +50,10 @@ TINY = {
 }
 
 
-def make_project(tmp_path, config):
-    for name in ("Snakefile", "workflow", "profiles", "data"):
-        src = ROOT / name
-        (shutil.copytree if src.is_dir() else shutil.copy)(src, tmp_path / name)
-    (tmp_path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
-    return tmp_path
-
-
-def smk(path, *args, check=True):
-    out = subprocess.run(SNAKEMAKE + ["-d", str(path), *args], cwd=path, capture_output=True, text=True, timeout=600, check=False)
-    if check and out.returncode != 0:
-        raise AssertionError(f"snakemake {args} failed:\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}")
-    return out
 
 
 @pytest.fixture(scope="module")
-def tiny_run(tmp_path_factory):
+def tiny_run(make_project, smk, tmp_path_factory):
     path = make_project(tmp_path_factory.mktemp("wf"), TINY)
     smk(path, "-j2")  # profiles/default is found by Snakemake itself
     return path
@@ -88,7 +73,7 @@ def test_outputs_exist(tiny_run):
     assert "tiny-prony" in table and "butyl-prony3" in table
 
 
-def test_fit_rule_deterministic_and_used(tiny_run):
+def test_fit_rule_deterministic_and_used(smk, tiny_run):
     import hashlib
 
     path = tiny_run / "results/materials/tiny-prony.nc"
@@ -166,7 +151,7 @@ def test_histories_dataset(tiny_run):
     assert abs(ds["cor"].values[0] - ds["cor"].values[1]) < 1e-6
 
 
-def test_noop_rerun_and_extension_recomputes_only_new_points(tiny_run, tmp_path):
+def test_noop_rerun_and_extension_recomputes_only_new_points(smk, tiny_run, tmp_path):
     out = smk(tiny_run, "-n", "-j1")
     assert "Nothing to be done" in out.stdout + out.stderr
     cfg = json.loads(json.dumps(TINY))
@@ -190,7 +175,7 @@ def test_noop_rerun_and_extension_recomputes_only_new_points(tiny_run, tmp_path)
         (tiny_run / "config.yaml").write_text(yaml.safe_dump(TINY, sort_keys=False))
 
 
-def test_report(tiny_run):
+def test_report(smk, tiny_run):
     smk(tiny_run, "--report", "report.html")
     html = (tiny_run / "report.html").read_text(errors="replace")
     assert "fig4.png" in html
@@ -205,7 +190,7 @@ def test_every_figure_has_a_caption():
     assert set(plots.FIGURES) == captions
 
 
-def test_one_job_draws_all_figures_of_a_scene(tiny_run):
+def test_one_job_draws_all_figures_of_a_scene(smk, tiny_run):
     # one figure of the scene asked for: the scene's one figures job draws both of its figures
     (tiny_run / "results/tiny/figures/fig2.png").unlink()
     out = smk(tiny_run, "-n", "-j1", "results/tiny/figures/fig2.png", "--quiet", "rules")
@@ -221,7 +206,7 @@ def test_one_job_draws_all_figures_of_a_scene(tiny_run):
     assert "Nothing to be done" in out.stdout + out.stderr
 
 
-def test_default_config_dry_run_and_scene_selection(tmp_path):
+def test_default_config_dry_run_and_scene_selection(make_project, smk, tmp_path):
     path = make_project(tmp_path, yaml.safe_load((ROOT / "config.yaml").read_text()))
     out = smk(path, "-n", "-j1", "--quiet", "rules")
     text = out.stdout + out.stderr
@@ -234,7 +219,7 @@ def test_default_config_dry_run_and_scene_selection(tmp_path):
     assert "histories" in text and "sweep_shard" not in text and "moduli" not in text
 
 
-def test_configfile_runs_only_its_scenes(tmp_path):
+def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):
     """``--configfile my.yaml`` replaces config.yaml (it is not merged with it): only my.yaml's scenes
     are planned (docs, "Your own scenes")."""
     path = make_project(tmp_path, yaml.safe_load((ROOT / "config.yaml").read_text()))
@@ -265,7 +250,7 @@ def test_configfile_runs_only_its_scenes(tmp_path):
         (lambda c: c["scenes"]["tiny"]["figures"].update(cor_temperature={}), ["cor_temperature", "grid axis T"]),
     ],
 )
-def test_bad_config_fails_before_any_job(tmp_path, mutate, words):
+def test_bad_config_fails_before_any_job(make_project, smk, tmp_path, mutate, words):
     cfg = json.loads(json.dumps(TINY))
     mutate(cfg)
     path = make_project(tmp_path, cfg)
@@ -282,7 +267,7 @@ def test_bad_config_fails_before_any_job(tmp_path, mutate, words):
 ACCEPTED_LINT = "Specify a conda environment or container for each rule."
 
 
-def test_lint_and_format():
+def test_lint_and_format(smk):
     out = smk(ROOT, "--lint", check=False)
     text = out.stdout + out.stderr
     items = [line.strip() for line in text.splitlines() if line.strip().startswith("* ")]

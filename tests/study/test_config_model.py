@@ -18,7 +18,7 @@ from vcor.study.scene import grid_of, settings_of
 from vcor.study.schema import SchemaError, check_schema, load_schema
 from vcor.study.uncertainty import uncertainty_of
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 MY_SLS = {"model": "sls", "E_glassy": 15.0e6, "alpha": 300.0, "beta": 1200.0}
 

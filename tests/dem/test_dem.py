@@ -234,7 +234,7 @@ def test_every_file_the_dem_rules_write_is_a_target_of_the_entry():
 
     from vcor.study import paths
 
-    rules = Path(__file__).parents[1] / "workflow" / "rules" / "dem.smk"
+    rules = Path(__file__).resolve().parents[2] / "workflow" / "rules" / "dem.smk"
     names = set()
     for block in re.findall(r"\n    output:\n((?:        .*\n|            .*\n)+)", rules.read_text()):
         names |= set(re.findall(r"vpaths\.(DEM_[A-Z]+|DEM)\b", block))

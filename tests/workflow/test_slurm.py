@@ -5,14 +5,12 @@ when missing and writes /etc/slurm/slurm.conf). Skip with `-m 'not slurm'`. Take
 import os
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 import xarray as xr
-import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SCRIPT = ROOT / "workflow/slurm/local_cluster.sh"
 
 pytestmark = [pytest.mark.slow, pytest.mark.slurm]
@@ -30,23 +28,6 @@ CONFIG = {
     },
 }
 
-
-def _project(path):
-    path.mkdir(parents=True)
-    shutil.copy(ROOT / "Snakefile", path / "Snakefile")
-    shutil.copytree(ROOT / "workflow", path / "workflow")
-    shutil.copytree(ROOT / "profiles", path / "profiles")
-    (path / "config.yaml").write_text(yaml.safe_dump(CONFIG, sort_keys=False))
-    return path
-
-
-def _snakemake(path, *args, timeout=600):
-    cmd = ["timeout", "-s", "KILL", str(timeout), sys.executable, "-m", "snakemake", "-d", str(path), *args]
-    out = subprocess.run(cmd, cwd=path, capture_output=True, text=True, check=False)
-    assert out.returncode == 0, f"{args}:\n{out.stdout[-4000:]}\n{out.stderr[-4000:]}"
-    return out
-
-
 @pytest.fixture(scope="module")
 def cluster(tmp_path_factory):
     if os.geteuid() != 0 or shutil.which("apt-get") is None and shutil.which("slurmctld") is None:
@@ -57,12 +38,11 @@ def cluster(tmp_path_factory):
     yield state
     subprocess.run(["bash", str(SCRIPT), "stop", str(state)], capture_output=True, text=True, timeout=120, check=False)
 
-
-def test_slurm_run_equals_local_run(cluster, tmp_path):
-    local = _project(tmp_path / "local")
-    _snakemake(local, "-j2")
-    remote = _project(tmp_path / "slurm")
-    out = _snakemake(remote, "--workflow-profile", str(remote / "profiles/slurm"))
+def test_slurm_run_equals_local_run(make_project, smk, cluster, tmp_path):
+    local = make_project(tmp_path / "local", CONFIG)
+    smk(local, "-j2")
+    remote = make_project(tmp_path / "slurm", CONFIG)
+    out = smk(remote, "--workflow-profile", str(remote / "profiles/slurm"))
     text = out.stdout + out.stderr
     submitted = text.count("submitted with SLURM jobid")
     assert submitted >= 8, f"only {submitted} jobs went through SLURM:\n{text[-3000:]}"

@@ -14,7 +14,7 @@ from vcor import status
 from vcor.solvers.validity import FLAGS
 from vcor.study import runner, scene
 
-CONFIG = yaml.safe_load((Path(__file__).resolve().parents[1] / "config.yaml").read_text())
+CONFIG = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
 SCENES = {k: v for k, v in CONFIG["scenes"].items() if k.startswith("stability-")}
 
 #: docs, "Stability": per scene with the default solver (adaptive): the statuses, the bound on the
