@@ -60,6 +60,20 @@ def test_a_non_finite_output_is_never_ok():
     assert bad.status == "diverged" and not bad.ok and "w_h = nan" in bad.message
 
 
+@pytest.mark.parametrize("ratio", [0.104, 0.451, 1.56])
+def test_indentation_message_is_true_for_any_ratio(ratio):
+    """The large-indentation sentence states the ratio and the limit, and claims no distance from it
+    ("far outside") that a ratio just past the limit would make false."""
+    impact = make_impact("sls", 1.0, {})
+    good = vcor.simulate("sls", 1.0)
+    assert good.validity == 0
+    res = validity.finalised(dataclasses.replace(good, s_max=ratio * impact.geometry.r, validity=0,
+                                                 validity_message=""), impact, SolverOptions())
+    assert res.validity == validity.FLAGS["large_indentation"]
+    assert res.validity_message.startswith(f"s_max / r = {ratio:.3g} > {validity.MAX_INDENTATION:g}: ")
+    assert "far" not in res.validity_message and "Hertz" in res.validity_message
+
+
 def test_datasets_and_the_cli_carry_the_flags(capsys):
     sc = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}}
     ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))

@@ -79,7 +79,8 @@ def finalised(res, impact, options):
     r = impact.geometry.r
     if res.s_max / r > MAX_INDENTATION:
         flags |= FLAGS["large_indentation"]
-        notes.append(f"s_max / r = {res.s_max / r:.3g} > {MAX_INDENTATION:g}: far outside Hertz contact (s << r)")
+        notes.append(f"s_max / r = {res.s_max / r:.3g} > {MAX_INDENTATION:g}: outside the small-indentation range of "
+                     f"Hertz contact (s << r)")
     speed = math.sqrt(impact.material.modulus_at(max(res.t0, 1e-300) / 4) / _wave_density(impact))
     if impact.v0 > MAX_SPEED_FRACTION * speed:
         flags |= FLAGS["fast_impact"]
