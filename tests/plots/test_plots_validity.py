@@ -180,7 +180,9 @@ def test_history_figures_name_a_flagged_run_and_its_reason():
     flagged = [line for line in notes.splitlines() if "outside the model's range (s_max/r" in line]
     assert len(flagged) == 1 and flagged[0].startswith("sls (method1)")
     labels = _legend_texts(plots.draw("fig3", {"histories": hist}, runs))
-    assert [("outside the model's range" in t) for t in labels] == [False, True]
+    # the two runs' entries (only the flagged one names the reasons), then the flagged style's own entry
+    assert [("outside the model's range" in t) for t in labels] == [False, True, True]
+    assert labels[2].startswith("outside the model's range")
 
 
 def test_the_dem_figure_marks_flagged_speeds_of_vcors_curve():

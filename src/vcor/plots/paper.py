@@ -82,13 +82,36 @@ def _run_flag(h) -> str:
     return f"; outside the model's range ({flag_reasons(flags)})" if flags else ""
 
 
+#: marker of the i-th history run drawn with markers (the first valid run is a plain solid line)
+_RUN_MARKERS = ("o", "s", "^")
+
+
+def _run_style(i: int, flagged: bool, n: int) -> dict:
+    """``ax.plot`` keywords of history run ``i`` with ``n`` samples before separation. The first run is a
+    solid line, further runs open markers on top (overlaid solutions stay visible); a run outside the
+    model's range (``flagged``) is a dashed line with open markers, as flagged points are in every figure
+    (:data:`vcor.plots.common.FLAGGED_STYLE`)."""
+    every = max(1, n // 25)
+    if not flagged:
+        if i == 0:
+            return {"ls": "-"}
+        return {"ls": "none", "marker": _RUN_MARKERS[(i - 1) % 3], "mfc": "none", "ms": 4,
+                "markevery": slice(i, None, every)}
+    return {"ls": "--", "marker": _RUN_MARKERS[i % 3], "mfc": "none", "ms": 4, "markevery": slice(i, None, every)}
+
+
+def _flagged_suffix(flags: int) -> str:
+    return " [outside range]" if flags else ""
+
+
 def responses(hist, runs, title):
     """Normalised s/s_max, -s'/v0 and F/F_max against time for ``runs`` (first solid, further runs as open
-    markers on top, so that overlaid solutions stay visible; dashed: the ghost part after t0). The
-    legend and each run's t0, COR and residual interference sit below the axes, off the curves."""
+    markers on top, so that overlaid solutions stay visible; a run outside the model's range dashed with
+    open markers and a legend entry naming the reasons; dotted: the ghost part after t0). The legend and
+    each run's t0, COR and residual interference sit below the axes, off the curves."""
     fig, (ax, below) = plt.subplots(2, 1, figsize=(7.5, 5.8), height_ratios=[4, 1.15], layout="constrained")
     below.axis("off")
-    notes, failed = [], False
+    notes, failed, union = [], False, 0
     v0 = hist.attrs["v0"]
     for i, run in enumerate(runs):
         h = hist.sel(run=run)
@@ -97,6 +120,8 @@ def responses(hist, runs, title):
             notes.append(f"{name}: {status_name(h['status'])}: {h['message'].values}")
             failed = True
             continue
+        flags = int(validity_of(h))
+        union |= flags
         t = h["t"].values * 1e3
         ghost = h["ghost"].values.astype(bool)
         curves = {
@@ -104,14 +129,10 @@ def responses(hist, runs, title):
             "-s'/v0": -h["sdot"].values / v0,
             "F/F_max": h["F"].values / float(h["f_max"]),
         }
+        style = _run_style(i, bool(flags), int((~ghost).sum()))
         for (label, y), color in zip(curves.items(), ["C0", "C1", "C2"]):
-            if i == 0:  # first run: solid line
-                ax.plot(t[~ghost], y[~ghost], "-", color=color, label=f"{label}, {name}")
-            else:
-                every = max(1, int((~ghost).sum()) // 25)
-                ax.plot(t[~ghost][i::every], y[~ghost][i::every], ["o", "s", "^"][(i - 1) % 3], mfc="none",
-                        color=color, ms=4, label=f"{label}, {name}")
-            ax.plot(t[ghost], y[ghost], "--", color=color, alpha=0.6)
+            ax.plot(t[~ghost], y[~ghost], color=color, label=f"{label}, {name}{_flagged_suffix(flags)}", **style)
+            ax.plot(t[ghost], y[ghost], ":", color=color, alpha=0.6)
         t0 = float(h["t0"]) * 1e3
         ax.axvline(t0, color="k", lw=0.8, ls="-" if i == 0 else ":")
         notes.append(f"{name}: t0 = {t0:.4g} ms, COR = {float(h['cor']):.4f}, residual interference "
@@ -119,8 +140,9 @@ def responses(hist, runs, title):
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlabel("t [ms]")
     ax.set_ylabel("normalised response")
-    ax.set_title(f"{title} at v0 = {v0:g} m/s\n(vertical lines: separation t0; dashed: solution after separation)",
+    ax.set_title(f"{title} at v0 = {v0:g} m/s\n(vertical lines: separation t0; dotted: solution after separation)",
                  fontsize=10)
+    flag_legend(ax, union)
     handles, labels = ax.get_legend_handles_labels()
     if handles:
         below.legend(handles, labels, loc="upper left", fontsize=7, ncol=2, frameon=False)
@@ -142,8 +164,10 @@ def fig2(hist, opts):
 
 
 def fig3(hist, opts):
-    """Hysteresis loops F(s) up to separation with W_h."""
+    """Hysteresis loops F(s) up to separation with W_h (a run outside the model's range dashed with open
+    markers, and a legend entry naming the reasons)."""
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
+    union = 0
     for i, run in enumerate(runs(hist, opts, ["sls", "butyl-fc"])):
         h = hist.sel(run=run)
         if int(h["status"]) != 0:
@@ -151,9 +175,13 @@ def fig3(hist, opts):
                     color="red", transform=ax.transAxes, fontsize=7)
             continue
         ghost = h["ghost"].values.astype(bool)
+        flags = int(validity_of(h))
+        union |= flags
+        style = {"ls": "-"} if not flags else _run_style(0, True, int((~ghost).sum()))
         ax.plot(h["s"].values[~ghost] * 1e3, h["F"].values[~ghost],
                 label=f"{run_label(run)}: F_max = {float(h['f_max']):.1f} N, s_max = {float(h['s_max']) * 1e3:.3g} mm, "
-                      f"W_h = {float(h['w_h']):.3f} J" + _run_flag(h))
+                      f"W_h = {float(h['w_h']):.3f} J" + _run_flag(h), **style)
+    flag_legend(ax, union)
     ax.set_xlabel("s [mm]")
     ax.set_ylabel("F [N]")
     ax.set_title(f"Fig. 3: hysteresis loops up to separation, v0 = {hist.attrs['v0']:g} m/s")

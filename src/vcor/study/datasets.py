@@ -11,6 +11,7 @@ from .. import status as _status
 from ..fitting.calibrate import bridges_ice, fit_g_star
 from ..materials.catalogue import Catalogue
 from ..solvers.common import LONG_NAMES, UNITS
+from ..solvers import validity as _validity
 from ..solvers.options import solver_options
 from ..solvers.simulate import simulate
 
@@ -67,7 +68,9 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     ``ghost`` (default: the options' ghost). Each run is resampled (linear interpolation of its own
     solution) onto ``n_samples`` uniform times from 0 to (1 + ghost) t0; ``t`` is therefore a
     (run, sample) variable. ``ghost`` marks the samples after separation. Scalars of each run are
-    stored per run. A run that is not ok is stored as NaN with its status and message.
+    stored per run, with its validity flags and their sentence (``validity``, ``validity_message``:
+    :mod:`vcor.solvers.validity`, as in a sweep dataset; 0 and "" for a run inside the model's stated
+    range or not ok). A run that is not ok is stored as NaN with its status and message.
     """
     import xarray as xr
 
@@ -78,12 +81,14 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     geometry = dict(geometry or {})
     labels, cols = [], {k: [] for k in ("t", "s", "sdot", "F", "U", "zdot", "ghost")}
     scal = {k: [] for k in ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "wall_time")}
-    status, message = [], []
+    status, message, flags, reasons = [], [], [], []
     for material, method in runs:
         res, name, text = _status.guarded(_history_run, material, method, v0, base, geometry, catalogue)
         labels.append(f"{material}/{method}")
         status.append(res.status if res is not None else name)
         message.append(res.message if res is not None else text)
+        flags.append(res.validity if res is not None else 0)
+        reasons.append(res.validity_message if res is not None else "")
         for k, values in scal.items():
             values.append(getattr(res, k) if res is not None else np.nan)
         h = res.history if res is not None else None
@@ -116,6 +121,9 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
         data[k] = ("run", np.array(v, dtype=float), {"units": UNITS[k], "long_name": LONG_NAMES[k]})
     data["status"] = ("run", _status.codes_of(status), _status.cf_attrs())
     data["message"] = ("run", np.array(message, dtype=str), {"long_name": "solver message"})
+    data["validity"] = ("run", np.array(flags, dtype=np.int8), _validity.cf_attrs())
+    data["validity_message"] = ("run", np.array(reasons, dtype=str),
+                                {"long_name": "why an ok result is outside the model's stated range"})
     coords = {
         "run": ("run", np.array(labels, dtype=str), {"long_name": "material/method"}),
         "sample": ("sample", np.arange(n_samples), {"units": "1", "long_name": "sample index"}),
