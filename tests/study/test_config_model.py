@@ -161,15 +161,17 @@ def _schema_default(*keys):
 
 
 def test_the_schema_defaults_are_the_codes():
-    assert _schema_default("shard_size") == DEFAULTS["shard_size"] == load_project(_scene(), ROOT).shard_size
+    assert _schema_default("job_seconds") == DEFAULTS["job_seconds"] == load_project(_scene(), ROOT).job_seconds
+    assert "default" not in load_schema(SCHEMA)["properties"]["shard_size"]  # no cap unless a config sets one
+    assert DEFAULTS["shard_size"] is None is load_project(_scene(), ROOT).shard_size
     assert _schema_default("material_dir") == DEFAULTS["material_dir"] == load_project(_scene(), ROOT).material_dir
     spec = uncertainty_of({"uncertainty": {"bootstrap": 2}})
     assert _schema_default("scenes", "*", "uncertainty", "seed") == spec["seed"]
     assert _schema_default("scenes", "*", "uncertainty", "level") == spec["level"]
     assert _schema_default("scenes", "*", "error_estimate") is settings_of({"grid": {"v0": [1]}})["error_estimate"]
-    # a config without shard_size plans as many jobs with the schema's default as with the code's
+    # a config without job sizing plans its jobs with the schema's defaults, which are the code's
     project = check({"scenes": {"s": {"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 3000, "step": 1}}}}})
-    assert project.scenes["s"].shard_size == 1000
+    assert project.scenes["s"].job_seconds == DEFAULTS["job_seconds"] and project.scenes["s"].shard_size is None
 
 
 # -- the grid: typed axes, indexed points ---------------------------------------------------------------

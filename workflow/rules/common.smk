@@ -133,6 +133,8 @@ def shard_plan(scene):
             on_invalid=_invalid_shard,
             grid=sc.grid,
             settings=sc.settings,
+            job_seconds=sc.job_seconds,
+            from_data=PROJECT.fitted_to_data,
         )
     return _PLANS[scene]
 

@@ -5,11 +5,13 @@ from vcor.dem import export
 from vcor.io import netcdf
 from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
+from vcor.solvers.backend import load_kernels
 from vcor.study import dem, summary
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     name, spec = smk.wildcards.dem, smk.params.spec
+    load_kernels(["adaptive"])  # compiled once per machine (vcor.solvers.backend)
     collisions, fits, temps = dem.run_dem(name, spec, Catalogue(**smk.params.catalogue))
     ds = export.dem_dataset(name, collisions, fits, temps, config=spec)
     netcdf.write_dataset(ds, smk.output.nc, title=f"vcor DEM parameters, {name}", command="snakemake rule dem")

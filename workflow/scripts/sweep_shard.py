@@ -3,14 +3,18 @@
 import json
 
 from vcor.io import netcdf, receipts
-from vcor.io.joblog import count, job_log
+from vcor.io.joblog import count, job_log, seconds
 from vcor.materials import Catalogue
+from vcor.solvers.backend import load_kernels
 from vcor.study import runner, scene, summary
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     points, settings = smk.params.points, smk.params.settings
     catalogue = Catalogue(**smk.params.catalogue)
+    ready = load_kernels([settings["solver"]["method"]])
+    log.note(f"numba kernels of method {settings['solver']['method']} ready (loaded or compiled) in {seconds(ready)}",
+             timed=False)
     ds = runner.run_points(points, settings, catalogue)
     attrs = {"settings": settings, "materials": scene.material_params(sorted({p["material"] for p in points}),
                                                                         catalogue)}

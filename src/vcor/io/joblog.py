@@ -4,6 +4,11 @@
 what the job computed, with the time since the block began (``solved 120 points of scene sls: 118 ok,
 2 flagged (large_indentation 2), 0 failed, in 1.3 s``), so that each job's log says what it did.
 
+The last line of a finished job's log says where its time went, for the benchmark of the reproduction
+by rule (``benchmarks/bench_rules.py``): ``job <rule>: start-up 1.21 s, work 3.40 s``, start-up being
+the time from the process's start (Linux: ``/proc/self/stat``) to the block (Python, imports) and work
+the block itself (loading kernels, solving, writing).
+
 A job's error must never be lost: on a full disk the log cannot be written (and Python's exit would
 fail to flush it, exit code 120, an empty log). :func:`job_log` writes the error to the log where it
 can and always to the terminal's stderr, then exits with code 1.
@@ -12,11 +17,12 @@ can and always to the terminal's stderr, then exits with code 1.
 from __future__ import annotations
 
 import contextlib
+import os
 import sys
 import time
 import traceback
 
-__all__ = ["JobLog", "count", "job_log", "seconds"]
+__all__ = ["JobLog", "count", "job_log", "process_age", "seconds"]
 
 
 def seconds(t: float) -> str:
@@ -27,6 +33,18 @@ def seconds(t: float) -> str:
 def count(n: int, noun: str, plural: str | None = None) -> str:
     """``1 figure``, ``3 figures``; ``plural`` for a noun that does not take an s (``histories``)."""
     return f"{n} {noun if n == 1 else plural or noun + 's'}"
+
+
+def process_age() -> float | None:
+    """Seconds since this process started (Linux ``/proc``; None where that cannot be read)."""
+    try:
+        with open("/proc/self/stat") as fh:
+            fields = fh.read().rsplit(")", 1)[1].split()
+        with open("/proc/uptime") as fh:
+            uptime = float(fh.read().split()[0])
+        return uptime - int(fields[19]) / os.sysconf("SC_CLK_TCK")  # field 22: start time in clock ticks
+    except (OSError, ValueError, IndexError):
+        return None
 
 
 class JobLog:
@@ -66,8 +84,13 @@ def job_log(smk):
         except OSError as exc:
             _write(terminal, f"vcor: cannot write the job log {path}: {exc}\n")
     sys.stderr = log or terminal
+    startup = process_age()
     try:
-        yield JobLog()
+        job = JobLog()
+        yield job
+        rule = getattr(smk, "rule", None) or "job"
+        if startup is not None:
+            job.note(f"job {rule}: start-up {startup:.2f} s, work {job.elapsed:.2f} s", timed=False)
     except BaseException as exc:
         if isinstance(exc, SystemExit) and exc.code in (0, None):
             raise

@@ -205,14 +205,14 @@ def _check_axis_option(key, kind, value, axes, catalogue, given, options):
                          f"{material!r}'s own beta ({own}); give the material's beta, or sweep beta")
 
 
-def _check_size(where: str, scene: dict, shard_size: int) -> None:
-    """The grid's points and sweep jobs against MAX_POINTS and MAX_JOBS, counted before any point is
-    built."""
+def _check_size(where: str, scene: dict, shard_size: int | None) -> None:
+    """The grid's points (and, with a cap of ``shard_size`` points per job, the least number of sweep
+    jobs) against MAX_POINTS and MAX_JOBS, counted before any point is built."""
     try:
         n = point_count(scene)
     except ValueError as exc:
         raise ValueError(f"{where}.grid.{exc}") from None
-    jobs = -(-n // shard_size)
+    jobs = 1 if shard_size is None else -(-n // shard_size)
     if n > MAX_POINTS or jobs > MAX_JOBS:
         raise ValueError(f"{where}.grid: {n} points in {jobs} sweep jobs (shard_size {shard_size}); a scene may "
                          f"have at most {MAX_POINTS} points and {MAX_JOBS} jobs: split the study into scenes, "
@@ -226,13 +226,15 @@ def _body_identities(scene: dict, catalogue: Catalogue) -> dict:
     return {n: catalogue.identity(n) for n in names if isinstance(n, str) and n in catalogue.computed()}
 
 
-def _build_scene(name: str, config: dict, catalogue: Catalogue, shard_size: int) -> Scene:
+def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) -> Scene:
     """The checked :class:`Scene` of one config entry; its grid is built here, once."""
     where = f"scenes.{name}"
     if not re.fullmatch(SCENE_NAME_PATTERN, name):
         raise ValueError(f"{where}: scene names may use letters, digits, - and _")
     scene = inline_config_materials(config, catalogue)
-    size = int(scene.get("shard_size", shard_size))
+    size = scene.get("shard_size", sizing["shard_size"])
+    size = None if size is None else int(size)
+    job_seconds = float(scene.get("job_seconds", sizing["job_seconds"]))
     check_uncertainty(where, scene, catalogue)
     grid = None
     if "grid" in scene:
@@ -258,7 +260,8 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, shard_size: int)
     bodies = _body_identities(scene, catalogue)
     if bodies:
         settings["body_materials"] = bodies
-    return Scene(name=name, config=scene, grid=grid, settings=settings, shard_size=size)
+    return Scene(name=name, config=scene, grid=grid, settings=settings, shard_size=size,
+                 job_seconds=job_seconds)
 
 
 def _check_builds_something(config: dict) -> None:
@@ -278,12 +281,13 @@ def load_project(config: dict, base_dir=".", *, require_targets: bool = True) ->
     if require_targets:
         _check_builds_something(config)
     catalogue = _catalogue(config, base)
-    shard_size = int(config.get("shard_size", DEFAULTS["shard_size"]))
-    scenes = {name: _build_scene(name, scene, catalogue, shard_size)
+    sizing = {k: config.get(k, DEFAULTS[k]) for k in ("shard_size", "job_seconds")}
+    scenes = {name: _build_scene(name, scene, catalogue, sizing)
               for name, scene in (config.get("scenes") or {}).items()}
     dem = dict(config.get("dem") or {})
     for name, spec in dem.items():
         if not re.fullmatch(SCENE_NAME_PATTERN, name):
             raise ValueError(f"dem.{name}: names may use letters, digits, - and _")
         check_dem(name, spec, catalogue)
-    return Project(catalogue=catalogue, scenes=scenes, shard_size=shard_size, config=config, dem=dem)
+    return Project(catalogue=catalogue, scenes=scenes, shard_size=sizing["shard_size"],
+                   job_seconds=float(sizing["job_seconds"]), config=config, dem=dem)

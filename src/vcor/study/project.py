@@ -26,13 +26,16 @@ from ..dem.laws import MODELS
 from ..materials.catalogue import Catalogue
 from ..plots import needs
 from . import paths
+from .cost import JOB_SECONDS
 from .grid import Grid
 from .uncertainty import samples_file, uncertainty_of
 
 __all__ = ["BUILDS", "DATASETS", "DEFAULTS", "Project", "Scene"]
 
 #: defaults of the config's top-level keys (the schema states the same; tests/study/test_config_model.py)
-DEFAULTS = {"shard_size": 1000, "material_dir": "results/materials"}
+#: job_seconds: estimated solver work per sweep job (vcor.study.cost.JOB_SECONDS); shard_size: at most so
+#: many points per sweep job (None: no cap, jobs sized by work alone)
+DEFAULTS = {"job_seconds": JOB_SECONDS, "shard_size": None, "material_dir": "results/materials"}
 #: datasets a scene may build (besides its sweep), each from a config block of the same name
 DATASETS = ("moduli", "histories", "spheres", "convergence")
 #: the top-level sections that name something to build
@@ -43,13 +46,15 @@ BUILDS = ("scenes", "fits", "calibrations", "dem")
 class Scene:
     """One checked scene: ``config`` as configured (config materials of bodies inlined), ``grid``
     (None without a sweep), ``settings`` (:func:`vcor.study.scene.settings_of`, plus the identities of
-    computed body materials) and the points per sweep job ``shard_size``."""
+    computed body materials), the estimated work per sweep job ``job_seconds`` (s) and the cap on its
+    points ``shard_size`` (None: none); :mod:`vcor.study.cost`."""
 
     name: str
     config: dict
     grid: Grid | None
     settings: dict
-    shard_size: int
+    job_seconds: float = DEFAULTS["job_seconds"]
+    shard_size: int | None = DEFAULTS["shard_size"]
 
     @property
     def materials(self) -> list[str]:
@@ -84,12 +89,19 @@ class Project:
     catalogue: Catalogue
     scenes: dict = field(default_factory=dict)
     dem: dict = field(default_factory=dict)
-    shard_size: int = DEFAULTS["shard_size"]
+    job_seconds: float = DEFAULTS["job_seconds"]
+    shard_size: int | None = DEFAULTS["shard_size"]
     config: dict = field(repr=False, default_factory=dict)
 
     @property
     def material_dir(self) -> str:
         return self.catalogue.material_dir
+
+    @property
+    def fitted_to_data(self) -> frozenset:
+        """Names of the fits to measured data (DMA sets): tens of Prony modes, a larger solve cost
+        (:mod:`vcor.study.cost`)."""
+        return frozenset(n for n, spec in self.catalogue.fits.items() if "data" in spec)
 
     # -- scenes -----------------------------------------------------------------------------------
     def scene_targets(self, scene: str) -> list[str]:

@@ -15,7 +15,7 @@ import json
 
 from ..materials.catalogue import Catalogue
 from ..materials.presets import PRESETS, get
-from .project import DEFAULTS, Scene
+from .project import Scene
 from .scene import grid_of, settings_of
 
 __all__ = ["scene_from_dataset"]
@@ -49,6 +49,5 @@ def scene_from_dataset(ds) -> tuple[Scene, Catalogue]:
             spec["shift"] = dict(record["shift"])
         specs[name] = spec
     name = str(ds.attrs.get("scene", "rebuilt"))
-    rebuilt = Scene(name=name, config=scene, grid=grid_of(scene), settings=settings_of(scene),
-                    shard_size=DEFAULTS["shard_size"])
+    rebuilt = Scene(name=name, config=scene, grid=grid_of(scene), settings=settings_of(scene))
     return rebuilt, Catalogue(specs=specs)

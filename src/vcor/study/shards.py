@@ -25,11 +25,13 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from ..io import receipts
 from ..materials.catalogue import content_hash
 from ..provenance import code_fingerprint
+from .cost import point_seconds, split_by_work
 from .grid import Grid, point_key
 from .scene import grid_of, settings_of
 
@@ -88,13 +90,16 @@ def _read_index(idx: Path, order: list) -> list[dict]:
     return pts
 
 
-def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict, on_invalid=None, *,
-                grid: Grid | None = None, settings: dict | None = None) -> dict[str, Shard]:
+def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities: dict, on_invalid=None, *,
+                grid: Grid | None = None, settings: dict | None = None, job_seconds: float | None = None,
+                from_data: frozenset | set = frozenset()) -> dict[str, Shard]:
     """{shard id: :class:`Shard`}. Existing shards with the same settings hash are reused as they are,
     if they are what their writer wrote (:func:`vcor.io.receipts.problem`, the shard id as identity)
     and hold still-wanted points; a shard that is not is passed to ``on_invalid(path, reason)`` (the
-    workflow moves it aside) and its points are planned again. ``grid`` and ``settings``: the scene's,
-    when the caller built them already."""
+    workflow moves it aside) and its points are planned again. The points not covered are cut into
+    jobs of about ``job_seconds`` of estimated work each (:func:`vcor.study.cost.split_by_work`;
+    ``from_data``: the materials fitted to measured data), at most ``shard_size`` points each (None: no
+    cap). ``grid`` and ``settings``: the scene's, when the caller built them already."""
     settings = settings or settings_of(scene)
     h = settings_hash(scene, settings)
     wanted = identified_points(scene, identities, grid)
@@ -123,9 +128,8 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int, identities: dict,
         plan[idx.stem] = Shard(id=idx.stem, points=pts, rows=[index_of.get(k, -1) for k in keys])
         for k in keys:
             todo.pop(k, None)
-    rest = list(todo.values())
-    for i in range(0, len(rest), shard_size):
-        chunk = rest[i : i + shard_size]
+    cost = partial(point_seconds, settings=settings, from_data=from_data)
+    for chunk in split_by_work(list(todo.values()), cost, job_seconds, shard_size):
         sid = f"{h}-{content_hash([point_key(p) for p in chunk])}"
         plan[sid] = Shard(id=sid, points=chunk, rows=[p["index"] for p in chunk])
     # in the order of their ids: the aggregate's inputs and rows do not depend on which shards were
