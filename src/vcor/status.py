@@ -28,7 +28,14 @@ STATUS_NAMES = {v: k for k, v in STATUS_CODES.items()}
 
 
 def code(name: str) -> int:
-    """Integer code of a status name (ValueError for a name outside the vocabulary)."""
+    """Integer code of a status name (ValueError for a name outside the vocabulary).
+
+    Examples
+    --------
+    >>> from vcor.status import code
+    >>> code("ok"), code("no-separation")
+    (0, 1)
+    """
     try:
         return STATUS_CODES[name]
     except KeyError:
@@ -36,12 +43,26 @@ def code(name: str) -> int:
 
 
 def codes_of(names) -> np.ndarray:
-    """int8 array of codes for a sequence of status names."""
+    """int8 array of codes for a sequence of status names.
+
+    Examples
+    --------
+    >>> from vcor.status import codes_of
+    >>> codes_of(["ok", "step-budget", "failed"])
+    array([0, 5, 4], dtype=int8)
+    """
     return np.array([code(n) for n in names], dtype=np.int8)
 
 
 def cf_attrs(long_name: str = "solver status") -> dict:
-    """CF attributes of a status variable."""
+    """CF attributes of a status variable.
+
+    Examples
+    --------
+    >>> from vcor.status import cf_attrs
+    >>> cf_attrs()["flag_meanings"]
+    'ok no_separation diverged invalid_input failed step_budget'
+    """
     items = sorted(STATUS_CODES.items(), key=lambda kv: kv[1])
     return {
         "long_name": long_name,
@@ -56,7 +77,18 @@ def guarded(fn, *args, **kwargs):
     re-raised, so one failed point never sinks the others. ``ValueError`` -> invalid-input (its
     message names the parameter); an exception with a ``status`` attribute (e.g.
     ``vcor.spheres.SolverFailure``) -> that status; any other exception -> failed, stored with its
-    type, message and the last frames of the traceback. ``value`` is None when it raised."""
+    type, message and the last frames of the traceback. ``value`` is None when it raised.
+
+    Examples
+    --------
+    >>> import vcor
+    >>> from vcor.status import guarded
+    >>> guarded(float, "2.5")
+    (2.5, 'ok', '')
+    >>> value, status, message = guarded(vcor.simulate, "sls", -1.0)
+    >>> value, status, message
+    (None, 'invalid-input', 'v0 must be in [1e-09, 100000] m/s, got -1.0')
+    """
     try:
         return fn(*args, **kwargs), "ok", ""
     except ValueError as exc:

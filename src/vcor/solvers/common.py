@@ -50,7 +50,15 @@ LONG_NAMES = {
 
 @dataclass
 class Histories:
-    """Time histories (SI). ``ghost`` marks samples after separation (t > t0)."""
+    """Time histories (SI). ``ghost`` marks samples after separation (t > t0).
+
+    Examples
+    --------
+    >>> import vcor
+    >>> h = vcor.simulate("sls", 1.0, history=True).history
+    >>> f"F_max {h.F[~h.ghost].max():.1f} N", bool(h.ghost[0]), bool(h.ghost[-1])
+    ('F_max 36.2 N', False, True)
+    """
 
     t: np.ndarray
     s: np.ndarray
@@ -73,7 +81,18 @@ class Histories:
 class Result:
     """Outcome of one impact. Units: s, m, N, J, rad/s; cor and energy_residual are ratios. ``validity``:
     flags of an ok result outside the model's stated range, with ``validity_message``
-    (:mod:`vcor.solvers.validity`)."""
+    (:mod:`vcor.solvers.validity`).
+
+    Examples
+    --------
+    >>> import vcor
+    >>> r = vcor.simulate("butyl-prony3", 1.0)
+    >>> r.ok, f"{r.cor:.3f}", f"{r.s_max * 1e3:.3f} mm", f"{r.w_h * 1e3:.2f} mJ"
+    (True, '0.287', '0.423 mm', '12.17 mJ')
+    >>> d = r.with_units()
+    >>> d["f_max"]["units"], round(d["f_max"]["value"], 1)
+    ('N', 55.3)
+    """
 
     cor: float = math.nan
     t0: float = math.nan
@@ -118,7 +137,16 @@ class Result:
 def peak(t, y, f=None):
     """Maximum of sampled y(t). Refined by the parabola through the largest sample and its neighbours
     (any spacing), or, when ``f`` (a callable y(t), e.g. a dense output) is given, by a bounded
-    scalar search for the maximum of f between the neighbouring samples."""
+    scalar search for the maximum of f between the neighbouring samples.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vcor.solvers.common import peak
+    >>> t = np.linspace(0.0, 1.0, 11)
+    >>> round(peak(t, 1.0 - (t - 0.53) ** 2), 12)  # the parabola through three samples: exact here
+    1.0
+    """
     i = int(np.argmax(y))
     if i == 0 or i == y.size - 1:
         return float(y[i])
@@ -167,7 +195,14 @@ def separation_scalars(values) -> dict:
 
 def richardson(coarse: float, fine: float, order: float = 2.0) -> tuple[float, float]:
     """Richardson extrapolation from runs at dt (``coarse``) and dt/2 (``fine``) of a method of the
-    given order: (extrapolated value, error estimate of the coarse value ``|coarse - extrapolated|``)."""
+    given order: (extrapolated value, error estimate of the coarse value ``|coarse - extrapolated|``).
+
+    Examples
+    --------
+    >>> from vcor.solvers.common import richardson
+    >>> richardson(1.0, 1.75)  # second order: the error falls by 4 when dt halves
+    (2.0, 1.0)
+    """
     f = 2.0**order
     extrapolated = fine + (fine - coarse) / (f - 1.0)
     return extrapolated, abs(coarse - extrapolated)

@@ -113,7 +113,26 @@ def _number(name, value, *, integer=False):
 
 @dataclass(frozen=True, kw_only=True)
 class SolverOptions:
-    """Validated solver options (see the module docstring). Units: s, m^-1.5."""
+    """Validated solver options (see the module docstring). Units: s, m^-1.5.
+
+    Examples
+    --------
+    Options a method uses take its defaults; the others stay ``None``:
+
+    >>> from vcor import SolverOptions
+    >>> opts = SolverOptions(method="direct")
+    >>> opts.steps_per_contact, opts.max_steps, opts.form, opts.step_tol
+    (2000, 200000, 'a', None)
+
+    An option the method does not use is refused, naming it:
+
+    >>> SolverOptions(method="direct", rtol=1e-8)
+    Traceback (most recent call last):
+    ...
+    ValueError: solver option rtol is not used by method 'direct' (it needs method ive); remove it
+    >>> opts.replace(method="adaptive").step_tol
+    0.0003
+    """
 
     method: str = _SPEC["method"]["default"]
     dt: float | None = None
@@ -201,7 +220,14 @@ class SolverOptions:
 
     @staticmethod
     def default_of(name: str, method: str | None = None):
-        """The value an option takes when it is not set and ``method`` (default: the usual one) uses it."""
+        """The value an option takes when it is not set and ``method`` (default: the usual one) uses it.
+
+        Examples
+        --------
+        >>> from vcor import SolverOptions
+        >>> SolverOptions.default_of("max_steps"), SolverOptions.default_of("max_steps", "soe")
+        (200000, 4000000)
+        """
         return _SPEC[name]["method_defaults"].get(method, _SPEC[name]["default"])
 
     @staticmethod
@@ -215,7 +241,16 @@ class SolverOptions:
 
 
 def solver_options(options=None, **kwargs) -> SolverOptions:
-    """``options`` (a SolverOptions or a dict) or keyword arguments -> SolverOptions; not both."""
+    """``options`` (a SolverOptions or a dict) or keyword arguments -> SolverOptions; not both.
+
+    Examples
+    --------
+    >>> from vcor.solvers.options import solver_options
+    >>> solver_options({"method": "ive"}).rtol
+    1e-10
+    >>> solver_options(method="soe").max_steps
+    4000000
+    """
     if options is None:
         return _validated(**kwargs)
     if kwargs:
