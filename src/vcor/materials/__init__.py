@@ -2,12 +2,14 @@
 exponential sums and the catalogue that resolves a material's name.
 
 Every model gives E(t), dE/dt, E*(omega) (uniaxial, Pa) and the exact step integrals the solvers use;
-see :mod:`vcor.materials.models`.
+see :mod:`vcor.materials.models`; :data:`REGISTRY` maps each model's name (``kind``) to its class and its
+parameters with units.
 """
 
 from .catalogue import Catalogue
 from .files import from_file
 from .models import (
+           REGISTRY,
            SLS,
            Cerf,
            Elastic,
@@ -20,5 +22,5 @@ from .models import (
 )
 from .presets import PRESETS, get
 
-__all__ = ["PRESETS", "SLS", "Catalogue", "Cerf", "Elastic", "EqOne", "FractionalPower", "KelvinVoigt", "Material",
+__all__ = ["PRESETS", "REGISTRY", "SLS", "Catalogue", "Cerf", "Elastic", "EqOne", "FractionalPower", "KelvinVoigt", "Material",
            "Prony", "from_dict", "from_file", "get"]

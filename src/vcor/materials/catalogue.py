@@ -26,7 +26,7 @@ from pathlib import Path
 
 from ..provenance import code_fingerprint
 from .files import from_file
-from .models import Material, from_dict
+from .models import REGISTRY, Material, from_dict
 from .presets import PRESETS, get
 from .shift import ShiftFunction, at_temperature, shift_from_file
 from .specs import from_spec, shift_function
@@ -172,8 +172,9 @@ class Catalogue:
                 "shift": shift.to_dict() if shift else None, "spec": spec, "identity": self.identity(name)}
 
 
-#: the scalar parameters of a fitted material, by fit model (vcor.fitting.fits)
-FIT_SCALARS = {"prony": ("E_inf",), "cerf": ("E0", "E1", "b1")}
+#: the scalar parameters of a fitted material (those of its model in the registry), by fit model
+#: (vcor.fitting.fits fits Prony series and CERF laws)
+FIT_SCALARS = {model: REGISTRY[model].scalars for model in ("prony", "cerf")}
 
 
 def _scalars(d: dict) -> list[str]:

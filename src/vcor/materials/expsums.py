@@ -36,7 +36,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import erfc, erfcx
+from scipy.special import erfc
 
 from ..checks import number
 from . import models as _materials
@@ -93,16 +93,14 @@ def _choose(tol: float, t_min: float, t_max: float):
 
 
 def _transient(material):
-    """(callable transient(t), spectral density rho(s)) of a fractional or CERF material."""
-    if material.kind == "fractional":
-        e1 = material.E1
-        return (lambda t: e1 / np.sqrt(np.pi * t)), (lambda s: e1 / math.pi / np.sqrt(s))
-    if material.kind == "cerf":
-        e1, b = material.E1, material.b1
-        return (lambda t: e1 * erfcx(b * np.sqrt(t))), (lambda s: e1 * b / math.pi / (np.sqrt(s) * (s + b * b)))
+    """(callable transient(t), spectral density rho(s)) of a completely monotone material
+    (:meth:`vcor.materials.base.Material.relaxation_spectrum`)."""
+    spectrum = material.relaxation_spectrum()
+    if spectrum is not None:
+        return spectrum
     raise ValueError(f"no exponential-sum (SOE) construction for material kind {material.kind!r}"
                      + (": the pointwise Eq. 1 combination of two bodies is solved by method 'direct'"
-                        if material.kind == "eq1" else ""))
+                        if isinstance(material, _materials.EqOne) else ""))
 
 
 def soe(material, t_min: float, t_max: float, tol: float = 1e-10) -> SOE:
@@ -138,7 +136,8 @@ def _soe_cached(material, lo: int, hi: int, tol: float) -> SOE:
     exact_tr = transient(t)
     approx_tr = approx.relaxation_modulus(t) - material.E0
     checked = float(np.max(np.abs(approx_tr / exact_tr - 1)))
-    bound = fractional_bound(h, s_min, s_max, t_min, t_max) if material.kind == "fractional" else math.nan
+    exact_bound = isinstance(material, _materials.FractionalPower)  # the bound is derived for 1/sqrt(pi t)
+    bound = fractional_bound(h, s_min, s_max, t_min, t_max) if exact_bound else math.nan
     if not checked <= tol:
         raise ValueError(f"SOE of {material.kind!r} on [{t_min:g}, {t_max:g}] s: relative error {checked:.2e} "
                          f"exceeds tol = {tol:g}")

@@ -1,18 +1,15 @@
 """Materials from config specs (the ``materials:`` block of ``config.yaml``).
 
-A spec is a mapping with ``model`` and the parameters named as the material classes name them (SI):
+A spec is a mapping with ``model`` (a registered kind a config may name,
+:data:`vcor.materials.base.REGISTRY`) and the model's parameters as its registry entry names them (SI;
+the entry gives their units). The Prony model takes one of three forms (a table may
+instead come from a CSV ``file``, see below):
 
-* ``sls``: E_glassy (Pa), alpha, beta (1/s)
-* ``prony``, one of three forms (a table may instead come from a CSV ``file``, see below):
-    - ``{E_inf, E: [...], beta: [...]}``     moduli Pa, rates 1/s (the class's own form),
-    - ``{E_inf, E: [...], tau: [...]}``      relaxation times s (beta = 1/tau),
-    - ``{E_0, g: [...], tau: [...]}``        normalised finite-element form (Abaqus, Ansys):
-      E(t) = E_0 (1 - sum g_i (1 - e^{-t/tau_i})), instantaneous modulus E_0 (Pa), relative moduli
-      g_i >= 0 with sum g_i < 1 (E_inf = E_0 (1 - sum g_i), E_i = E_0 g_i).
-* ``fractional``: E0, E1 (Pa; E(t) = E0 + E1/sqrt(pi t))
-* ``cerf``: E0, E1 (Pa), b1 (s^-1/2)
-* ``kelvin-voigt``: E (Pa), tau (s)
-* ``elastic``: E (Pa)
+* ``{E_inf, E: [...], beta: [...]}``     moduli Pa, rates 1/s (the class's own form),
+* ``{E_inf, E: [...], tau: [...]}``      relaxation times s (beta = 1/tau),
+* ``{E_0, g: [...], tau: [...]}``        normalised finite-element form (Abaqus, Ansys):
+  E(t) = E_0 (1 - sum g_i (1 - e^{-t/tau_i})), instantaneous modulus E_0 (Pa), relative moduli
+  g_i >= 0 with sum g_i < 1 (E_inf = E_0 (1 - sum g_i), E_i = E_0 g_i).
 
 Optional ``shift: {model: wlf, C1, C2 [K], T_ref [deg C]}`` or ``{model: arrhenius, E_a [J/mol],
 T_ref}`` (any model): the material is then E(t; T) = E(t / a_T(T)) at temperature T
@@ -34,17 +31,19 @@ from ..io.csvfile import cell_number, data_rows, read_rows
 from . import models as _materials
 from .shift import ShiftFunction
 
-__all__ = ["MODELS", "from_spec", "read_prony_csv", "shift_function"]
+__all__ = ["PRONY_SPEC_KEYS", "from_spec", "read_prony_csv", "shift_function", "spec_models"]
 
-#: model -> (required keys, optional keys)
-MODELS = {
-    "sls": ({"E_glassy", "alpha", "beta"}, set()),
-    "prony": (set(), {"E_inf", "E", "beta", "tau", "E_0", "g", "file"}),
-    "fractional": ({"E0", "E1"}, set()),
-    "cerf": ({"E0", "E1", "b1"}, set()),
-    "kelvin-voigt": ({"E", "tau"}, set()),
-    "elastic": ({"E"}, set()),
-}
+#: the keys of a Prony spec, each optional: its class's own form, relaxation times tau, the normalised form
+#: (E_0, g) or a CSV file
+PRONY_SPEC_KEYS = frozenset({"E_inf", "E", "beta", "tau", "E_0", "g", "file"})
+
+
+def spec_models() -> dict:
+    """model -> (required keys, optional keys) of every registered model a config may name
+    (:data:`vcor.materials.base.REGISTRY`): its parameters, except the Prony model, whose forms
+    (:data:`PRONY_SPEC_KEYS`) are all optional keys."""
+    return {kind: (set(), set(PRONY_SPEC_KEYS)) if fam.cls is _materials.Prony else (set(fam.names), set())
+            for kind, fam in _materials.REGISTRY.items() if fam.configurable}
 
 
 def _numbers(where, values, unit):
@@ -131,10 +130,11 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
     if not isinstance(spec, dict):
         # a config value: reported as ValueError, like every bad input
         raise ValueError(f"{where} must be a mapping with 'model' and parameters, got {spec!r}")  # noqa: TRY004
+    models = spec_models()
     model = spec.get("model")
-    if model not in MODELS:
-        raise ValueError(f"{where}.model must be one of {sorted(MODELS)}, got {model!r}")
-    required, optional = MODELS[model]
+    if not isinstance(model, str) or model not in models:
+        raise ValueError(f"{where}.model must be one of {sorted(models)}, got {model!r}")
+    required, optional = models[model]
     keys = set(spec) - {"model", "shift"}
     missing, unknown = required - keys, keys - required - optional
     if missing or unknown:
@@ -144,11 +144,10 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
     if "shift" in spec:
         ShiftFunction.from_spec(spec["shift"], f"{where}.shift")  # checked here, applied per temperature
     spec = {k: v for k, v in spec.items() if k != "shift"}
-    if model == "prony":
+    cls = _materials.REGISTRY[model].cls
+    if cls is _materials.Prony:
         return _prony(where, spec, base_dir)
     params = {k: number(f"{where}.{k}", spec[k], unit="(SI)") for k in required}
-    cls = {"sls": _materials.SLS, "fractional": _materials.FractionalPower, "cerf": _materials.Cerf,
-           "kelvin-voigt": _materials.KelvinVoigt, "elastic": _materials.Elastic}[model]
     try:
         return cls(**params)
     except ValueError as exc:

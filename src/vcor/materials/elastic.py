@@ -1,0 +1,34 @@
+"""The elastic solid, E(t) = E: a Prony series without terms (the limit every viscoelastic model
+reaches without relaxation)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+from ..checks import positive as _positive
+from .base import Parameter
+from .prony import Prony
+
+__all__ = ["Elastic"]
+
+
+@dataclass(frozen=True, init=False)
+class Elastic(Prony, kind="elastic"):
+    """Elastic solid, E(t) = E (Pa)."""
+
+    TITLE: ClassVar[str] = "elastic"
+    FORMULA: ClassVar[str] = "E(t) = E"
+    PARAMETERS: ClassVar[tuple] = (Parameter("E", "Pa", "elastic modulus"),)
+
+    def __init__(self, E: float):
+        object.__setattr__(self, "E_inf", _positive("E", E, unit="Pa"))
+        object.__setattr__(self, "E", ())
+        object.__setattr__(self, "beta", ())
+        Prony.__post_init__(self)
+
+    def params(self) -> dict:
+        return {"E": self.E_inf}
+
+    def _scaled(self, modulus, time):
+        return Elastic(self.E_inf * modulus)

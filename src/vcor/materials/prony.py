@@ -1,0 +1,182 @@
+"""The generalised Maxwell (Prony) solid: a relaxation modulus that is a finite sum of exponentials.
+
+Its step integrals and moments are closed forms per term (no differences of growing antiderivatives);
+the standard linear solid (:mod:`vcor.materials.sls`) and the elastic solid
+(:mod:`vcor.materials.elastic`) are its special cases.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from ..checks import positive as _positive
+from .base import Material, Parameter
+
+__all__ = ["MOMENT_SERIES", "SERIES_SWITCH", "Prony"]
+
+#: b dt at and below which a step moment is summed from its series: the closed form subtracts terms of
+#: size 1/(b dt) to leave one of size b dt, losing ~ eps / (b dt)^2 relative (4e-13 here)
+SERIES_SWITCH = 0.05
+#: int_0^dt e^{-b x} (x - dt/2) dx / dt^2 = sum_{k >= 1} c_k (-b dt)^k, c_k = k / (2 k! (k + 1)(k + 2)),
+#: k = 1..15 (used for b dt <= SERIES_SWITCH: the truncation is below 1e-30 relative)
+MOMENT_SERIES = np.array([k / (2.0 * math.factorial(k) * (k + 1) * (k + 2)) for k in range(1, 16)])
+
+
+def _term(name, value, unit):
+    """One Prony modulus or rate: a finite number >= 0 (a negative modulus would make E(t) increase)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool) and value < 0:
+        why = " (a negative term makes the relaxation modulus increase)" if "E[" in name else ""
+        raise ValueError(f"{name} must be in [0, inf) {unit}{why}, got {value!r}")
+    return _positive(name, value, allow_zero=True, unit=unit)
+
+
+@dataclass(frozen=True)
+class Prony(Material, kind="prony"):
+    """Generalised Maxwell (Prony) solid.
+
+    .. math:: E(t) = E_\\infty + \\sum_i E_i e^{-\\beta_i t}
+
+    Parameters
+    ----------
+    E_inf : float
+        Rubbery (equilibrium) modulus, Pa, >= 0.
+    E : sequence of float
+        Term moduli, Pa, each >= 0 (negative terms would make E(t) increase).
+    beta : sequence of float
+        Relaxation rates, 1/s, each >= 0 (beta_i = 1/tau_i).
+    """
+
+    TITLE: ClassVar[str] = "generalised Maxwell (Prony series)"
+    FORMULA: ClassVar[str] = "E(t) = E_inf + sum_i E_i exp(-beta_i t)"
+    PARAMETERS: ClassVar[tuple] = (Parameter("E_inf", "Pa", "rubbery (equilibrium) modulus"),
+                                   Parameter("E", "Pa", "term moduli", "terms"),
+                                   Parameter("beta", "s-1", "relaxation rates (1/tau)", "terms"))
+
+    E_inf: float
+    E: tuple = ()
+    beta: tuple = ()
+
+    def __post_init__(self):
+        _positive("E_inf", self.E_inf, allow_zero=True, unit="Pa")
+        e = tuple(_term(f"Prony E[{i}]", x, "Pa") for i, x in enumerate(np.atleast_1d(np.asarray(self.E, dtype=object))))
+        b = tuple(_term(f"Prony beta[{i}]", x, "1/s")
+                  for i, x in enumerate(np.atleast_1d(np.asarray(self.beta, dtype=object))))
+        if len(e) != len(b):
+            raise ValueError(f"Prony: E and beta must have equal length, got {len(e)} and {len(b)}")
+        object.__setattr__(self, "E", e)
+        object.__setattr__(self, "beta", b)
+        if self.E_inf + sum(e) <= 0:
+            raise ValueError("Prony: glassy modulus E_inf + sum(E) must be > 0 Pa")
+        # the terms as arrays, built once (not dataclass fields: equality and hashing use E and beta)
+        object.__setattr__(self, "_term_arrays", (np.asarray(e, float), np.asarray(b, float)))
+
+    @property
+    def is_prony(self) -> bool:
+        return True
+
+    @property
+    def is_elastic(self) -> bool:
+        return all(e == 0 or b == 0 for e, b in zip(self.E, self.beta))
+
+    @property
+    def fastest_rate(self) -> float:
+        return max(self.beta, default=0.0)
+
+    def _arrays(self):
+        return self._term_arrays
+
+    def relaxation_modulus(self, t):
+        t = np.asarray(t, dtype=float)
+        e, b = self._arrays()
+        with np.errstate(invalid="ignore"):
+            terms = e * np.exp(-np.multiply.outer(t, b))
+        if b.size and np.isinf(t).any():
+            terms = np.where(np.isnan(terms), 0.0, terms)  # 0 * exp(-inf * 0) at t = inf, b = 0
+            terms = np.where(np.multiply.outer(np.isinf(t), b == 0), e, terms)
+        return self.E_inf + terms.sum(axis=-1)
+
+    def modulus_at(self, t: float) -> float:
+        total = self.E_inf
+        for e, b in zip(self.E, self.beta):
+            total += e * math.exp(-b * t)
+        return total
+
+    def relaxation_rate(self, t):
+        t = np.asarray(t, dtype=float)
+        e, b = self._arrays()
+        return -(e * b * np.exp(-np.multiply.outer(t, b))).sum(axis=-1)
+
+    def complex_modulus(self, omega):
+        w = 1j * np.asarray(omega, dtype=float)
+        e, b = self._arrays()
+        wc = w[..., None]
+        return self.E_inf + (e * wc / (wc + b)).sum(axis=-1)
+
+    def antiderivative(self, t, order: int = 1):
+        t = np.asarray(t, dtype=float)
+        e, b = self._arrays()
+        bt = np.multiply.outer(t, b)
+        safe_b = np.where(b > 0, b, 1.0)
+        if order == 1:
+            # int_0^t e^{-b s} ds = -expm1(-b t)/b  (-> t as b -> 0)
+            part = np.where(b > 0, -np.expm1(-bt) / safe_b, t[..., None])
+            return self.E_inf * t + (e * part).sum(axis=-1)
+        if order == 2:
+            # int_0^t (1 - e^{-b s})/b ds = (b t + expm1(-b t)) / b^2  (-> t^2/2)
+            part = np.where(b > 0, (bt + np.expm1(-bt)) / safe_b**2, 0.5 * t[..., None] ** 2)
+            return 0.5 * self.E_inf * t**2 + (e * part).sum(axis=-1)
+        raise ValueError(f"order must be 1 or 2, got {order}")
+
+    def step_integrals(self, dt: float, n: int) -> np.ndarray:
+        # Closed form without differences of growing antiderivatives (no cancellation).
+        return self.E_inf * dt + self.term_step_integrals(dt, n).sum(axis=-1)
+
+    def step_moments(self, dt: float, n: int) -> np.ndarray:
+        # E_inf gives 0.
+        return self.term_step_moments(dt, n).sum(axis=-1)
+
+    def first_step(self, dt):
+        # per term, closed forms (the antiderivative difference of the base class cancels for small steps)
+        dt = np.asarray(dt, dtype=float)
+        col = dt[..., None]
+        return (self.E_inf * dt + self.term_step_integrals(col, 1)[0].sum(axis=-1),
+                self.term_step_moments(col, 1)[0].sum(axis=-1))
+
+    def term_step_integrals(self, dt: float, n: int) -> np.ndarray:
+        """Per term k (last axis): int_{i dt}^{(i+1) dt} E_k e^{-beta_k t} dt, i = 0..n-1, Pa s."""
+        i = np.arange(n, dtype=float)
+        e, b = self._arrays()
+        bdt = b * dt
+        frac = np.where(b > 0, -np.expm1(-bdt) / np.where(b > 0, b, 1.0), dt)
+        return e * frac * np.exp(-np.multiply.outer(i, bdt))
+
+    def term_step_moments(self, dt: float, n: int) -> np.ndarray:
+        """Per term k (last axis): int_{step i} E_k e^{-beta_k t} (t - (i + 1/2) dt) dt, Pa s^2; with
+        int_0^dt e^{-b x} (x - dt/2) dx in closed form or (small b dt) its series."""
+        i = np.arange(n, dtype=float)
+        e, b = self._arrays()
+        x = b * dt
+        safe = np.where(x > SERIES_SWITCH, x, 1.0)
+        closed = dt**2 * ((-np.expm1(-safe)) / safe**2 - np.exp(-safe) / safe - 0.5 * (-np.expm1(-safe)) / safe)
+        small = np.where(x > SERIES_SWITCH, 0.0, x)  # the series is used (and evaluated) only there
+        series = np.zeros_like(x)
+        for coef in MOMENT_SERIES[::-1]:  # Horner in -x
+            series = (series + coef) * -small
+        phi = np.where(x > SERIES_SWITCH, closed, dt**2 * series)
+        return e * phi * np.exp(-np.multiply.outer(i, x))
+
+    def prony_terms(self):
+        """(E_inf, E[], beta[]) as float and arrays (for the internal-variable solver)."""
+        e, b = self._arrays()
+        return float(self.E_inf), e, b
+
+    def params(self) -> dict:
+        return {"E_inf": float(self.E_inf), "E": [float(x) for x in self.E], "beta": [float(x) for x in self.beta]}
+
+    def _scaled(self, modulus, time):
+        return Prony(self.E_inf * modulus, tuple(e * modulus for e in self.E), tuple(b / time for b in self.beta))
