@@ -70,7 +70,22 @@ GEOMETRY_AXES = tuple(k for k in GEOMETRY_DEFAULTS if k not in ("case", "rigid",
 
 @dataclass(frozen=True, kw_only=True)
 class Geometry:
-    """Sphere-plate geometry. Units: m, kg/m^3, Pa."""
+    """Sphere-plate geometry. Units: m, kg/m^3, Pa.
+
+    Examples
+    --------
+    Densities and the plate's half-thickness not given follow the case (here 3: a steel sphere on a
+    polymer plate) and the radius:
+
+    >>> from vcor.contact.impact import Geometry
+    >>> g = Geometry(r=0.005)
+    >>> g.half_thickness, g.sphere_density, g.plate_density, f"{g.mass * 1e3:.2f} g"
+    (0.01, 7800.0, 1100.0, '4.08 g')
+    >>> Geometry(case=5)
+    Traceback (most recent call last):
+    ...
+    ValueError: case must be one of 1, 2, 3, 4 (an integer), got 5
+    """
 
     r: float = GEOMETRY_DEFAULTS["r"]
     rho_a: float | None = None
@@ -140,6 +155,15 @@ class Impact:
 
     Exposes the mass ``m`` (kg), the kernel scale ``kappa`` (k(t) = kappa E(t), m^0.5),
     and the plate mobility ``alpha(t)`` / ``alpha_rate(t)``.
+
+    Examples
+    --------
+    >>> from vcor.contact.impact import make_impact
+    >>> imp = make_impact("sls", 1.0, {"r": 0.01})
+    >>> f"m = {imp.m * 1e3:.1f} g", f"k(0) = {float(imp.kernel(0.0)):.4g} N/m^1.5"
+    ('m = 32.7 g', 'k(0) = 2.667e+06 N/m^1.5')
+    >>> f"alpha(0) = {float(imp.alpha(0.0)):.4g} m/(N s)"
+    'alpha(0) = 0.001825 m/(N s)'
     """
 
     material: _materials.Material
@@ -234,7 +258,16 @@ class Impact:
         relaxation and the plate's motion change the real contact time both ways (in the paper's SLS case
         t0/t_c = 0.845; thin plates make it far longer). A material whose modulus relaxes towards zero (a
         Maxwell fluid, rubbery modulus 0) has no fixed point: the estimate is then capped at GLASSY_TIME_CAP
-        times the elastic contact time of its glassy modulus. Used to choose dt, the adaptive steps and T_max."""
+        times the elastic contact time of its glassy modulus. Used to choose dt, the adaptive steps and T_max.
+
+        Examples
+        --------
+        >>> import vcor
+        >>> from vcor.contact.impact import make_impact
+        >>> tc = make_impact("sls", 1.0, {}).contact_time_estimate()
+        >>> f"estimate {tc * 1e3:.2f} ms", f"solved t0 {vcor.simulate('sls', 1.0).t0 * 1e3:.2f} ms"
+        ('estimate 2.74 ms', 'solved t0 2.19 ms')
+        """
         t = 1e-3
         kappa, modulus_at, v0 = self.kappa, self.material.modulus_at, self.v0
         energy = 5.0 * self.m * v0**2  # (the same operations as inside the loop before: the same t)
@@ -258,7 +291,19 @@ class Impact:
 
 def make_impact(material, v0, geometry: dict) -> Impact:
     """The validated :class:`~vcor.contact.impact.Impact` of a material (a preset name or a Material),
-    an impact speed (m/s) and geometry keywords."""
+    an impact speed (m/s) and geometry keywords.
+
+    Examples
+    --------
+    >>> from vcor.contact.impact import make_impact
+    >>> imp = make_impact("butyl-fc", 2.0, {"r": 0.005, "rigid": True})
+    >>> imp.v0, imp.geometry.rigid, float(imp.alpha(1e-3))
+    (2.0, True, 0.0)
+    >>> make_impact("sls", 1.0, {"radius": 0.01})
+    Traceback (most recent call last):
+    ...
+    ValueError: unknown geometry keyword(s) ['radius']; allowed: [...]
+    """
     unknown = set(geometry) - set(GEOMETRY_DEFAULTS)
     if unknown:
         raise ValueError(f"unknown geometry keyword(s) {sorted(unknown)}; allowed: {sorted(GEOMETRY_DEFAULTS)}")

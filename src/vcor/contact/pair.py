@@ -41,7 +41,19 @@ def _volume(r: float) -> float:
 
 def sphere_pair(a: Body, b: Body) -> tuple[_materials.Material, dict]:
     """(contact material, geometry keywords) of sphere ``a`` hitting sphere ``b`` head-on (module
-    docstring)."""
+    docstring).
+
+    Examples
+    --------
+    Two equal SLS spheres: the paper's case 2 on an immovable target, with the reduced radius:
+
+    >>> from vcor.contact.bodies import body_from_spec
+    >>> from vcor.contact.pair import sphere_pair
+    >>> a = body_from_spec("sphere", {"material": "sls", "r": 0.01})
+    >>> material, geometry = sphere_pair(a, a)
+    >>> geometry["r"], geometry["case"], geometry["rigid"]
+    (0.005, 2, True)
+    """
     if a.rigid and b.rigid:
         raise ValueError("target.sphere: both spheres are rigid: no contact modulus (give one a material)")
     ra, rb = a.size, b.size
@@ -63,7 +75,16 @@ def sphere_pair(a: Body, b: Body) -> tuple[_materials.Material, dict]:
 
 def twin_defaults(sphere: Body, kind: str, spec) -> dict:
     """A target sphere without its own material is a twin of the impacting sphere: its radius, density
-    and Poisson ratio default to the sphere's (a plate's keys keep their own defaults)."""
+    and Poisson ratio default to the sphere's (a plate's keys keep their own defaults).
+
+    Examples
+    --------
+    >>> from vcor.contact.bodies import body_from_spec
+    >>> from vcor.contact.pair import twin_defaults
+    >>> ball = body_from_spec("sphere", {"material": "sls", "r": 0.01})
+    >>> twin_defaults(ball, "sphere", {"r": 0.02})
+    {'r': 0.02, 'rho': 1100.0, 'nu': 0.5}
+    """
     spec = dict(spec or {})
     if kind != "sphere" or "material" in spec:
         return spec
@@ -72,7 +93,20 @@ def twin_defaults(sphere: Body, kind: str, spec) -> dict:
 
 def target_inputs(material, target, geometry: dict) -> tuple[_materials.Material, dict]:
     """(material, geometry keywords) for ``simulate`` of ``material`` hitting ``target`` (module
-    docstring); ``geometry`` holds the impacting sphere's keywords (r, rho_a, nu)."""
+    docstring); ``geometry`` holds the impacting sphere's keywords (r, rho_a, nu).
+
+    Examples
+    --------
+    ``vcor.simulate(..., target=...)`` calls it; two equal SLS spheres head-on at 1 m/s (the COR of
+    the relative velocity) and an SLS sphere on a rigid wall:
+
+    >>> import vcor
+    >>> f"{vcor.simulate('sls', 1.0, target={'sphere': {}}).cor:.3f}"
+    '0.656'
+    >>> from vcor.contact.pair import target_inputs
+    >>> target_inputs("sls", "rigid", {"r": 0.01})
+    ('sls', {'r': 0.01, 'rigid': True})
+    """
     if target == "plate":
         return material, geometry
     if target == "rigid":
