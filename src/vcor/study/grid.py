@@ -74,7 +74,14 @@ AXIS_UNITS = {
 
 
 def axis_role(name: str) -> str:
-    """The role of an axis name (module docstring): the one place that decides it."""
+    """The role of an axis name (module docstring): the one place that decides it.
+
+    Examples
+    --------
+    >>> from vcor.study.grid import axis_role
+    >>> [axis_role(name) for name in ("v0", "T", "r", "beta")]
+    ['speed', 'temperature', 'geometry', 'material']
+    """
     if name == "v0":
         return "speed"
     if name == "T":
@@ -87,7 +94,14 @@ def axis_role(name: str) -> str:
 
 
 def canon(v) -> float:
-    """Canonical float (12 significant digits) so that 0.1 * 3 and 0.3 name the same point."""
+    """Canonical float (12 significant digits) so that 0.1 * 3 and 0.3 name the same point.
+
+    Examples
+    --------
+    >>> from vcor.study.grid import canon
+    >>> 0.1 * 3 == 0.3, canon(0.1 * 3) == canon(0.3)
+    (False, True)
+    """
     return float(f"{float(v):.12g}")
 
 
@@ -144,7 +158,22 @@ def axis_length(spec) -> int:
 def axis_values(spec) -> list[float]:
     """Grid axis values from a list or a range (module docstring): sorted unique floats. ValueError on
     NaN, infinities, booleans, an empty axis, a value listed twice or an axis longer than
-    MAX_AXIS_VALUES."""
+    MAX_AXIS_VALUES.
+
+    Examples
+    --------
+    >>> from vcor.study.grid import axis_values
+    >>> axis_values([10, 1, 5])
+    [1.0, 5.0, 10.0]
+    >>> axis_values({"start": 0.1, "stop": 0.3, "step": 0.1})
+    [0.1, 0.2, 0.3]
+    >>> axis_values({"start": 1, "stop": 100, "num": 3, "log": True})
+    [1.0, 10.0, 100.0]
+    >>> axis_values([1, 1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: 1 listed more than once; give each value once
+    """
     n = axis_length(spec)
     if n > MAX_AXIS_VALUES:
         raise ValueError(f"{n} values, more than the {MAX_AXIS_VALUES} one axis may have")
@@ -170,7 +199,15 @@ def _fmt(values) -> str:
 @dataclass(frozen=True, kw_only=True)
 class Axis:
     """One grid axis: ``name``, sorted unique ``values``, ``role`` (:data:`ROLES`), ``unit`` and
-    ``long_name``."""
+    ``long_name``.
+
+    Examples
+    --------
+    >>> from vcor.study.grid import Axis
+    >>> a = Axis.of("T", [20.0, 40.0])
+    >>> a.role, a.unit, a.values
+    ('temperature', 'degC', (20.0, 40.0))
+    """
 
     name: str
     values: tuple
@@ -192,7 +229,20 @@ class Axis:
 
 @dataclass(frozen=True, kw_only=True)
 class Grid:
-    """The materials and axes of a scene's sweep (module docstring)."""
+    """The materials and axes of a scene's sweep (module docstring).
+
+    Examples
+    --------
+    >>> from vcor.study.grid import Grid
+    >>> grid = Grid.from_scene({"materials": ["sls", "butyl-fc"],
+    ...                         "grid": {"v0": [1, 10], "r": {"start": 0.005, "stop": 0.01, "num": 2}}})
+    >>> grid.shape, grid.size, [(a.name, a.role, a.unit) for a in grid.axes]
+    ((2, 2, 2), 8, [('v0', 'speed', 'm s-1'), ('r', 'geometry', 'm')])
+    >>> grid.point(5)
+    {'index': 5, 'material': 'butyl-fc', 'v0': 1.0, 'r': 0.01}
+    >>> grid.index_of({"material": "butyl-fc", "v0": 1.0, "r": 0.01})
+    5
+    """
 
     materials: tuple
     axes: tuple
@@ -274,5 +324,12 @@ class Grid:
 
 
 def point_key(point: dict) -> str:
-    """The name of a point without its index (module docstring): canonical JSON of the rest."""
+    """The name of a point without its index (module docstring): canonical JSON of the rest.
+
+    Examples
+    --------
+    >>> from vcor.study.grid import point_key
+    >>> point_key({"index": 7, "v0": 1.0, "material": "sls"})
+    '{"material": "sls", "v0": 1.0}'
+    """
     return json.dumps({k: v for k, v in point.items() if k != "index"}, sort_keys=True)
