@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -68,93 +69,123 @@ def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False
     return finish(impact, march, rule=rule, history=history, method="ive-numba")
 
 
-def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",
-                  volterra=False, c2=1.0):
-    """Internal-variable solver with ``solve_ivp`` (options validated by ``SolverOptions``). With
-    ``volterra`` the second-order term for the Prony kernel is separable,
-    c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing and is an
-    independent check of the direct solver's O(N^2) Volterra sums."""
-    mat = impact.material
-    g_inf, e, b = prony_terms(impact, "ive")
-    kap = impact.kappa
-    G_inf, G = kap * g_inf, kap * e
-    eta = kap * mat.viscosity
-    m, v0 = impact.m, impact.v0
-    nq = e.size
-    inv_G = np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0)
-    alpha = impact.alpha
-    mobility = impact.mobility
+@dataclass(frozen=True)
+class _System:
+    """The IVE system of ``run_ive_scipy`` as ``solve_ivp`` sees it: state y = (s, J, Q_1..Q_nq, W_h,
+    int F z' dt), the contact force and the right-hand side (SI: m, N s, N, J)."""
 
-    def parts(t, y):
+    G_inf: float  # kappa E_inf, N/m^1.5
+    G: np.ndarray  # kappa E_k, N/m^1.5
+    inv_G: np.ndarray  # 1/G_k (0 where G_k = 0), m^1.5/N
+    b: np.ndarray  # relaxation rates, 1/s
+    eta: float  # kappa times the Dirac weight, N s/m^1.5
+    m: float  # sphere mass, kg
+    v0: float  # impact speed, m/s
+    mobility: object  # t -> (alpha(t) in m/(N s), alpha'(t) in m/(N s^2))
+    rule: str  # separation rule: "force" (F = 0) or "overlap" (s = 0)
+    c2: float | None  # second-order (Volterra) coefficient c2 (SI); None: no second-order term
+
+    @classmethod
+    def of(cls, impact, rule, volterra, c2):
+        g_inf, e, b = prony_terms(impact, "ive")
+        kap = impact.kappa
+        G = kap * e
+        return cls(kap * g_inf, G, np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0), b,
+                   kap * impact.material.viscosity, impact.m, impact.v0, impact.mobility, rule,
+                   c2 if volterra else None)
+
+    @property
+    def nq(self) -> int:
+        return self.G.size
+
+    def parts(self, t, y):
+        """(F, s', u'/s' = 3/2 sqrt(s), J) at (t, y); the Kelvin-Voigt term is implicit in s'."""
         s, J = y[0], y[1]
-        Q = y[2 : 2 + nq]
+        Q = y[2 : 2 + self.nq]
         a = abs(s)
         sq = math.sqrt(a)
         u = math.copysign(a * sq, s)
         p = 1.5 * sq
-        al, ald = mobility(t)
-        A = G_inf * u + Q.sum()
-        if volterra:
-            A += c2 * (G_inf * u * u + (Q * Q * inv_G).sum())
-        B = v0 - J / m - ald * J
-        F = (A + eta * p * B) / (1.0 + eta * p * al)  # Kelvin-Voigt term implicit in g
+        al, ald = self.mobility(t)
+        A = self.G_inf * u + Q.sum()
+        if self.c2 is not None:
+            A += self.c2 * (self.G_inf * u * u + (Q * Q * self.inv_G).sum())
+        B = self.v0 - J / self.m - ald * J
+        F = (A + self.eta * p * B) / (1.0 + self.eta * p * al)
         g = B - al * F
         return F, g, p, J
 
-    def rhs(t, y):
-        F, g, p, J = parts(t, y)
+    def rhs(self, t, y):
+        F, g, p, J = self.parts(t, y)
+        nq = self.nq
         dy = np.empty_like(y)
         dy[0] = g
         dy[1] = F
-        dy[2 : 2 + nq] = -b * y[2 : 2 + nq] + G * p * g
+        dy[2 : 2 + nq] = -self.b * y[2 : 2 + nq] + self.G * p * g
         dy[2 + nq] = F * g
-        dy[3 + nq] = F * (v0 - J / m)
+        dy[3 + nq] = F * (self.v0 - J / self.m)
         return dy
 
-    def event(t, y):
-        return parts(t, y)[0] if rule == "force" else y[0]
+    def event(self, t, y):
+        """Separation: F (rule "force") or s (rule "overlap") crossing zero downwards, terminal."""
+        return self.parts(t, y)[0] if self.rule == "force" else y[0]
 
     event.terminal = True
     event.direction = -1
 
-    f_scale = impact.m * v0 / tc
-    s_scale = v0 * tc
-    atol = np.concatenate([[s_scale, m * v0], np.full(nq, f_scale), [0.5 * m * v0**2] * 2]) * rtol * 1e-2
-    y0 = np.zeros(4 + nq)
-    t_start = time.perf_counter()
+    def atol(self, rtol, tc):
+        """Absolute tolerances per state from the impact's scales (tc: contact time estimate, s)."""
+        m, v0 = self.m, self.v0
+        f_scale = m * v0 / tc
+        s_scale = v0 * tc
+        return np.concatenate([[s_scale, m * v0], np.full(self.nq, f_scale), [0.5 * m * v0**2] * 2]) * rtol * 1e-2
+
+
+def _solve(system, y0, span, settings, events=None):
+    """``solve_ivp`` of the system over ``span`` with dense output; ``settings`` = (method, rtol, atol,
+    max_step). scipy's finite-difference Jacobian (Radau/BDF) probes far enough on very stiff cases to
+    overflow in a product it then discards; the solution is checked for finiteness by the caller."""
+    method, rtol, atol, max_step = settings
+    with np.errstate(over="ignore", invalid="ignore"):
+        return solve_ivp(system.rhs, span, y0, method=method, rtol=rtol, atol=atol, events=events,
+                         dense_output=True, max_step=max_step)
+
+
+def _until_separation(system, settings, t_max, max_t):
+    """(solution, last horizon): the horizon doubles from ``t_max`` up to ``max_t`` (s) until the
+    separation event fires or the solver fails."""
+    y0 = np.zeros(4 + system.nq)
     t_end = t_max
-    sol = None
     while True:
-        # scipy's finite-difference Jacobian (Radau/BDF) probes far enough on very stiff cases to
-        # overflow in a product it then discards; the solution is checked for finiteness below
-        with np.errstate(over="ignore", invalid="ignore"):
-            sol = solve_ivp(rhs, (0.0, t_end), y0, method=method, rtol=rtol, atol=atol, events=event,
-                            dense_output=True, max_step=tc / 20)
+        sol = _solve(system, y0, (0.0, t_end), settings, events=system.event)
         if sol.status == 1 or not sol.success or t_end >= max_t:
-            break
+            return sol, t_end
         t_end = min(2 * t_end, max_t)
-    wall = time.perf_counter() - t_start
-    res = Result(method=f"ive-{method}" + ("+volterra" if volterra else ""), steps=int(sol.t.size), wall_time=wall, dt=math.nan)
+
+
+def _refusal(sol, method, t_end):
+    """(status, message) when the run has no verdict (failed, non-finite, no separation by ``t_end``),
+    else None."""
     if not sol.success or not np.all(np.isfinite(sol.y)):
-        res.status = "diverged"
-        res.message = f"solve_ivp({method}) failed: {sol.message}" if not sol.success else "non-finite state"
-        return res
+        return "diverged", f"solve_ivp({method}) failed: {sol.message}" if not sol.success else "non-finite state"
     if sol.status != 1:
-        res.status = "step-budget"
-        res.message = (f"stopped by the time budget before a verdict: the contact force had not returned to zero "
-                       f"at T_max = {t_end:.6g} s")
-        return res
+        return "step-budget", (f"stopped by the time budget before a verdict: the contact force had not "
+                               f"returned to zero at T_max = {t_end:.6g} s")
+    return None
+
+
+def _record(res, system, sol):
+    """The scalars at separation into ``res``; s_max and F_max from the accepted steps, which bracket the
+    peak, refined on the dense output."""
+    m, v0, nq = system.m, system.v0, system.nq
     t0 = float(sol.t_events[0][0])
     y = sol.y_events[0][0]
-    _F0, g0, _, J0 = parts(t0, y)
+    _F0, g0, _, J0 = system.parts(t0, y)
     z0 = v0 - J0 / m
     w_h, w_z = y[2 + nq], y[3 + nq]
     e_in = 0.5 * m * v0**2
-    # s_max, F_max: the accepted steps bracket the peak, the dense output refines it
     ts = sol.t
-    Fs = np.array([parts(tt, yy)[0] for tt, yy in zip(ts, sol.y.T)])
-    s_max = peak(ts, sol.y[0], lambda x: sol.sol(x)[0])
-    f_max = peak(ts, Fs, lambda x: parts(x, sol.sol(x))[0])
+    Fs = np.array([system.parts(tt, yy)[0] for tt, yy in zip(ts, sol.y.T)])
     res.t0 = t0
     res.cor = abs(g0) / v0
     res.s_residual = float(y[0])
@@ -163,27 +194,63 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
     res.omega_min = 2 * math.pi / t0
     res.sphere_velocity = float(z0)
     res.energy_residual = float((e_in - 0.5 * m * z0 * z0 - w_z) / e_in)
-    res.s_max = s_max
-    res.f_max = f_max
+    res.s_max = peak(ts, sol.y[0], lambda x: sol.sol(x)[0])
+    res.f_max = peak(ts, Fs, lambda x: system.parts(x, sol.sol(x))[0])
+
+
+def _ghost(system, sol, settings, ghost, n):
+    """(times, states, message) past separation t0 up to t0 (1 + ghost) without the event (the "ghost"
+    solution, for plots); the message says where a failed continuation stopped ("" otherwise)."""
+    t0 = float(sol.t_events[0][0])
+    y = sol.y_events[0][0]
+    t1 = t0 * (1.0 + ghost)
+    sol2 = _solve(system, y, (t0, t1), settings)
+    message = ""
+    if not sol2.success:
+        t1 = float(sol2.t[-1])
+        message = (f"ghost continuation stopped at t = {t1:.6g} s (requested {t0 * (1 + ghost):.6g} s): "
+                   f"solve_ivp({settings[0]}): {sol2.message}")
+    tg = np.linspace(t0, t1, max(2, int(n * ghost)))[1:]
+    states = sol2.sol(tg) if sol2.sol is not None else np.full((y.size, tg.size), np.nan)
+    return tg, states, message
+
+
+def _history(res, system, sol, settings, ghost, alpha):
+    """The time histories on [0, t0] (and the ghost continuation) into ``res``."""
+    t0 = res.t0
+    n = max(400, sol.t.size)
+    tt = np.linspace(0.0, t0, n)
+    Y = sol.sol(tt)
+    if ghost > 0:
+        tg, states, message = _ghost(system, sol, settings, ghost, n)
+        if message:
+            res.message = message
+        tt = np.concatenate([tt, tg])
+        Y = np.concatenate([Y, states], axis=1)
+    PF = np.array([system.parts(a, yy) for a, yy in zip(tt, Y.T)])
+    F, g, J = PF[:, 0], PF[:, 1], Y[1]
+    v0, m = system.v0, system.m
+    res.history = Histories(t=tt, s=Y[0], sdot=g, F=F, J=J, zdot=v0 - J / m, U=alpha(tt) * J).mark(t0)
+
+
+def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",
+                  volterra=False, c2=1.0):
+    """Internal-variable solver with ``solve_ivp`` (options validated by ``SolverOptions``). With
+    ``volterra`` the second-order term for the Prony kernel is separable,
+    c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing and is an
+    independent check of the direct solver's O(N^2) Volterra sums."""
+    system = _System.of(impact, rule, volterra, c2)
+    settings = (method, rtol, system.atol(rtol, tc), tc / 20)
+    t_start = time.perf_counter()
+    sol, t_end = _until_separation(system, settings, t_max, max_t)
+    wall = time.perf_counter() - t_start
+    res = Result(method=f"ive-{method}" + ("+volterra" if volterra else ""), steps=int(sol.t.size), wall_time=wall,
+                 dt=math.nan)
+    refusal = _refusal(sol, method, t_end)
+    if refusal is not None:
+        res.status, res.message = refusal
+        return res
+    _record(res, system, sol)
     if history:
-        n = max(400, ts.size)
-        t1 = t0 * (1.0 + ghost)
-        tt = np.linspace(0.0, t0, n)
-        Y = sol.sol(tt)
-        if ghost > 0:
-            # continue past t0 (the "ghost" solution) without the event
-            with np.errstate(over="ignore", invalid="ignore"):
-                sol2 = solve_ivp(rhs, (t0, t1), y, method=method, rtol=rtol, atol=atol, dense_output=True,
-                                 max_step=tc / 20)
-            if not sol2.success:
-                t1 = float(sol2.t[-1])
-                res.message = (f"ghost continuation stopped at t = {t1:.6g} s (requested {t0 * (1 + ghost):.6g} s): "
-                               f"solve_ivp({method}): {sol2.message}")
-            tg = np.linspace(t0, t1, max(2, int(n * ghost)))[1:]
-            tt = np.concatenate([tt, tg])
-            Y = np.concatenate([Y, sol2.sol(tg) if sol2.sol is not None else np.full((y.size, tg.size), np.nan)],
-                               axis=1)
-        PF = np.array([parts(a, yy) for a, yy in zip(tt, Y.T)])
-        F, g, J = PF[:, 0], PF[:, 1], Y[1]
-        res.history = Histories(t=tt, s=Y[0], sdot=g, F=F, J=J, zdot=v0 - J / m, U=alpha(tt) * J).mark(t0)
+        _history(res, system, sol, settings, ghost, impact.alpha)
     return res
