@@ -113,7 +113,17 @@ def read_cor_data(path) -> CorData:
 
 def scaled(material, modulus_scale: float = 1.0, log_aT: float = 0.0):
     """``material`` with every modulus times ``modulus_scale`` and time stretched by a_T = 10^log_aT:
-    E(t) -> modulus_scale E(t / a_T) (:meth:`vcor.materials.Material.scaled`)."""
+    E(t) -> modulus_scale E(t / a_T) (:meth:`vcor.materials.Material.scaled`).
+
+    Examples
+    --------
+    >>> from vcor import materials
+    >>> from vcor.fitting.calibrate import scaled
+    >>> sls = materials.get("sls")
+    >>> slow = scaled(sls, modulus_scale=2.0, log_aT=1.0)
+    >>> round(float(slow.relaxation_modulus(1e-2) / sls.relaxation_modulus(1e-3)), 12)
+    2.0
+    """
     return material.scaled(modulus_scale, 10.0 ** float(log_aT))
 
 
@@ -330,7 +340,20 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
               where: str = "free") -> Calibration:
     """Fit the ``free`` parameters (name -> [lower, upper]) of ``material`` (its values are the start) to
     ``data`` (module docstring). ``geometry``: keywords of ``vcor.simulate``; ``options``: solver options
-    (default: ``adaptive``, as everywhere)."""
+    (default: ``adaptive``, as everywhere).
+
+    Examples
+    --------
+    Four measured COR values (here: the SLS preset with its time scale stretched by a_T = 10^0.3,
+    rounded to two digits), and the time scale of the preset fitted to them:
+
+    >>> import numpy as np
+    >>> from vcor.fitting.calibrate import CorData, calibrate
+    >>> data = CorData(np.array([0.5, 1.0, 2.0, 4.0]), np.array([0.53, 0.54, 0.56, 0.56]), np.full(4, 0.01))
+    >>> cal = calibrate(data, "sls", {"log_aT": [-1.0, 1.0]})
+    >>> cal.names, f"{cal.estimate[0]:.2f} +- {cal.stderr[0]:.2f}", bool(cal.identified[0])
+    (['log_aT'], '0.30 +- 0.01', True)
+    """
     from scipy.stats import norm
     from scipy.stats import t as student_t
 
@@ -363,7 +386,17 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
 def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(COR, lower, upper) of the fitted curve at ``v0s`` (m/s) with the 95 % band from the parameters'
     covariance (linearised; directions not identified are left out, so the band is then too narrow: the
-    dataset flags them)."""
+    dataset flags them).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from vcor.fitting.calibrate import CorData, band, calibrate
+    >>> data = CorData(np.array([0.5, 1.0, 2.0, 4.0]), np.array([0.53, 0.54, 0.56, 0.56]), np.full(4, 0.01))
+    >>> cor, lower, upper = band(calibrate(data, "sls", {"log_aT": [-1.0, 1.0]}), [1.0, 3.0])
+    >>> np.round(cor, 3), np.round(upper - lower, 3)
+    (array([0.543, 0.561]), array([0.02 , 0.018]))
+    """
     from scipy.stats import norm
     from scipy.stats import t as student_t
 
