@@ -349,7 +349,8 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
 
     >>> import numpy as np
     >>> from vcor.fitting.calibrate import CorData, calibrate
-    >>> data = CorData(np.array([0.5, 1.0, 2.0, 4.0]), np.array([0.53, 0.54, 0.56, 0.56]), np.full(4, 0.01))
+    >>> data = CorData(v0=np.array([0.5, 1.0, 2.0, 4.0]), cor=np.array([0.53, 0.54, 0.56, 0.56]),
+    ...                cor_std=np.full(4, 0.01))
     >>> cal = calibrate(data, "sls", {"log_aT": [-1.0, 1.0]})
     >>> cal.names, f"{cal.estimate[0]:.2f} +- {cal.stderr[0]:.2f}", bool(cal.identified[0])
     (['log_aT'], '0.30 +- 0.01', True)
@@ -392,7 +393,8 @@ def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     --------
     >>> import numpy as np
     >>> from vcor.fitting.calibrate import CorData, band, calibrate
-    >>> data = CorData(np.array([0.5, 1.0, 2.0, 4.0]), np.array([0.53, 0.54, 0.56, 0.56]), np.full(4, 0.01))
+    >>> data = CorData(v0=np.array([0.5, 1.0, 2.0, 4.0]), cor=np.array([0.53, 0.54, 0.56, 0.56]),
+    ...                cor_std=np.full(4, 0.01))
     >>> cor, lower, upper = band(calibrate(data, "sls", {"log_aT": [-1.0, 1.0]}), [1.0, 3.0])
     >>> np.round(cor, 3), np.round(upper - lower, 3)
     (array([0.543, 0.561]), array([0.02 , 0.018]))
