@@ -18,3 +18,6 @@ with job_log(smk) as log:
     runs = count(len(h["runs"]), "time history", "time histories")
     log.note(f"solved {runs} of scene {smk.wildcards.scene} at v0 = {h['v0']:g} m/s: "
              f"{summary.outcome_of(ds).text()}; {smk.output[0]}")
+    for run, reasons in zip(ds["run"].values, ds["validity_message"].values):
+        if reasons:  # the dataset's validity flags of this run, in words
+            log.note(f"{run} flagged: {reasons}", timed=False)
