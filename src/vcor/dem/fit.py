@@ -39,7 +39,7 @@ __all__ = ["B_RANGE", "Collision", "collision", "fit_laws"]
 B_RANGE = (1e-6, 100.0)
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Collision:
     """vcor's COR of one collision at the speeds ``v0`` (m/s), with ``status`` and ``message`` per
     speed, ``t0`` (s), and its DEM :class:`~vcor.dem.laws.Contact` (module docstring); ``v_ref`` is
@@ -71,8 +71,9 @@ def _contact(a, b, target, t_ref: float, v_ref: float) -> Contact:
     g = impact.geometry
     e_eff = impact.kappa * float(impact.material.modulus_at(t_ref / 4.0)) / (4.0 / 3.0 * math.sqrt(g.r))
     if b is not None:
-        return Contact("pair", impact.m, g.r, e_eff, a.nu, (a.size, b.size), (a.rho, b.rho))
-    return Contact("wall", impact.m, g.r, e_eff, a.nu, (a.size,), (a.rho,))
+        return Contact(kind="pair", m_eff=impact.m, r_eff=g.r, e_eff=e_eff, nu=a.nu, radii=(a.size, b.size),
+                       densities=(a.rho, b.rho))
+    return Contact(kind="wall", m_eff=impact.m, r_eff=g.r, e_eff=e_eff, nu=a.nu, radii=(a.size,), densities=(a.rho,))
 
 
 def collision(material, v0, *, sphere: dict | None = None, target="rigid", options: dict | None = None) -> Collision:
@@ -91,8 +92,8 @@ def collision(material, v0, *, sphere: dict | None = None, target="rigid", optio
         raise ValueError(f"no speed of the collision ended ok: {results[0].status}: {results[0].message}")
     near = int(np.argmin(np.where(ok, np.abs(np.log(v0 / v_ref)), np.inf)))
     contact = _contact(a, b, target, float(t0[near]), v_ref)
-    return Collision(v0, cor, t0, [r.status for r in results], [r.message for r in results], contact, v_ref,
-                     [r.validity for r in results])
+    return Collision(v0=v0, cor=cor, t0=t0, status=[r.status for r in results], message=[r.message for r in results],
+                     contact=contact, v_ref=v_ref, validity=[r.validity for r in results])
 
 
 def _fit_dissipation(contact: Contact, v0, cor) -> float:

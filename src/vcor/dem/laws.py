@@ -88,7 +88,7 @@ PARAMETERS = {
 }
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class Contact:
     """One DEM collision (module docstring): ``kind`` ``pair`` or ``wall``; ``m_eff`` (kg), ``r_eff``
     (m), ``e_eff`` (Pa), ``nu``; the spheres' radii (m) and densities (kg/m^3) for a deck (the

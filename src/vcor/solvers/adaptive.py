@@ -89,7 +89,7 @@ def solve(impact, options, tc, history):
                         extrapolate=options.richardson)
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class Tables:
     """Level tables of one (material, step range, horizon): ``levels`` (the kernel record,
     :class:`~._records.LevelTables`), the plate modulus's constant ``e_inf`` (Pa), its modes'
@@ -136,8 +136,8 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     # the newest step: the material's own kernel (for Prony kinds the same terms as the sum)
     i0, m0 = mat.first_step(hl)
     levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live)
-    return Tables(levels, float(e_inf), np.concatenate(([0.0], e)), np.concatenate(([0.0], b * e)), rep.n_terms,
-                  rep.checked_error)
+    return Tables(levels=levels, e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
+                  rate_moduli=np.concatenate(([0.0], b * e)), n_terms=rep.n_terms, soe_error=rep.checked_error)
 
 
 def _grown(a, n):
@@ -182,7 +182,7 @@ def _body(impact) -> tuple:
 _STOPS = {"force": tuple(Stop(0, N_EXTRA)), "overlap": tuple(Stop(1, N_EXTRA))}
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class _Grid:
     """One march's grid: h_base (s), the contact-time estimate tc (s), split (0, 1, 2: the grid,
     halved, quartered), an optional fixed level and a replayed level plan."""
@@ -232,7 +232,7 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
         if not (state[STATUS] == STATUS_END and state[SEPARATION] < 0 and t[n_done] >= horizon
                 and factor < MAX_HORIZON):
             step = float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan
-            march = March(arr, state, n_done, step, t=t, note=_ghost_note(state, t, n_done),
+            march = March(arrays=arr, state=state, n_done=n_done, dt=step, t=t, note=_ghost_note(state, t, n_done),
                           budget=_budget_text(t, n_done, horizon, factor, max_steps))
             return march, lev, horizon, factor
         factor *= 32.0
@@ -302,7 +302,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
             return res
     kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol, "kind": kind}
     last_history = history and not extrapolate
-    march, lev, _, factor = _march(impact, _Grid(h_base, tc, fixed_level=fixed_level), HORIZON_START,
+    march, lev, _, factor = _march(impact, _Grid(h_base=h_base, tc=tc, fixed_level=fixed_level), HORIZON_START,
                                    ghost=ghost if last_history else 0.0, **kw)
     march.wall = time.perf_counter() - t_start
     coarse = finish(impact, march, rule=rule, history=last_history, method="adaptive")
@@ -312,7 +312,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     runs = [coarse]
     for shift in (1, 2):
         last = history and shift == SPLIT_LEVELS
-        grid = _Grid(h_base, tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
+        grid = _Grid(h_base=h_base, tc=tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
         march, _, _, factor = _march(impact, grid, factor, ghost=ghost if last else 0.0,
                                      **{**kw, "max_steps": 2**shift * max_steps})
         march.wall = time.perf_counter() - t_start

@@ -148,7 +148,7 @@ def run_paper(impact, dt, n_steps, *, max_steps, rule="force", history=False):
         if state[STATUS] != STATUS_END or n >= max_steps:
             break
         n = min(2 * n, max_steps)
-    march = March(arr, state, int(state[LAST]), dt, wall=time.perf_counter() - t_start,
+    march = March(arrays=arr, state=state, n_done=int(state[LAST]), dt=dt, wall=time.perf_counter() - t_start,
                   budget=f"stopped by the step budget before a verdict ({n} steps of dt = {dt:.3g} s, max_steps "
                          f"{max_steps}); method paper is a benchmark baseline: use method adaptive")
     return finish(impact, march, rule=rule, history=history, method="paper-explicit")

@@ -149,10 +149,10 @@ def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
               f"and paper, {LINEAR_MAX_T_FACTOR:g} for soe, ive-numba and ive); s_max and f_max are over that "
               f"window. To reach a verdict use method adaptive (it solves long contacts such as thin plates), or "
               f"raise max_steps")
-    return March(arr, state, n_done, dt, note=note, budget=budget)
+    return March(arrays=arr, state=state, n_done=n_done, dt=dt, note=note, budget=budget)
 
 
-@dataclass
+@dataclass(kw_only=True)
 class March:
     """What a march leaves for :func:`finish`: the node ``arrays``, the ``state`` (``_records``), the
     last node ``n_done``, the step ``dt`` (s; the largest step on a variable grid), the time grid ``t``

@@ -31,7 +31,7 @@ __all__ = ["Outcome", "outcome_of", "read_outcome", "run_summary"]
 _OK = _status.code("ok")
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class Outcome:
     """Counts of a set of results: ``points`` in all; ``ok`` (status ok, no validity flag);
     ``flagged`` (status ok with a flag) and ``reasons`` (flag name -> points carrying it); ``failed``
