@@ -11,10 +11,10 @@ import pytest
 xr = pytest.importorskip("xarray")
 pytest.importorskip("matplotlib")
 
-from vcor import plots  # noqa: E402
-from vcor.io import netcdf  # noqa: E402
-from vcor.solvers import validity  # noqa: E402
-from vcor.study import datasets, summary  # noqa: E402
+from vcor import plots
+from vcor.io import netcdf
+from vcor.solvers import validity
+from vcor.study import datasets, summary
 
 FLAGGED, VALID = "sls/adaptive", "butyl-fc/adaptive"
 LARGE = validity.FLAGS["large_indentation"]

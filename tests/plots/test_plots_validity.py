@@ -9,9 +9,9 @@ import pytest
 xr = pytest.importorskip("xarray")
 pytest.importorskip("matplotlib")
 
-from vcor import plots, status  # noqa: E402
-from vcor.plots import common  # noqa: E402
-from vcor.solvers import validity  # noqa: E402
+from vcor import plots, status
+from vcor.plots import common
+from vcor.solvers import validity
 
 LARGE = validity.FLAGS["large_indentation"]
 FAST = validity.FLAGS["fast_impact"]

@@ -10,8 +10,8 @@ from .. import spheres as S
 from .. import status as _status
 from ..fitting.calibrate import bridges_ice, fit_g_star
 from ..materials.catalogue import Catalogue
-from ..solvers.common import LONG_NAMES, UNITS
 from ..solvers import validity as _validity
+from ..solvers.common import LONG_NAMES, UNITS
 from ..solvers.options import solver_options
 from ..solvers.simulate import simulate
 
