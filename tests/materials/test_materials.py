@@ -53,7 +53,7 @@ def test_step_integrals_and_moments_against_mpmath(name):
             # integrand to order one (mpmath's quad has an absolute error floor: at t = 0.4 s the SLS
             # transient is 1e-209 and unscaled quadrature is off by 5e-11)
             f, scale = MP_TRANSIENT[name], MP_TRANSIENT[name](mid)
-            v_ref = scale * mp.quad(lambda t: f(t) / scale * (t - mid), [a, mid, b])
+            v_ref = scale * mp.quad(lambda t, f=f, scale=scale, mid=mid: f(t) / scale * (t - mid), [a, mid, b])
             worst_w = max(worst_w, abs(float((W[i] - w_ref) / w_ref)))
             worst_v = max(worst_v, abs(float((V[i] - v_ref) / v_ref)))
     print(f"\n{name}: max relative error W {worst_w:.1e}, V {worst_v:.1e}")
@@ -77,7 +77,7 @@ def test_first_step_is_the_first_step_integral_and_moment(name):
 def test_second_antiderivative_against_mpmath(name):
     mat, E = M.get(name), MP_E[name]
     for t in (1e-6, 3e-4):
-        ref = mp.quad(lambda s: (mp.mpf(t) - s) * E(s), [0, mp.mpf(t)])  # int_0^t (t - s) E(s) ds
+        ref = mp.quad(lambda s, t=t: (mp.mpf(t) - s) * E(s), [0, mp.mpf(t)])  # int_0^t (t - s) E(s) ds
         assert float(mat.antiderivative(t, 2)) == pytest.approx(float(ref), rel=1e-11)
         assert float(mat.antiderivative(t, 1)) == pytest.approx(float(mp.quad(E, [0, mp.mpf(t)])), rel=1e-11)
 

@@ -108,7 +108,7 @@ def _maxwell():
 
         TITLE: ClassVar[str] = "Maxwell element (a test model)"
         FORMULA: ClassVar[str] = "E(t) = E exp(-t / tau)"
-        PARAMETERS: ClassVar[tuple] = (Parameter("E", "Pa", "glassy modulus"), Parameter("tau", "s", "relaxation time"))
+        PARAMETERS: ClassVar[tuple] = (Parameter(name="E", unit="Pa", meaning="glassy modulus"), Parameter(name="tau", unit="s", meaning="relaxation time"))
 
         E: float
         tau: float
@@ -160,12 +160,12 @@ def _refusal(name, namespace, kind) -> str:
 
 
 def test_a_taken_kind_or_a_model_without_parameters_is_refused():
-    one = {"TITLE": "t", "FORMULA": "f", "PARAMETERS": (Parameter("E", "Pa", "modulus"),)}
+    one = {"TITLE": "t", "FORMULA": "f", "PARAMETERS": (Parameter(name="E", unit="Pa", meaning="modulus"),)}
     assert "material kind 'sls' is already registered by SLS" in _refusal("Again", one, "sls")
     assert "PARAMETERS must be a non-empty tuple" in _refusal("Bare", {"TITLE": "t", "FORMULA": "f"}, "bare-test")
     assert "TITLE and FORMULA" in _refusal("Untitled", {"PARAMETERS": one["PARAMETERS"]}, "untitled-test")
     with pytest.raises(ValueError, match="a unit .* is required"):
-        Parameter("E", None, "modulus")
+        Parameter(name="E", unit=None, meaning="modulus")
     assert not {"bare-test", "untitled-test"} & set(REGISTRY) and REGISTRY["sls"].cls is models.SLS
     assert "material" not in _package_kinds()  # the refused classes are gone
 

@@ -26,8 +26,8 @@ from __future__ import annotations
 
 import functools
 import json
+from collections.abc import Mapping
 from dataclasses import dataclass
-from types import MappingProxyType
 from typing import ClassVar
 
 import numpy as np
@@ -45,7 +45,7 @@ GL_NODES, GL_WEIGHTS = np.polynomial.legendre.leggauss(12)
 PARAMETER_SHAPES = ("scalar", "terms", "material")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Parameter:
     """One parameter of a material model.
 
@@ -76,7 +76,7 @@ class Parameter:
                              f"parameter is a material, got unit {self.unit!r} with shape {self.shape!r}")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Family:
     """A registered material model: its ``kind`` (the name in config specs and material files), its
     class, a one-line ``title``, its relaxation modulus as text (``formula``), its ``parameters`` and
@@ -107,9 +107,28 @@ class Family:
         raise ValueError(f"a {self.kind} material has no parameter {name!r}; allowed: {list(self.names)}")
 
 
+class _Registry(Mapping):
+    """Read-only view of a dict kind -> :class:`Family`, shown as kind -> class name."""
+
+    def __init__(self, families: dict):
+        self._families = families
+
+    def __getitem__(self, kind):
+        return self._families[kind]
+
+    def __iter__(self):
+        return iter(self._families)
+
+    def __len__(self):
+        return len(self._families)
+
+    def __repr__(self):
+        return "{" + ", ".join(f"{k!r}: {f.cls.__name__}" for k, f in self._families.items()) + "}"
+
+
 _REGISTRY: dict = {}
 #: kind -> :class:`Family` of every registered material model (read-only view)
-REGISTRY = MappingProxyType(_REGISTRY)
+REGISTRY = _Registry(_REGISTRY)
 
 
 def _register(cls, kind) -> None:
@@ -124,7 +143,8 @@ def _register(cls, kind) -> None:
     if not cls.__dict__.get("TITLE") or not cls.__dict__.get("FORMULA"):
         raise ValueError(f"{cls.__name__} ({kind}): TITLE and FORMULA must be given in the class body")
     cls.kind = kind
-    _REGISTRY[kind] = Family(kind, cls, cls.TITLE, cls.FORMULA, tuple(params), bool(cls.CONFIGURABLE))
+    _REGISTRY[kind] = Family(kind=kind, cls=cls, title=cls.TITLE, formula=cls.FORMULA, parameters=tuple(params),
+                             configurable=bool(cls.CONFIGURABLE))
 
 
 def unregister(kind: str) -> None:

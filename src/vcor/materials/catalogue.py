@@ -54,7 +54,7 @@ def _file_material(path: str, mtime_ns: int) -> Material:
     return from_file(path)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Catalogue:
     """Every material a project can name (module docstring). ``specs``: config materials (name ->
     spec); ``fits``: fit specs (name -> spec, names expanded); ``calibrations``: calibration specs;

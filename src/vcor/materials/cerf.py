@@ -65,9 +65,9 @@ class Cerf(Material, kind="cerf"):
 
     TITLE: ClassVar[str] = "Mittag-Leffler, order 1/2 (CERF), Green 2026 Eq. 24"
     FORMULA: ClassVar[str] = "E(t) = E0 + E1 erfcx(b1 sqrt(t))"
-    PARAMETERS: ClassVar[tuple] = (Parameter("E0", "Pa", "rubbery modulus"),
-                                   Parameter("E1", "Pa", "relaxing part (glassy modulus E0 + E1)"),
-                                   Parameter("b1", "s-0.5", "rate parameter (b1^2 is a rate)"))
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E0", unit="Pa", meaning="rubbery modulus"),
+                                   Parameter(name="E1", unit="Pa", meaning="relaxing part (glassy modulus E0 + E1)"),
+                                   Parameter(name="b1", unit="s-0.5", meaning="rate parameter (b1^2 is a rate)"))
 
     E0: float
     E1: float

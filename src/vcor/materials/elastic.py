@@ -19,7 +19,7 @@ class Elastic(Prony, kind="elastic"):
 
     TITLE: ClassVar[str] = "elastic"
     FORMULA: ClassVar[str] = "E(t) = E"
-    PARAMETERS: ClassVar[tuple] = (Parameter("E", "Pa", "elastic modulus"),)
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E", unit="Pa", meaning="elastic modulus"),)
 
     def __init__(self, E: float):
         object.__setattr__(self, "E_inf", _positive("E", E, unit="Pa"))

@@ -31,10 +31,10 @@ class EqOne(Material, kind="eq1"):
 
     TITLE: ClassVar[str] = "two bodies' plane-strain moduli combined pointwise, Green 2026 Eq. 1"
     FORMULA: ClassVar[str] = "E'(t) = c_a E_a(t) c_b E_b(t) / (c_a E_a(t) + c_b E_b(t))"
-    PARAMETERS: ClassVar[tuple] = (Parameter("a", None, "body a's material", "material"),
-                                   Parameter("c_a", "1", "plane-strain factor 1/(1 - nu_a^2)"),
-                                   Parameter("b", None, "body b's material", "material"),
-                                   Parameter("c_b", "1", "plane-strain factor 1/(1 - nu_b^2)"))
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="a", unit=None, meaning="body a's material", shape="material"),
+                                   Parameter(name="c_a", unit="1", meaning="plane-strain factor 1/(1 - nu_a^2)"),
+                                   Parameter(name="b", unit=None, meaning="body b's material", shape="material"),
+                                   Parameter(name="c_b", unit="1", meaning="plane-strain factor 1/(1 - nu_b^2)"))
     #: made from two bodies, never named by a config spec
     CONFIGURABLE: ClassVar[bool] = False
 

@@ -47,7 +47,7 @@ __all__ = ["SOE", "fractional_bound", "soe"]
 CHECKS_PER_PERIOD = 32
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SOE:
     """An exponential-sum representation: ``material`` (a Prony with E(inf) + slow-mode constant,
     moduli E_k in Pa, rates beta_k in 1/s), the interval [t_min, t_max] in s, the a-priori bound
@@ -114,8 +114,8 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10) -> SOE:
     tol = number("tol", tol, 1e-15, 1e-2, unit="(relative)")
     if material.is_prony:
         e_inf, e, b = material.prony_terms()
-        return SOE(_materials.Prony(float(e_inf), tuple(map(float, e)), tuple(map(float, b))), t_min, t_max,
-                   0.0, 0.0, True)
+        return SOE(material=_materials.Prony(float(e_inf), tuple(map(float, e)), tuple(map(float, b))), t_min=t_min,
+                   t_max=t_max, bound=0.0, checked_error=0.0, exact=True)
     return _soe_cached(material, math.floor(math.log2(t_min)), math.ceil(math.log2(t_max)), tol)
 
 
@@ -141,4 +141,4 @@ def _soe_cached(material, lo: int, hi: int, tol: float) -> SOE:
     if not checked <= tol:
         raise ValueError(f"SOE of {material.kind!r} on [{t_min:g}, {t_max:g}] s: relative error {checked:.2e} "
                          f"exceeds tol = {tol:g}")
-    return SOE(approx, t_min, t_max, bound, checked, False)
+    return SOE(material=approx, t_min=t_min, t_max=t_max, bound=bound, checked_error=checked, exact=False)

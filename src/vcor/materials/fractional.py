@@ -33,8 +33,8 @@ class FractionalPower(Material, kind="fractional"):
 
     TITLE: ClassVar[str] = "fractional, order 1/2 (Bagley-Torvik), Green 2026 Eq. 23"
     FORMULA: ClassVar[str] = "E(t) = E0 + E1 / sqrt(pi t)"
-    PARAMETERS: ClassVar[tuple] = (Parameter("E0", "Pa", "rubbery modulus"),
-                                   Parameter("E1", "Pa s0.5", "fractional coefficient"))
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E0", unit="Pa", meaning="rubbery modulus"),
+                                   Parameter(name="E1", unit="Pa s0.5", meaning="fractional coefficient"))
 
     E0: float
     E1: float

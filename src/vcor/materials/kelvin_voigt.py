@@ -31,8 +31,8 @@ class KelvinVoigt(Material, kind="kelvin-voigt"):
 
     TITLE: ClassVar[str] = "Kelvin-Voigt, Ramirez et al. 1999 Eq. 3 (A = tau)"
     FORMULA: ClassVar[str] = "E(t) = E [1 + tau delta(t)]"
-    PARAMETERS: ClassVar[tuple] = (Parameter("E", "Pa", "elastic modulus"),
-                                   Parameter("tau", "s", "retardation time"))
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E", unit="Pa", meaning="elastic modulus"),
+                                   Parameter(name="tau", unit="s", meaning="retardation time"))
 
     E: float
     tau: float

@@ -53,9 +53,9 @@ class Prony(Material, kind="prony"):
 
     TITLE: ClassVar[str] = "generalised Maxwell (Prony series)"
     FORMULA: ClassVar[str] = "E(t) = E_inf + sum_i E_i exp(-beta_i t)"
-    PARAMETERS: ClassVar[tuple] = (Parameter("E_inf", "Pa", "rubbery (equilibrium) modulus"),
-                                   Parameter("E", "Pa", "term moduli", "terms"),
-                                   Parameter("beta", "s-1", "relaxation rates (1/tau)", "terms"))
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E_inf", unit="Pa", meaning="rubbery (equilibrium) modulus"),
+                                   Parameter(name="E", unit="Pa", meaning="term moduli", shape="terms"),
+                                   Parameter(name="beta", unit="s-1", meaning="relaxation rates (1/tau)", shape="terms"))
 
     E_inf: float
     E: tuple = ()

@@ -32,9 +32,9 @@ class SLS(Prony, kind="sls"):
 
     TITLE: ClassVar[str] = "standard linear solid (Zener), Green 2026 Eq. 13"
     FORMULA: ClassVar[str] = "E(t) = E_glassy [alpha/beta + (1 - alpha/beta) exp(-beta t)]"
-    PARAMETERS: ClassVar[tuple] = (Parameter("E_glassy", "Pa", "glassy modulus E(0)"),
-                                   Parameter("alpha", "s-1", "rate with rubbery modulus E_glassy alpha/beta"),
-                                   Parameter("beta", "s-1", "relaxation rate"))
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E_glassy", unit="Pa", meaning="glassy modulus E(0)"),
+                                   Parameter(name="alpha", unit="s-1", meaning="rate with rubbery modulus E_glassy alpha/beta"),
+                                   Parameter(name="beta", unit="s-1", meaning="relaxation rate"))
 
     E_glassy: float = 0.0
     alpha: float = 0.0

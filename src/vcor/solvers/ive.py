@@ -69,7 +69,7 @@ def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False
     return finish(impact, march, rule=rule, history=history, method="ive-numba")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class _System:
     """The IVE system of ``run_ive_scipy`` as ``solve_ivp`` sees it: state y = (s, J, Q_1..Q_nq, W_h,
     int F z' dt), the contact force and the right-hand side (SI: m, N s, N, J)."""
@@ -90,9 +90,9 @@ class _System:
         g_inf, e, b = prony_terms(impact, "ive")
         kap = impact.kappa
         G = kap * e
-        return cls(kap * g_inf, G, np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0), b,
-                   kap * impact.material.viscosity, impact.m, impact.v0, impact.mobility, rule,
-                   c2 if volterra else None)
+        return cls(G_inf=kap * g_inf, G=G, inv_G=np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0), b=b,
+                   eta=kap * impact.material.viscosity, m=impact.m, v0=impact.v0, mobility=impact.mobility,
+                   rule=rule, c2=c2 if volterra else None)
 
     @property
     def nq(self) -> int:
