@@ -1,16 +1,17 @@
-"""Scaling benchmark: a 1e4-point SLS sweep (v0 x beta) through the workflow against the in-process
-cost of the same points.
+"""Scaling benchmark: SLS sweeps (v0 x beta) through the workflow against the in-process cost of the same
+points, at two sizes: 1e4 points (a few seconds of solver work) and 2e5 points (about a minute).
 
 Per run: a worker (a fresh process with an empty numba cache) times study.runner.run_points on a
-sample of the points, warm (medians of 3 passes after a 5-point untimed call), and the workflow runs
-in a new temporary project (Snakefile, workflow/, profiles/ and a config.yaml of this one scene) with
-an empty numba cache: ``python -m snakemake -j CORES``. The table: in-process cost per point, workflow
-wall time, the summed wall time of the shard jobs (their Snakemake ``benchmark:`` files), the
-workflow's cost per point per core (wall x cores / points) and its ratio to the in-process cost,
-points per second per core, and the cores a 1e6-point sweep needs to finish in one hour. Cells give
-the median over runs (min–max).
+sample of the points, warm (medians of 3 passes after a 5-point untimed call), and for each size the
+workflow runs in a new temporary project (Snakefile, workflow/, profiles/ and a config.yaml of this one
+scene, jobs sized by the config's defaults: vcor.study.cost) with an empty numba cache:
+``python -m snakemake -j CORES``. The table, per size: the jobs planned, the estimated cost per point
+(vcor.study.cost.point_seconds) beside the measured in-process cost, workflow wall time, the summed
+wall time of the shard jobs (their Snakemake ``benchmark:`` files), the workflow's cost per point per
+core (wall x cores / points) and its ratio to the in-process cost, points per second per core, and the
+cores a 1e6-point sweep needs to finish in one hour. Cells give the median over runs (min–max).
 
-Run: python benchmarks/bench_scaling.py [--points-per-job 2500] [--cores 2] [--runs 2] [--quick] [--out FILE]
+Run: python benchmarks/bench_scaling.py [--points-per-job N] [--cores 2] [--runs 2] [--quick] [--out FILE]
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from pathlib import Path
 import timing
 import yaml
 
-from vcor.study import runner, scene
+from vcor.study import cost, runner, scene
 
 ROOT = timing.ROOT
 SCENE = {
@@ -32,10 +33,12 @@ SCENE = {
     "grid": {"v0": {"start": 1, "stop": 100, "step": 1}, "beta": {"start": 100, "stop": 1.0e5, "num": 100, "log": True}},
     "tie": {"alpha": {"to": "beta", "ratio": 0.25}},
 }
-#: --quick: 400 points in 4 jobs of 100
+#: about a minute of one core's solver work: the size from which a run's fixed costs are amortised
+LARGE_SCENE = {**SCENE, "grid": {"v0": {"start": 1, "stop": 200, "step": 1},
+                                 "beta": {"start": 100, "stop": 1.0e5, "num": 1000, "log": True}}}
+#: --quick: 400 points, one size
 QUICK_SCENE = {**SCENE, "grid": {"v0": {"start": 1, "stop": 40, "step": 1},
                                  "beta": {"start": 100, "stop": 1.0e5, "num": 10, "log": True}}}
-QUICK_POINTS_PER_JOB = 100
 
 
 def in_process(sc) -> float:
@@ -46,14 +49,16 @@ def in_process(sc) -> float:
     return timing.warm_median(lambda: runner.run_points(sample, settings), 3) / len(sample) if sample else 0.0
 
 
-def workflow(sc, points_per_job: int, cores: int) -> dict:
+def workflow(sc, points_per_job: int | None, cores: int) -> dict:
     """Wall time (s) of the workflow over ``sc`` in a new project, with its shard jobs' summed wall time."""
     with tempfile.TemporaryDirectory() as d:
         d = Path(d)
         shutil.copy(ROOT / "Snakefile", d / "Snakefile")
         for folder in ("workflow", "profiles"):
             shutil.copytree(ROOT / folder, d / folder)
-        cfg = {"shard_size": points_per_job, "material_dir": "results/materials", "scenes": {"scaling": sc}}
+        cfg = {"material_dir": "results/materials", "scenes": {"scaling": sc}}
+        if points_per_job:
+            cfg["shard_size"] = points_per_job
         (d / "config.yaml").write_text(yaml.safe_dump(cfg))
         proc = timing.run_fresh([sys.executable, "-m", "snakemake", "-j", str(cores), "-q"], cwd=d)
         jobs = sorted((d / "results/scaling/benchmarks/shards").glob("*.tsv"))
@@ -62,35 +67,42 @@ def workflow(sc, points_per_job: int, cores: int) -> dict:
 
 
 def main():
-    p = timing.parser(__doc__, quick=f"400 points (v0 1..40 x 10 beta) in jobs of {QUICK_POINTS_PER_JOB}")
-    p.add_argument("--points-per-job", type=int, default=2500)
+    p = timing.parser(__doc__, quick="400 points, one size")
+    p.add_argument("--points-per-job", type=int, default=None, help="cap the points per job (default: none)")
     p.add_argument("--cores", type=int, default=2)
     args = p.parse_args()
-    sc = QUICK_SCENE if args.quick else SCENE
+    sizes = [QUICK_SCENE] if args.quick else [SCENE, LARGE_SCENE]
     if args.worker:
-        print(json.dumps(in_process(sc)))
+        print(json.dumps(in_process(sizes[0])))
         return
-    per_job = QUICK_POINTS_PER_JOB if args.quick else args.points_per_job
-    n = scene.point_count(sc)
     per_point, runs = [], []
     for _ in range(args.runs):
         per_point.append(timing.fresh_json([sys.executable, __file__, timing.WORKER_FLAG, *timing.quick_flags(args)]))
-        runs.append(workflow(sc, per_job, args.cores))
+        runs.append([workflow(sc, args.points_per_job, args.cores) for sc in sizes])
     c = timing.cell
-    wall = timing.column(runs, "wall")
-    wf_point = [w * args.cores / n for w in wall]
-    rows = [["grid points", n], ["shard jobs (points per job)", f"{runs[0]['jobs']} ({per_job})"],
-            ["in-process cost per point (run_points, warm) [ms]", c(per_point, 1e3)],
-            [f"workflow wall time, -j{args.cores} (DAG, shards, aggregation) [s]", c(wall, 1.0, ".1f")],
-            ["shard jobs, summed job wall time [s]", c(timing.column(runs, "job_s"), 1.0, ".1f")],
-            ["workflow cost per point (wall x cores / points) [ms]", c(wf_point, 1e3)],
-            ["ratio workflow / in-process", c([w / q for w, q in zip(wf_point, per_point)])],
-            ["points per second per core (workflow)", c([1.0 / w for w in wf_point], 1.0, ".0f")],
-            ["cores for 1e6 points in one hour", c([1e6 * w / 3600.0 for w in wf_point], 1.0, ".1f")]]
+    estimate = cost.point_seconds({"material": "sls"}, scene.settings_of(SCENE))
+    columns = []
+    for k, sc in enumerate(sizes):
+        n = scene.point_count(sc)
+        wall = [r[k]["wall"] for r in runs]
+        wf_point = [w * args.cores / n for w in wall]
+        columns.append([n, runs[0][k]["jobs"], f"{estimate * 1e3:.2f}", c(per_point, 1e3), c(wall, 1.0, ".1f"),
+                        c([r[k]["job_s"] for r in runs], 1.0, ".1f"), c(wf_point, 1e3),
+                        c([w / q for w, q in zip(wf_point, per_point)]), c([1.0 / w for w in wf_point], 1.0, ".0f"),
+                        c([1e6 * w / 3600.0 for w in wf_point], 1.0, ".1f")])
+    names = ["grid points", "shard jobs (sized by estimated work)", "estimated cost per point (vcor.study.cost) [ms]",
+             "in-process cost per point (run_points, warm) [ms]",
+             f"workflow wall time, -j{args.cores} (DAG, shards, aggregation) [s]",
+             "shard jobs, summed job wall time [s]", "workflow cost per point (wall x cores / points) [ms]",
+             "ratio workflow / in-process", "points per second per core (workflow)",
+             "cores for 1e6 points in one hour"]
+    rows = [[name, *(col[i] for col in columns)] for i, name in enumerate(names)]
+    headers = ["quantity", *(f"{scene.point_count(sc):.0e} points".replace("e+0", "e") for sc in sizes)]
     timing.publish(args.out, args.runs, [
-        "An SLS sweep (v0 x beta, alpha = beta / 4) through the workflow in a new project with an empty numba "
-        "cache per run, against the warm in-process cost of the same points; cells: median over runs (min–max).",
-        timing.table(["quantity", "value"], rows)])
+        "SLS sweeps (v0 x beta, alpha = beta / 4) through the workflow in a new project with an empty numba "
+        "cache per run, against the warm in-process cost of the same points (measured on a sample of the "
+        "1e4-point grid); cells: median over runs (min–max).",
+        timing.table(headers, rows)])
 
 
 if __name__ == "__main__":
