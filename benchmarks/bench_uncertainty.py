@@ -12,7 +12,8 @@ part is not a timing (the per-seed fit time is printed for information only).
 ``spread``: for each known material, at T_ref (no shift between the data and the impact), the actual
 scatter of the full-data fit's COR over SEEDS noisy data sets beside the median spread of the samples,
 for three ways of making them: the default wild bootstrap, the Bayesian pairs bootstrap, and a
-parametric bootstrap that draws the true noise law (1 % normal on E' and E'') about the full-data fit.
+parametric bootstrap that draws the true noise law (1 % normal on E' and E'') about the full-data fit;
+every sample refitted as the bootstrap refits it, from the full-data fit (vcor.fitting.resample.refit).
 A ratio below 1 that the parametric bootstrap shares says the spread depends on the material itself
 (refits of data from the smoother fitted material vary less than those of the true material's data),
 not on the resampling.
@@ -169,8 +170,7 @@ def spread(args) -> list[str]:
                         "bayesian": lambda: resample.resample(raw, rng, T_ref=WLF[2]),
                         "parametric": lambda: _parametric(res, rng)}
                 for mode, make in draw.items():
-                    cor = [vcor.simulate(dma.fit_dma(make(), WLF[2], smoothing=full.smoothing, start=full).material(),
-                                         V0, rigid=True).cor for _ in range(n)]
+                    cor = [vcor.simulate(resample.refit(make(), full).material(), V0, rigid=True).cor for _ in range(n)]
                     sd[mode].append(np.std(cor, ddof=1))
                 print(f"spread {label}, seed {seed}: error {err[-1]:+.4f}", file=sys.stderr, flush=True)
             actual = float(np.std(err, ddof=1))

@@ -22,6 +22,11 @@ to the per-set shifts).
 instrument's force and displacement signals together with the shifts and the spectrum
 (:func:`vcor.fitting.dma.joint.fit_with_shifts`): the material is then that of the data with the lag
 removed, and the fit's record holds the lag, its standard error and the corrected master curve.
+
+A fit of raw sets also records what a bootstrap of its data starts from (attribute ``bootstrap_start``,
+:func:`full_fit_record`, read back by :func:`full_fit_from_file`): its shifts, lag, smooth spectrum and
+the joint solve's optimum, so that the samples are refitted from this fit without fitting the full
+data again (:mod:`vcor.fitting.resample`).
 """
 
 from __future__ import annotations
@@ -37,11 +42,16 @@ from ..materials.catalogue import FIT_SCALARS
 from ..materials.files import from_file
 from ..materials.presets import get as _preset
 from . import dma
-from .dma.laws import SHIFT_LAWS
+from .dma.joint import JointStart
+from .dma.laws import SHIFT_LAWS, arrhenius_fit, wlf_fit
+from .dma.pipeline import MODES_PER_DECADE
+from .spectrum.modes import reduce_modes
+from .spectrum.smooth import SpectrumFit
 from .prony import FitData, FitResult, bagley_torvik_data, fit, metrics
 
-__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "SHIFT_MODELS", "check_fit_spec", "data_from_spec", "expand_fits", "metrics_table", "result_dataset", "run_fit",
-           "scene_metrics_table"]
+__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "SHIFT_MODELS", "START_ATTR", "check_fit_spec", "data_from_spec",
+           "expand_fits", "full_fit_from_file", "full_fit_from_record", "full_fit_record", "metrics_table", "result_dataset",
+           "run_fit", "scene_metrics_table"]
 
 
 def expand_fits(fits: dict, where: str = "fits") -> dict:
@@ -243,8 +253,87 @@ def _run_sets(raw, shifts, d, T_ref, shift_model):
                                       "data": "the master curve is the measured data times exp(-i 2 pi f lag)"}
     result, data = _measured_result(fitted.material(), mc, d, settings, t_start)
     attrs = {"shift": json.dumps(shift.to_dict()),
-             "superposition": _superposition_attrs(fitted, mc, shift, shift_model)}
+             "superposition": _superposition_attrs(fitted, mc, shift, shift_model),
+             START_ATTR: json.dumps(full_fit_record(fitted))}
     return result, data, attrs
+
+
+#: attribute of a measured-data fit's material file that holds :func:`full_fit_record`
+START_ATTR = "bootstrap_start"
+
+
+def _spectrum_record(sp) -> dict:
+    return {"tau_s": sp.tau.tolist(), "E_Pa": sp.E.tolist(), "E_inf_Pa": float(sp.E_inf), "lam": float(sp.lam),
+            "method": sp.method, "f_range_Hz": [float(x) for x in sp.f_range], "notes": list(sp.notes)}
+
+
+def full_fit_record(fitted) -> dict:
+    """What a bootstrap starts from, of a fit of raw sets (:class:`vcor.fitting.dma.pipeline.DMAFit`), as
+    plain JSON-ready values (floats exact): temperatures [deg C], shifts and their standard errors
+    [decades], the lag and its standard error [s], the smooth spectrum (relaxation times [s], moduli
+    [Pa], lambda, frequency range [Hz]) and, when the fit ran the joint solve, that solve's optimum
+    (grid, spectrum, lag), lambda, which parameters it fitted and its diagnostics. The lambda scan's
+    table, the metrics and the timings are left out (:func:`full_fit_from_record`)."""
+    joint = fitted.joint
+    record = {"T_degC": fitted.T.tolist(), "T_ref_degC": float(fitted.T_ref), "log_aT": fitted.log_aT.tolist(),
+              "log_aT_std": np.asarray(fitted.log_aT_std, float).tolist(), "lag_s": float(fitted.lag),
+              "lag_std_s": float(fitted.lag_std), "notes": list(fitted.notes),
+              "spectrum": _spectrum_record(fitted.spectrum), "joint": None}
+    if joint is not None:
+        sol = joint.solution
+        record["joint"] = {
+            "start": {"tau_s": sol.tau.tolist(), "E_Pa": sol.E.tolist(), "E_inf_Pa": float(sol.E_inf),
+                      "lag_s": float(sol.lag)},
+            "lam_joint": float(joint.lam_joint), "components": [np.asarray(c, float).tolist() for c in joint.components],
+            "free_shifts": bool(joint.free_shifts), "lag_fitted": bool(joint.lag_fitted), "held_set": int(joint.held_set),
+            "at_bound": list(joint.at_bound), "objective": float(joint.objective), "iterations": int(joint.nfev),
+            "cov": np.asarray(joint.cov, float).tolist(), "notes": list(joint.notes)}
+    return record
+
+
+def _spectrum(r: dict) -> SpectrumFit:
+    tau, E = np.array(r["tau_s"], float), np.array(r["E_Pa"], float)
+    return SpectrumFit(tau=tau, E=E, E_inf=float(r["E_inf_Pa"]), h=E / math.log(tau[1] / tau[0]), lam=float(r["lam"]),
+                       method=r["method"], scan={}, metrics={}, f_range=tuple(r["f_range_Hz"]), time=0.0,
+                       notes=list(r["notes"]))
+
+
+def full_fit_from_record(record: dict):
+    """The :class:`vcor.fitting.dma.pipeline.DMAFit` of a :func:`full_fit_record`: its merged modes and shift
+    laws computed again from the spectrum and the shifts (as the fit did); no spline stage, no lambda
+    scan table, metrics or timings."""
+    T, log_aT, std = (np.array(record[k], float) for k in ("T_degC", "log_aT", "log_aT_std"))
+    T_ref, spec = float(record["T_ref_degC"]), _spectrum(record["spectrum"])
+    joint = None
+    if record["joint"] is not None:
+        j, st = record["joint"], record["joint"]["start"]
+        solution = JointStart(tau=np.array(st["tau_s"], float), E_inf=float(st["E_inf_Pa"]),
+                              E=np.array(st["E_Pa"], float), lag=float(st["lag_s"]))
+        joint = dma.JointFit(T=T, log_aT=log_aT, log_aT_std=std if j["free_shifts"] else np.zeros(T.size),
+                             at_bound=list(j["at_bound"]), components=tuple(np.asarray(c) if np.ndim(c) else float(c)
+                                                                            for c in j["components"]),
+                             lam_joint=float(j["lam_joint"]), spectrum=spec, objective=float(j["objective"]),
+                             nfev=int(j["iterations"]), time=0.0, cov=np.array(j["cov"], float), notes=list(j["notes"]),
+                             lag=float(record["lag_s"]), lag_std=float(record["lag_std_s"]),
+                             lag_fitted=bool(j["lag_fitted"]), free_shifts=bool(j["free_shifts"]),
+                             held_set=int(j["held_set"]), solution=solution)
+    return dma.DMAFit(T=T, log_aT=log_aT, log_aT_std=std, T_ref=T_ref, joint=joint, spectrum=spec,
+                      reduced=reduce_modes(spec, MODES_PER_DECADE), wlf=wlf_fit(T, log_aT, T_ref, sigma=std),
+                      arrhenius=arrhenius_fit(T, log_aT, T_ref, sigma=std), notes=list(record["notes"]),
+                      lag=float(record["lag_s"]), lag_std=float(record["lag_std_s"]))
+
+
+def full_fit_from_file(path):
+    """The fit of raw sets that a material file records (:func:`full_fit_from_record`); ValueError naming the
+    file when it holds none (a fit of a master curve or of built-in data, or a file older than the record)."""
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        text = ds.attrs.get(START_ATTR)
+    if text is None:
+        raise ValueError(f"{path}: no attribute {START_ATTR!r}: not a fit of raw DMA sets by this vcor; fit it again "
+                         f"(the workflow's fit_material rule)")
+    return full_fit_from_record(json.loads(text))
 
 
 def data_from_spec(spec: dict) -> FitData:

@@ -28,13 +28,35 @@ within sets, as integer multiplicities (it drops sets: on pyvisco's example 149 
 leave two neighbours with no common E', E'' or tan delta range). Both resample the pairs
 (point, value) and understate the scatter where leverage is high, as above.
 
-Every sample is refitted by :func:`vcor.fitting.dma.pipeline.fit_dma` with the full-data fit's smoothing
-parameters held fixed (spline mu, joint and final lambda) and its spectrum as the start. The spread of
-the samples is the data's: it does not cover the model's own error (linear viscoelasticity,
-horizontal-only shifts, a smooth spectrum) nor a Poisson-ratio choice downstream.
+Every sample is refitted from the full-data fit (:func:`refit`, a *warm start*): the joint solve of
+shifts, lag and spectrum (:func:`vcor.fitting.dma.joint.fit_with_shifts`) starts at the full-data
+fit's optimum (its shifts, lag, and spectrum on its relaxation-time grid) with its smoothing held
+fixed (joint and final lambda), and stops on the same criterion as the full-data fit
+(:data:`vcor.fitting.dma.joint.TOL`); with given shifts and no lag, the smooth spectrum is refitted from
+the full-data one. This is the usual way to bootstrap an iterative estimator: a sample differs from the
+data by a resampled residual of the data's own size, so its optimum lies about a standard error from
+the full-data one, well inside the region where Levenberg-Marquardt converges fast; a cold start
+(start-free shifts, a spectrum from E'') would repeat the path the full-data fit has already taken.
+Davidson & MacKinnon (1999) and Andrews (2002) go further and take only k Newton steps from the
+original estimate. What the warm start can change: where the objective is flat along some direction
+(a valley the data do not inform, such as the spectrum beyond the data's range or a shift traded
+against the lag), a solve stops once the predicted decrease falls below the tolerance, and from the
+full-data optimum that point may lie nearer to it than a cold start's end point would: the samples'
+spread along such a direction can shrink. Whether the band's statistics moved is checked by the
+coverage and spread benchmarks (``python benchmarks/bench_uncertainty.py coverage spread``).
 
-:func:`samples_dataset` fits a measured-data fit spec and ``n`` samples into one dataset with a
-``sample`` dimension; :func:`sample_materials` turns it back into (material, shift function) pairs.
+The spread of the samples is the data's: it does not cover the model's own error (linear
+viscoelasticity, horizontal-only shifts, a smooth spectrum) nor a Poisson-ratio choice downstream.
+
+Sample i's data are the i-th draw of the seed's one random stream (``numpy.random.default_rng(seed)``,
+drawn in sample order), whichever samples a job fits: the samples can be split over jobs
+(:func:`part_indices`) and merged (:func:`merge_samples`) into the dataset one job would write. A sample
+whose data cannot be superposed is drawn again from a stream of its own, ``default_rng([seed, i,
+attempt])``, at most :data:`MAX_REDRAWS` times.
+
+:func:`samples_dataset` fits ``n`` samples (or some of them) of a measured-data fit spec into one dataset
+with a ``sample`` dimension, from the full-data fit's material file (:func:`vcor.fitting.fits.full_fit_from_file`)
+or fitting the full data itself; :func:`sample_materials` turns it back into (material, shift function) pairs.
 """
 
 from __future__ import annotations
@@ -51,15 +73,22 @@ from threadpoolctl import threadpool_limits
 from ..materials.models import Prony
 from ..materials.shift import ShiftFunction
 from . import dma, fits
+from .dma.joint import fit_with_shifts
+from .dma.laws import arrhenius_fit, wlf_fit
+from .dma.pipeline import MODES_PER_DECADE
 from .spectrum.leverage import leverage
+from .spectrum.modes import reduce_modes
 
-__all__ = ["MODES", "WEBB", "Residuals", "bootstrap", "resample", "residuals", "sample_materials", "samples_dataset",
-           "wild_sample"]
+__all__ = ["MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "merge_samples", "part_indices", "refit", "resample",
+           "residuals", "sample_materials", "samples_dataset", "wild_sample"]
 
 #: resampling schemes (the first is the default)
 MODES = ("wild", "bayesian", "classical")
 #: Webb's six-point distribution of the wild weights (mean 0, variance 1)
 WEBB = np.array([-math.sqrt(1.5), -1.0, -math.sqrt(0.5), math.sqrt(0.5), 1.0, math.sqrt(1.5)])
+#: draws of one sample whose data cannot be superposed before the bootstrap gives up (a wild sample keeps the
+#: design, so its sets always overlap; a pairs sample that drops sets may not)
+MAX_REDRAWS = 20
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -192,9 +221,76 @@ def resample(raw, rng, *, T_ref=None, mode="bayesian", min_sets=2):
     return out
 
 
+def part_indices(n: int, part: int, parts: int) -> np.ndarray:
+    """The samples that part ``part`` (0-based) of ``parts`` jobs fits of a bootstrap of ``n``: consecutive
+    blocks of 0..n-1 whose sizes differ by at most one; together the parts hold every sample once."""
+    for key, value, low in (("n", n, 1), ("parts", parts, 1), ("part", part, 0)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+            raise ValueError(f"{key}: an integer >= {low}, got {value!r}")
+    if not part < parts <= n:
+        raise ValueError(f"part {part} of {parts} of {n} samples: need 0 <= part < parts <= n")
+    return np.array_split(np.arange(n), parts)[part]
+
+
+def _size_check(sets, reduced) -> None:
+    n_points = sum(s.f.size for s in sets)
+    if n_points < reduced.n_modes:
+        raise ValueError(f"measured data: {n_points} frequency points are fewer than the {reduced.n_modes} modes of "
+                         f"the merged Prony series: too few data to fit (or resample) a spectrum")
+
+
 @threadpool_limits.wrap(limits=1, user_api="blas")
-def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=None, lag=False):
-    """The full-data fit and ``n`` refits of resampled data (module docstring).
+def refit(data, full):
+    """Resampled data fitted again from the full-data fit (module docstring: warm start).
+
+    Parameters
+    ----------
+    data : mapping, object with ``.columns`` or list of DMASet
+        The resampled sets (:func:`wild_sample`, :func:`resample`).
+    full : DMAFit
+        The full-data fit (:func:`vcor.fitting.dma.pipeline.fit_dma`, or
+        :func:`vcor.fitting.fits.full_fit_from_file`): with a joint solve, the refit starts at its optimum
+        (shifts, lag, spectrum and grid), with its lambdas and its choice of free shifts and lag; without
+        one (given shifts, no lag) the smooth spectrum is refitted at the full-data shifts from the full-data
+        spectrum (shifts found without a joint solve are found again).
+
+    Returns
+    -------
+    DMAFit
+    """
+    if full.joint is None:
+        given = full.log_aT if full.spline_shifts is None else None
+        return dma.fit_dma(data, full.T_ref, log_aT=given, kk_refine=False, smoothing=full.smoothing, start=full)
+    t0 = time.perf_counter()
+    sets, j = dma.split_sets(data), full.joint
+    joint = fit_with_shifts(sets, full.T_ref, full.log_aT, lam=j.lam_joint, final_lam=full.spectrum.lam,
+                            start_spectrum=full.spectrum, start=j.solution, lag=j.lag_fitted, free_shifts=j.free_shifts)
+    reduced = reduce_modes(joint.spectrum, MODES_PER_DECADE)
+    _size_check(sets, reduced)
+    T, log_aT, std = joint.T, joint.log_aT, joint.log_aT_std
+    return dma.DMAFit(T=T, log_aT=log_aT, log_aT_std=std, T_ref=full.T_ref, joint=joint, spectrum=joint.spectrum,
+                      reduced=reduced, wlf=wlf_fit(T, log_aT, full.T_ref, sigma=std),
+                      arrhenius=arrhenius_fit(T, log_aT, full.T_ref, sigma=std),
+                      times={"joint": joint.time, "total": time.perf_counter() - t0},
+                      notes=joint.notes + joint.spectrum.notes, lag=joint.lag, lag_std=joint.lag_std)
+
+
+def _checked_indices(n, indices) -> np.ndarray:
+    if not (isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1):
+        raise ValueError(f"the number of bootstrap samples must be an integer >= 1, got {n!r}")
+    if indices is None:
+        return np.arange(n)
+    idx = np.asarray(indices)
+    if not (idx.ndim == 1 and idx.size and np.issubdtype(idx.dtype, np.integer) and idx.min() >= 0 and idx.max() < n
+            and np.unique(idx).size == idx.size):
+        raise ValueError(f"indices: distinct sample numbers in 0..{n - 1}, got {indices!r}")
+    return idx
+
+
+@threadpool_limits.wrap(limits=1, user_api="blas")
+def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, lag=False, full=None, indices=None,
+              max_redraws=MAX_REDRAWS):
+    """The full-data fit and refits of resampled data (module docstring).
 
     Parameters
     ----------
@@ -203,50 +299,61 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, max_failures=N
     T_ref : float
         Reference temperature, deg C.
     n : int
-        Number of samples, >= 1.
+        Number of samples of the bootstrap, >= 1.
     seed : int
         Seed of ``numpy.random.default_rng``.
     mode : "wild", "bayesian" or "classical"
         :func:`wild_sample` or :func:`resample`.
     log_aT : array_like, optional
-        Given shift factors per set (decades): only the spectrum is refitted.
-    max_failures : int, optional
-        Samples that cannot be superposed are redrawn; more than this many (default ``n``) raise.
+        Given shift factors per set (decades): only the spectrum is refitted (without ``full``).
     lag : bool
-        Fit the instrument's time lag in the full-data fit and in every sample
-        (:func:`vcor.fitting.dma.pipeline.fit_dma`).
+        Fit the instrument's time lag in the full-data fit and in every sample (without ``full``;
+        :func:`vcor.fitting.dma.pipeline.fit_dma`).
+    full : DMAFit, optional
+        The full-data fit of ``raw`` (e.g. :func:`vcor.fitting.fits.full_fit_from_file`); default: fitted here.
+    indices : array_like of int, optional
+        The samples to fit (distinct, in 0..n-1; :func:`part_indices`); default all. Sample i is the same
+        whichever others are fitted beside it.
+    max_redraws : int
+        Draws of a sample that cannot be superposed before the error is raised.
 
     Returns
     -------
     full : DMAFit
     samples : list of DMAFit
+        In the order of ``indices``.
     info : dict
-        ``failures`` (reasons of redrawn samples), ``time_per_sample`` (s).
+        ``failures`` ("sample i: reason" of every redrawn sample), ``time_per_sample`` (s), ``indices``.
     """
-    if not (isinstance(n, (int, np.integer)) and n >= 1):
-        raise ValueError(f"the number of bootstrap samples must be an integer >= 1, got {n!r}")
+    idx = _checked_indices(n, indices)
     if mode not in MODES:
         raise ValueError(f"mode must be one of {list(MODES)}, got {mode!r}")
-    full = dma.fit_dma(raw, T_ref, log_aT=log_aT, lag=lag)
+    full = dma.fit_dma(raw, T_ref, log_aT=log_aT, lag=lag) if full is None else full
     res = residuals(raw, full) if mode == "wild" else None
-    rng = np.random.default_rng(seed)
+
+    def draw(rng):
+        return wild_sample(res, rng) if res is not None else resample(raw, rng, T_ref=T_ref, mode=mode)
+
+    stream = np.random.default_rng(seed)
+    first = [draw(stream) for _ in range(int(idx.max()) + 1)]
     samples, fails, times = [], [], []
-    max_failures = n if max_failures is None else max_failures
-    while len(samples) < n:
-        data = wild_sample(res, rng) if res is not None else resample(raw, rng, T_ref=T_ref, mode=mode)
-        t0 = time.perf_counter()
-        try:
-            samples.append(dma.fit_dma(data, T_ref, log_aT=log_aT, smoothing=full.smoothing, start=full, lag=lag))
-            times.append(time.perf_counter() - t0)
-        except ValueError as exc:
-            fails.append(str(exc))
-            if len(fails) > max_failures:
-                raise
-    return full, samples, {"failures": fails, "time_per_sample": times}
+    for i in idx:
+        data, t0 = first[i], time.perf_counter()
+        for attempt in range(1, max_redraws + 2):
+            try:
+                samples.append(refit(data, full))
+                break
+            except ValueError as exc:
+                fails.append(f"sample {i}: {exc}")
+                if attempt > max_redraws:
+                    raise ValueError(f"sample {i}: no fit in {attempt} draws; the last: {exc}") from None
+                data = draw(np.random.default_rng([seed, int(i), attempt]))
+        times.append(time.perf_counter() - t0)
+    return full, samples, {"failures": fails, "time_per_sample": times, "indices": idx}
 
 
-def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir="."):
-    """The full-data fit and ``n`` bootstrap samples of a measured-data fit spec, as one dataset.
+def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".", full=None, indices=None):
+    """Bootstrap samples of a measured-data fit spec (all ``n``, or ``indices`` of them), as one dataset.
 
     Parameters
     ----------
@@ -262,18 +369,24 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         Seed of the resampling.
     base_dir : path
         Folder that relative data paths are taken from.
+    full : path or DMAFit, optional
+        The full-data fit of the spec: its material file (written by the workflow's fit rule,
+        :func:`vcor.fitting.fits.full_fit_from_file`) or the fit itself; default: fitted here.
+    indices : array_like of int, optional
+        The samples to fit (:func:`part_indices`); default 0..n-1. :func:`merge_samples` joins the parts.
 
     Returns
     -------
     xarray.Dataset
-        Dimensions ``sample`` (0..n-1), ``mode`` (the largest number of Prony terms over the samples),
-        ``T_set`` (the sets' temperatures, deg C). Variables: ``E_inf`` (sample) [Pa], ``E`` and
-        ``beta`` (sample, mode) [Pa, 1/s], ``n_modes`` (sample): a sample with fewer terms than
+        Dimensions ``sample`` (the samples fitted, ascending), ``mode`` (the largest number of Prony terms
+        over them), ``T_set`` (the sets' temperatures, deg C). Variables: ``E_inf`` (sample) [Pa], ``E``
+        and ``beta`` (sample, mode) [Pa, 1/s], ``n_modes`` (sample): a sample with fewer terms than
         ``mode`` is padded at the end with E = 0 and beta = NaN (terms sorted by rate, padding last);
         ``log_aT`` (sample, T_set) [decades, 0 at T_ref]; ``wlf_C1``, ``wlf_C2`` [K],
         ``arrhenius_E_a`` [J/mol] (sample) fitted to each sample's shifts; ``lag`` (sample) [s], the
-        instrument lag of each sample's fit (0 when not fitted); ``log_aT_full`` and
-        ``log_aT_std`` (T_set): the full-data shifts and their linearised standard errors.
+        instrument lag of each sample's fit (0 when not fitted); ``iterations`` (sample), the joint
+        solve's Levenberg-Marquardt iterations (0 without one); ``log_aT_full`` and ``log_aT_std``
+        (T_set): the full-data shifts and their linearised standard errors.
         Attributes: ``spec``, ``n``, ``seed``, ``mode`` (resampling), ``T_ref``, ``shift_model``,
         ``fit_name``, ``smoothing`` (held fixed), ``instrument_lag_full_s`` and its standard error (the
         full-data fit's lag, s), ``failures``, and ``material`` and ``shift`` of the
@@ -283,17 +396,23 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
     ------
     ValueError
         A spec that is not a measured-data fit by method spectrum, data that are not raw sets at two or
-        more temperatures, sets that cannot be superposed, fewer points than modes (each naming the
-        fit).
+        more temperatures, a full-data fit of other sets or another T_ref, sets that cannot be superposed,
+        fewer points than modes (each naming the fit).
     """
     where = f"fits.{name}"
     raw, T_ref, given = _bootstrap_data(spec, where, base_dir)
     d = spec["data"]
+    if full is not None and not isinstance(full, dma.DMAFit):
+        full = fits.full_fit_from_file(full)
     try:
-        full, samples, info = bootstrap(raw, T_ref, n, seed, log_aT=given, lag=bool(d.get("instrument_lag", False)))
+        if full is not None:
+            _check_full(full, raw, T_ref, given)
+        idx = _checked_indices(n, indices)
+        full, samples, info = bootstrap(raw, T_ref, n, seed, log_aT=given, lag=bool(d.get("instrument_lag", False)),
+                                        full=full, indices=np.sort(idx))
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
-    ds = _samples_variables(full, samples)
+    ds = _samples_variables(full, samples, info["indices"])
     shift_model = d.get("shift_model", fits.SHIFT_MODELS[0])
     ds.attrs.update({
         "fit_name": name, "spec": json.dumps(spec, sort_keys=True), "n": int(n), "seed": int(seed),
@@ -304,6 +423,43 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         "material": json.dumps(full.material().to_dict()),
         "shift": json.dumps(dma.shift_function(full, shift_model).to_dict()),
     })
+    return ds
+
+
+def _check_full(full, raw, T_ref, given) -> None:
+    """ValueError unless ``full`` is a fit of these sets at this T_ref (with these given shifts)."""
+    T = np.array([s.T for s in dma.split_sets(raw)])
+    if full.T.shape != T.shape or not np.allclose(full.T, T, rtol=0, atol=1e-9) or full.T_ref != T_ref:
+        raise ValueError(f"the full-data fit is of sets at {np.round(full.T, 4).tolist()} deg C, T_ref {full.T_ref:g}; "
+                         f"the data have sets at {np.round(T, 4).tolist()} deg C, T_ref {T_ref:g}: fit the data again")
+    if given is not None and not np.array_equal(full.log_aT, given):
+        raise ValueError("the full-data fit holds other shift factors than the shift file: fit the data again")
+
+
+def merge_samples(parts):
+    """One samples dataset of the parts of a bootstrap (:func:`samples_dataset` with ``indices``): the
+    samples in order, padded to the widest Prony series; ValueError unless the parts are of the same
+    bootstrap and hold every sample 0..n-1 exactly once. The result is the dataset one job fitting every
+    sample writes."""
+    import xarray as xr
+
+    parts = sorted(parts, key=lambda p: int(p["sample"].values[0]) if p.sizes["sample"] else -1)
+    if not parts:
+        raise ValueError("merge_samples: no parts given")
+    keep = {k: v for k, v in parts[0].attrs.items() if k != "failures"}
+    for p in parts[1:]:
+        other = {k: v for k, v in p.attrs.items() if k != "failures"}
+        if other != keep:
+            raise ValueError(f"merge_samples: the parts are of different bootstraps (attributes "
+                             f"{sorted(k for k in set(keep) | set(other) if keep.get(k) != other.get(k))} differ)")
+    got = np.concatenate([p["sample"].values for p in parts])
+    n = int(keep["n"])
+    if not np.array_equal(np.sort(got), np.arange(n)):
+        raise ValueError(f"merge_samples: the parts hold samples {got.tolist()}, not each of 0..{n - 1} once")
+    ds = xr.concat(parts, dim="sample", data_vars="minimal", coords="minimal", join="outer",
+                   fill_value={"E": 0.0, "beta": math.nan}, combine_attrs="override")
+    ds["mode"].attrs = dict(parts[0]["mode"].attrs)
+    ds.attrs["failures"] = json.dumps([f for p in parts for f in json.loads(p.attrs["failures"])])
     return ds
 
 
@@ -326,7 +482,7 @@ def _bootstrap_data(spec, where, base_dir):
     return raw, T_ref, given
 
 
-def _samples_variables(full, samples):
+def _samples_variables(full, samples, indices):
     """The samples' Prony terms (padded to the widest), shifts, shift laws and lags as a dataset (docstring of
     :func:`samples_dataset`)."""
     import xarray as xr
@@ -351,10 +507,12 @@ def _samples_variables(full, samples):
                            {"units": "J mol-1", "long_name": "Arrhenius activation energy"}),
          "lag": ("sample", np.array([s.lag for s in samples]),
                  {"units": "s", "long_name": "instrument time lag between force and displacement (0: not fitted)"}),
+         "iterations": ("sample", np.array([s.joint.nfev if s.joint is not None else 0 for s in samples]),
+                        {"units": "1", "long_name": "Levenberg-Marquardt iterations of the joint solve (0: none)"}),
          "log_aT_full": ("T_set", full.log_aT, {"units": "1", "long_name": "log10 a_T of the full-data fit"}),
          "log_aT_std": ("T_set", full.log_aT_std,
                         {"units": "1", "long_name": "linearised standard error of log10 a_T (full data)"})},
-        coords={"sample": ("sample", np.arange(n), {"units": "1", "long_name": "bootstrap sample"}),
+        coords={"sample": ("sample", np.asarray(indices), {"units": "1", "long_name": "bootstrap sample"}),
                 "mode": ("mode", np.arange(width), {"units": "1", "long_name": "Prony term index (by rate)"}),
                 "T_set": ("T_set", full.T, {"units": "degC", "long_name": "temperature of the measured set"})})
 

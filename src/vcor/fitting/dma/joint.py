@@ -23,6 +23,11 @@ material moves with :math:`a_T` across the reduced frequencies; an error that st
 measured frequency at every temperature does not, so with sets at several temperatures the
 superposition tells the two apart and :math:`\Delta t` is identified (a constant phase offset would not
 be: a flat tan delta absorbs it).
+
+A refit of perturbed data (a bootstrap sample) can start from another joint solve's optimum
+(:class:`JointStart`, :attr:`JointFit.solution`): its relaxation-time grid, spectrum and lag, with the
+shifts started at that fit's; the solve then stops on the same criterion (:data:`TOL`) from a start
+near its own optimum.
 """
 
 from __future__ import annotations
@@ -39,7 +44,7 @@ from ..spectrum.residual import Design, Residual, second_differences
 from ..spectrum.smooth import SpectrumFit, component_weights, fit_spectrum, log_spectrum
 from .shifts import anchor_matrix, step_matrix
 
-__all__ = ["LOSS_WEIGHT", "MAX_ITER", "MAX_LAG_PHASE", "SHIFT_ROOM", "JointFit", "fit_with_shifts"]
+__all__ = ["LOSS_WEIGHT", "MAX_ITER", "MAX_LAG_PHASE", "SHIFT_ROOM", "TOL", "JointFit", "JointStart", "fit_with_shifts"]
 
 #: weight a'' of the relative E'' residuals against E': inverse variances for relative errors of about 1 % in
 #: E' and 10 % in E'' (:mod:`vcor.fitting.dma.pipeline`: on pyvisco's data E'' carries an instrument phase
@@ -50,12 +55,37 @@ LOSS_WEIGHT = 0.01
 MAX_LAG_PHASE = 0.3
 #: iteration budget of each joint solve (projected Levenberg-Marquardt)
 MAX_ITER = 500
+#: convergence of each joint solve, cold or warm: the decrease a full Gauss-Newton step predicts is below
+#: this fraction of the objective (:func:`vcor.fitting.spectrum.lm.levenberg_marquardt`)
+TOL = 1e-10
 #: decades the relaxation-time grid reaches beyond the smooth fit's margins: room for the shifts to move
 SHIFT_ROOM = 1.5
 #: bounds of ln(mode modulus / largest E'): e^-40 (a mode with no weight) .. e^3
 LOG_MODULUS_RANGE = (-40.0, 3.0)
 #: a start this far (decades, rad) inside its bounds: the projected solver starts from an interior point
 INSIDE = 1e-9
+
+
+@dataclass(frozen=True, kw_only=True)
+class JointStart:
+    """Where a joint solve starts other than from scratch: the optimum of another joint solve.
+
+    Attributes
+    ----------
+    tau : ndarray
+        Relaxation times of the joint solve's grid, s (the solve keeps this grid).
+    E_inf : float
+        Equilibrium modulus, Pa (> 0).
+    E : ndarray
+        Mode moduli on ``tau``, Pa (> 0).
+    lag : float
+        The instrument's time lag, s (0 when not fitted).
+    """
+
+    tau: np.ndarray
+    E_inf: float
+    E: np.ndarray
+    lag: float = 0.0
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -82,6 +112,7 @@ class JointFit:
     objective : float
         Final value of the joint objective (data + lam_joint roughness).
     nfev : int
+        Levenberg-Marquardt iterations of the joint solve.
     time : float
         s.
     cov : ndarray
@@ -94,6 +125,9 @@ class JointFit:
     held_set : int
         With free shifts, the set held at 0 during the solve (nearest T_ref): every other set's shift is
         a parameter of the fit; -1 when all shifts are held.
+    solution : JointStart or None
+        The joint solve's own optimum (its grid, spectrum at ``lam_joint`` and lag): the start of a refit of
+        perturbed data (``start`` of :func:`fit_with_shifts`).
     """
 
     T: np.ndarray
@@ -113,6 +147,7 @@ class JointFit:
     lag_fitted: bool = False
     free_shifts: bool = True
     held_set: int = -1
+    solution: JointStart | None = None
 
     @property
     def smoothing(self) -> dict:
@@ -216,8 +251,43 @@ def _first_spectrum(data, fr, comp, *, lam, start_spectrum, per_decade, margin):
     return first, (first.lam if lam is None else float(lam))
 
 
-def _notes(problem, d, p, at_bound, min_overlap, ok):
-    notes = [] if ok else [f"joint solve: not converged in {MAX_ITER} iterations"]
+def _start_point(data, fr, comp, *, lam, start_spectrum, start, grid):
+    """(relaxation-time grid [s], the joint solve's lambda, ln E_inf, H, lag phase [rad]) the solve starts
+    from: another solve's optimum (``start``, on its own grid, lambda held), or the smooth spectrum at the
+    start shifts on a grid wide enough for the shifts to move by :data:`SHIFT_ROOM` decades at either end."""
+    if start is not None:
+        if lam is None:
+            raise ValueError("lam: a joint solve started from another's optimum (start) holds that solve's lambda; "
+                             "give lam (JointFit.lam_joint)")
+        tau, E = np.asarray(start.tau, float), np.asarray(start.E, float)
+        if not (tau.ndim == 1 and tau.shape == E.shape and tau.size >= 3 and np.all(E > 0) and start.E_inf > 0):
+            raise ValueError(f"start: a grid tau of 3 or more relaxation times (s) and as many moduli E > 0 (Pa), with "
+                             f"E_inf > 0 (Pa); got {tau.size} times, {E.size} moduli, E_inf {start.E_inf!r}")
+        return tau, float(lam), math.log(start.E_inf), np.log(E), 2 * math.pi * float(data.f.max()) * start.lag
+    per_decade, margin = grid
+    first, lam_j = _first_spectrum(data, fr, comp, lam=lam, start_spectrum=start_spectrum,
+                                   per_decade=per_decade, margin=margin)
+    tau = tau_grid(float(fr.min()), float(fr.max()), per_decade, margins(margin, SHIFT_ROOM))
+    ln_e_inf, H = log_spectrum(first, tau, float(data.es.max()))
+    return tau, lam_j, ln_e_inf, H, 0.0
+
+
+def _shifts_and_lag(problem, p, T_ref, held):
+    """(log10 a_T anchored at T_ref, its covariance [decades^2], lag [s], its standard error [s]) at p;
+    ``held``: the held shifts (None when free)."""
+    data = problem.data
+    cov_p = problem.covariance(p)
+    w_top = 2 * math.pi * float(data.f.max())
+    lag_s = float(p[problem.iq]) / w_top if problem.nq else 0.0
+    lag_std = math.sqrt(max(cov_p[problem.iq, problem.iq], 0.0)) / w_top if problem.nq else 0.0
+    if held is None:
+        G = anchor_matrix(data.T, T_ref) @ data.S
+        return G @ p[:problem.nd], G @ cov_p[:problem.nd, :problem.nd] @ G.T, lag_s, lag_std
+    return held.copy(), np.zeros((data.K, data.K)), lag_s, lag_std
+
+
+def _notes(problem, d, p, at_bound, min_overlap, ok, iterations):
+    notes = [] if ok else [f"joint solve: not converged (stopped after {iterations} of at most {MAX_ITER} iterations)"]
     T = problem.data.T
     for k in at_bound:
         notes.append(f"the step between {T[k]:.4g} and {T[k + 1]:.4g} deg C sits at the minimum overlap "
@@ -230,12 +300,13 @@ def _notes(problem, d, p, at_bound, min_overlap, ok):
 
 def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT), per_decade=PER_DECADE, margin=MARGIN,
                     min_overlap=0.5, lam=None, final_lam="gcv1se", start_spectrum=None, lag=False,
-                    free_shifts=True) -> JointFit:
+                    free_shifts=True, start=None) -> JointFit:
     r"""Refine shift factors (and an instrument lag) together with the spectrum (module docstring).
 
     The start is ``log_aT_start`` (the start-free spline shifts); :math:`\lambda` is the GCV minimiser
     (a flexible master curve) at the start shifts (unless given); the final spectrum at the refined
-    shifts uses ``final_lam``.  Projected Levenberg-Marquardt with the analytic Jacobian.
+    shifts uses ``final_lam``.  Projected Levenberg-Marquardt with the analytic Jacobian, converged at
+    :data:`TOL` (or after :data:`MAX_ITER` iterations, with a note).
 
     Parameters
     ----------
@@ -256,17 +327,20 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
     min_overlap : float
         Decades adjacent sets must share.
     lam : float, optional
-        Fix lambda in the joint solve (default: GCV minimiser, see above).
+        Fix lambda in the joint solve (default: GCV minimiser, see above; required with ``start``).
     final_lam : "gcv1se", "gcv", "lcurve" or float
         lambda of the final spectrum at the refined shifts.
     start_spectrum : SpectrumFit, optional
-        Start spectrum (e.g. the full-data fit in a bootstrap); with ``lam`` given no lambda scan is
-        run at all.
+        Start spectrum of the final smooth fit (e.g. the full-data fit in a bootstrap) and, without
+        ``start``, of the joint solve; with ``lam`` given no lambda scan is run at all.
     lag : bool
         Fit the instrument's time lag :math:`\Delta t` (s), its phase at the highest measured frequency
         bounded by :data:`MAX_LAG_PHASE`.
     free_shifts : bool
-        False: hold the shifts at ``log_aT_start`` (given shift factors) and fit the rest.
+        False: hold the shifts at ``log_aT_start`` (given shifts) and fit the rest.
+    start : JointStart, optional
+        Start the joint solve at another solve's optimum (:attr:`JointFit.solution`, e.g. the full-data
+        fit's in a bootstrap): its grid, spectrum and lag, the shifts at ``log_aT_start``.
 
     Returns
     -------
@@ -274,39 +348,30 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
     """
     t0 = time.perf_counter()
     data = _Stacked(sets, T_ref, min_overlap)
-    start = np.asarray(log_aT_start, float)
-    d = np.clip(np.diff(start), data.lb + INSIDE, data.ub - INSIDE) if free_shifts else np.diff(start)
+    given = np.asarray(log_aT_start, float)
+    d = np.clip(np.diff(given), data.lb + INSIDE, data.ub - INSIDE) if free_shifts else np.diff(given)
     a1, a2, _ = component_weights(components, data.es, data.el)
-    fr = data.f * 10 ** (data.S @ d if free_shifts else start)[data.idx]
-    first, lam_j = _first_spectrum(data, fr, (a1, a2, 1.0), lam=lam, start_spectrum=start_spectrum,
-                                   per_decade=per_decade, margin=margin)
-    # fixed grid wide enough for the shifts to move by SHIFT_ROOM decades at either end
-    tau = tau_grid(float(fr.min()), float(fr.max()), per_decade, margins(margin, SHIFT_ROOM))
+    fr = data.f * 10 ** (data.S @ d if free_shifts else given)[data.idx]
+    tau, lam_j, ln_e_inf, H, phase = _start_point(data, fr, (a1, a2, 1.0), lam=lam, start_spectrum=start_spectrum,
+                                                  start=start, grid=(per_decade, margin))
     problem = _JointProblem(data, Residual(data.es, data.el, data.m, (a1, a2)), tau, lam_j,
-                            s_held=None if free_shifts else start, lag=lag)
-    ln_e_inf, H = log_spectrum(first, tau, float(data.es.max()))
+                            s_held=None if free_shifts else given, lag=lag)
     lo, hi = problem.bounds()
-    p = np.clip(np.concatenate([d[:problem.nd], np.zeros(problem.nq), [ln_e_inf], H]), lo + INSIDE, hi - INSIDE)
-    p, nfev, ok = levenberg_marquardt(problem.cost, problem.normal, p, lo=lo, hi=hi, max_iter=MAX_ITER, tol=1e-10)
+    p = np.clip(np.concatenate([d[:problem.nd], np.full(problem.nq, phase), [ln_e_inf], H]), lo + INSIDE, hi - INSIDE)
+    p, iterations, ok = levenberg_marquardt(problem.cost, problem.normal, p, lo=lo, hi=hi, max_iter=MAX_ITER, tol=TOL)
     d = p[:problem.nd]
     at_bound = [int(k) for k in np.flatnonzero(np.isclose(d, data.lb, atol=1e-5) | np.isclose(d, data.ub, atol=1e-5))] \
         if free_shifts else []
-    notes = _notes(problem, d, p, at_bound, min_overlap, ok)
-    cov_p = problem.covariance(p)
-    w_top = 2 * math.pi * float(data.f.max())
-    lag_s = float(p[problem.iq]) / w_top if lag else 0.0
-    lag_std = math.sqrt(max(cov_p[problem.iq, problem.iq], 0.0)) / w_top if lag else 0.0
-    if free_shifts:
-        G = anchor_matrix(data.T, T_ref) @ data.S
-        cov, log_aT = G @ cov_p[:problem.nd, :problem.nd] @ G.T, G @ d
-    else:
-        cov, log_aT = np.zeros((data.K, data.K)), start.copy()
+    notes = _notes(problem, d, p, at_bound, min_overlap, ok, iterations)
+    log_aT, cov, lag_s, lag_std = _shifts_and_lag(problem, p, T_ref, None if free_shifts else given)
     spec = fit_spectrum(data.f * 10 ** log_aT[data.idx], data.es, data.el, weight=data.m, per_decade=per_decade,
                         margin=margin, components=(a1, a2, 1.0), lam=final_lam,
                         start=start_spectrum if not isinstance(final_lam, str) else None,
                         phase=2 * math.pi * data.f * lag_s if lag else None)
     r = problem.value(p)
+    solution = JointStart(tau=tau, E_inf=math.exp(p[problem.ie]), E=np.exp(p[problem.ie + 1:]), lag=lag_s)
     return JointFit(T=data.T, log_aT=log_aT, log_aT_std=np.sqrt(np.maximum(np.diag(cov), 0)), at_bound=at_bound,
-                    components=(a1, a2), lam_joint=lam_j, spectrum=spec, objective=float(r @ r), nfev=int(nfev),
+                    components=(a1, a2), lam_joint=lam_j, spectrum=spec, objective=float(r @ r), nfev=int(iterations),
                     time=time.perf_counter() - t0, cov=cov, notes=notes, lag=lag_s, lag_std=lag_std,
-                    lag_fitted=bool(lag), free_shifts=bool(free_shifts), held_set=data.k_ref if free_shifts else -1)
+                    lag_fitted=bool(lag), free_shifts=bool(free_shifts), held_set=data.k_ref if free_shifts else -1,
+                    solution=solution)
