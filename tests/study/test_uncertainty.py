@@ -55,6 +55,28 @@ def test_the_bootstrap_axis_and_the_files_a_scene_needs():
     assert "sample" not in plain.grid.names and "uncertainty" not in plain.settings
 
 
+def test_the_samples_are_split_over_jobs_with_identities_of_their_own():
+    """SAMPLE_JOBS part files (one job each) make the samples file; each part's identity names its share,
+    the merged file's does not depend on the split (sample i is the same in any part), and every identity
+    follows the fit's."""
+    from vcor.study import paths
+    from vcor.study.uncertainty import MIN_BOOTSTRAP, SAMPLE_JOBS, samples_identity
+
+    assert 2 <= SAMPLE_JOBS <= MIN_BOOTSTRAP
+    parts = paths.samples_parts("results/materials", SAMPLE_JOBS, "pv", 7, 3)
+    assert parts == [f"results/materials/samples/pv-b7-s3-p{k}of{SAMPLE_JOBS}.nc" for k in range(SAMPLE_JOBS)]
+    assert paths.samples("results/materials", "pv", 7, 3) == "results/materials/samples/pv-b7-s3.nc"
+    cat = load_project(_config(bootstrap=7, seed=3), ".").catalogue
+    spec = {"bootstrap": 7, "seed": 3}
+    ids = {samples_identity(cat, "pv", spec, (k, SAMPLE_JOBS)) for k in range(SAMPLE_JOBS)}
+    merged = samples_identity(cat, "pv", spec)
+    assert len(ids) == SAMPLE_JOBS and merged not in ids
+    assert samples_identity(cat, "pv", {"bootstrap": 7, "seed": 4}) != merged
+    other = _config(bootstrap=7, seed=3)
+    other["fits"]["pv"]["data"]["T_ref"] = 0
+    assert samples_identity(load_project(other, ".").catalogue, "pv", spec) != merged
+
+
 def _sweep(cor, status):
     """A sweep with dims (material, v0, sample) as the aggregate builds it before the reduction."""
     cor, status = np.asarray(cor, float), np.asarray(status, np.int8)
@@ -131,6 +153,12 @@ def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
     _synthetic(path / "data/dma.csv", 1)
     smk(path, "-j2")
     samples = xr.open_dataset(path / "results/materials/samples/measured-b4-s2.nc")
+    # fitted by SAMPLE_JOBS jobs side by side, each from the full-data fit's file, then merged
+    from vcor.study.uncertainty import SAMPLE_JOBS
+
+    parts = sorted(p.name for p in (path / "results/materials/samples").glob("measured-b4-s2-p*.nc"))
+    assert parts == [f"measured-b4-s2-p{k}of{SAMPLE_JOBS}.nc" for k in range(SAMPLE_JOBS)]
+    assert samples["sample"].values.tolist() == [0, 1, 2, 3]
     mats = sample_materials(samples)
     assert len(mats) == 4
     assert samples["lag"].attrs["units"] == "s" and np.all(np.isfinite(samples["lag"].values))

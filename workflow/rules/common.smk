@@ -212,9 +212,11 @@ def get_fit_spec(wildcards):
 
 
 def get_samples_identity(wildcards):
-    """The content identity of a samples file (vcor.study.uncertainty.samples_identity)."""
+    """The content identity of a samples file, or of one job's part of it (vcor.study.uncertainty.samples_identity)."""
     spec = {"bootstrap": int(wildcards.n), "seed": int(wildcards.seed)}
-    return vuncertainty.samples_identity(CATALOGUE, wildcards.material, spec)
+    part = getattr(wildcards, "part", None)
+    share = None if part is None else (int(part), int(wildcards.parts))
+    return vuncertainty.samples_identity(CATALOGUE, wildcards.material, spec, share)
 
 
 def get_fit_data_files(wildcards):

@@ -40,9 +40,37 @@ rule fit_material:
 
 
 rule fit_samples:
-    # bootstrap samples of a fit to measured data, for the scenes with uncertainty (vcor.study.uncertainty)
+    # one job's share of the bootstrap samples of a fit to measured data, refitted from the fit itself
+    # (vcor.fitting.resample); the shares run side by side (vcor.study.uncertainty.SAMPLE_JOBS)
     input:
-        get_fit_data_files,
+        data=get_fit_data_files,
+        fit=vpaths.material(MATERIAL_DIR, "{material}"),
+    output:
+        vpaths.samples_part(MATERIAL_DIR),
+    log:
+        vpaths.log(MATERIAL_DIR, "samples/{material}-b{n}-s{seed}-p{part}of{parts}"),
+    benchmark:
+        vpaths.benchmark(
+            MATERIAL_DIR, "samples/{material}-b{n}-s{seed}-p{part}of{parts}"
+        )
+    wildcard_constraints:
+        n="[0-9]+",
+        seed="[0-9]+",
+        part="[0-9]+",
+        parts="[0-9]+",
+    priority: 10
+    params:
+        code=CODE,
+        spec=get_fit_spec,
+        identity=get_samples_identity,
+    script:
+        "../scripts/fit_samples.py"
+
+
+rule merge_samples:
+    # every bootstrap sample of a fit in one file, for the scenes with uncertainty (vcor.study.uncertainty)
+    input:
+        vpaths.samples_parts(MATERIAL_DIR, vuncertainty.SAMPLE_JOBS),
     output:
         vpaths.samples(MATERIAL_DIR),
     log:
@@ -55,10 +83,9 @@ rule fit_samples:
     priority: 10
     params:
         code=CODE,
-        spec=get_fit_spec,
         identity=get_samples_identity,
     script:
-        "../scripts/fit_samples.py"
+        "../scripts/merge_samples.py"
 
 
 rule fit_metrics:

@@ -79,13 +79,16 @@ from .dma.pipeline import MODES_PER_DECADE
 from .spectrum.leverage import leverage
 from .spectrum.modes import reduce_modes
 
-__all__ = ["MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "merge_samples", "part_indices", "refit", "resample",
+__all__ = ["BOOTSTRAP_ATTRS", "MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "merge_samples", "part_indices", "refit", "resample",
            "residuals", "sample_materials", "samples_dataset", "wild_sample"]
 
 #: resampling schemes (the first is the default)
 MODES = ("wild", "bayesian", "classical")
 #: Webb's six-point distribution of the wild weights (mean 0, variance 1)
 WEBB = np.array([-math.sqrt(1.5), -1.0, -math.sqrt(0.5), math.sqrt(0.5), 1.0, math.sqrt(1.5)])
+#: attributes of a samples dataset that name its bootstrap (the same in every part of it; :func:`merge_samples`)
+BOOTSTRAP_ATTRS = ("fit_name", "spec", "n", "seed", "mode", "T_ref", "shift_model", "smoothing", "instrument_lag_full_s",
+                   "instrument_lag_std_full_s", "material", "shift")
 #: draws of one sample whose data cannot be superposed before the bootstrap gives up (a wild sample keeps the
 #: design, so its sets always overlap; a pairs sample that drops sets may not)
 MAX_REDRAWS = 20
@@ -446,9 +449,9 @@ def merge_samples(parts):
     parts = sorted(parts, key=lambda p: int(p["sample"].values[0]) if p.sizes["sample"] else -1)
     if not parts:
         raise ValueError("merge_samples: no parts given")
-    keep = {k: v for k, v in parts[0].attrs.items() if k != "failures"}
+    keep = {k: parts[0].attrs.get(k) for k in BOOTSTRAP_ATTRS}
     for p in parts[1:]:
-        other = {k: v for k, v in p.attrs.items() if k != "failures"}
+        other = {k: p.attrs.get(k) for k in BOOTSTRAP_ATTRS}
         if other != keep:
             raise ValueError(f"merge_samples: the parts are of different bootstraps (attributes "
                              f"{sorted(k for k in set(keep) | set(other) if keep.get(k) != other.get(k))} differ)")
@@ -456,7 +459,8 @@ def merge_samples(parts):
     n = int(keep["n"])
     if not np.array_equal(np.sort(got), np.arange(n)):
         raise ValueError(f"merge_samples: the parts hold samples {got.tolist()}, not each of 0..{n - 1} once")
-    ds = xr.concat(parts, dim="sample", data_vars="minimal", coords="minimal", join="outer",
+    # variables without a sample dimension (the full-data shifts) must be equal in every part
+    ds = xr.concat(parts, dim="sample", data_vars="minimal", coords="minimal", compat="equals", join="outer",
                    fill_value={"E": 0.0, "beta": math.nan}, combine_attrs="override")
     ds["mode"].attrs = dict(parts[0]["mode"].attrs)
     ds.attrs["failures"] = json.dumps([f for p in parts for f in json.loads(p.attrs["failures"])])

@@ -38,6 +38,8 @@ __all__ = [
     "material",
     "material_table",
     "samples",
+    "samples_part",
+    "samples_parts",
 ]
 
 #: the folder every result is written to, and its parts: a scene's, the calibrations', the DEM entries'
@@ -90,8 +92,21 @@ def material_table(material_dir: str, name: str = "{name}") -> str:
 
 
 def samples(material_dir: str, name: str = "{material}", n="{n}", seed="{seed}") -> str:
-    """A fit's bootstrap samples, ``<material_dir>/samples/<name>-b<n>-s<seed>.nc``."""
+    """A fit's bootstrap samples, ``<material_dir>/samples/<name>-b<n>-s<seed>.nc`` (every sample: the parts
+    merged)."""
     return f"{material_dir}/samples/{name}-b{n}-s{seed}.nc"
+
+
+def samples_part(material_dir: str, name: str = "{material}", n="{n}", seed="{seed}", part="{part}",
+                 parts="{parts}") -> str:
+    """Part ``part`` (0-based) of ``parts`` of a fit's bootstrap samples, one job's share,
+    ``<material_dir>/samples/<name>-b<n>-s<seed>-p<part>of<parts>.nc``."""
+    return f"{material_dir}/samples/{name}-b{n}-s{seed}-p{part}of{parts}.nc"
+
+
+def samples_parts(material_dir: str, parts: int, name: str = "{material}", n="{n}", seed="{seed}") -> list[str]:
+    """Every part of a fit's bootstrap samples split over ``parts`` jobs (:func:`samples_part`)."""
+    return [samples_part(material_dir, name, n, seed, k, parts) for k in range(parts)]
 
 
 def log(folder: str, name: str) -> str:

@@ -7,7 +7,8 @@ A scene asks for it::
 
 Every material of such a scene is a fit to measured DMA data (``fits.<name>.data``). The fit's data
 are resampled ``bootstrap`` times (:func:`vcor.fitting.resample.samples_dataset`: shift factors and
-spectrum refitted for every sample), and the scene's grid gets one more axis, ``sample``
+spectrum refitted for every sample, starting from the full-data fit; the samples split over
+:data:`SAMPLE_JOBS` jobs and merged), and the scene's grid gets one more axis, ``sample``
 (0 .. bootstrap-1): every grid point is solved once per sample, with that sample's material and
 shift factors. The sweep dataset then holds, for ``cor`` and ``t0``,
 
@@ -40,11 +41,14 @@ import numpy as np
 
 from ..materials.catalogue import content_hash, with_parameters
 from ..materials.shift import at_temperature
+from .paths import samples
 
 __all__ = [
     "BANDED",
     "KEYS",
     "MAX_BOOTSTRAP",
+    "MIN_BOOTSTRAP",
+    "SAMPLE_JOBS",
     "check_uncertainty",
     "reduce_samples",
     "sample_material",
@@ -56,8 +60,13 @@ __all__ = [
 
 #: keys of a scene's ``uncertainty`` mapping
 KEYS = ("bootstrap", "seed", "level")
-#: the most bootstrap samples a scene may ask for
+#: the most bootstrap samples a scene may ask for, and the fewest
 MAX_BOOTSTRAP = 1000
+MIN_BOOTSTRAP = 2
+#: jobs a fit's bootstrap samples are split over (vcor.fitting.resample.part_indices), run side by side: the
+#: reference machine has 2 cores, and the samples of one fit are the longest chain of a banded scene (fit,
+#: samples, sweep); at most MIN_BOOTSTRAP, so that every job has a sample
+SAMPLE_JOBS = 2
 #: outputs stored as median, band and samples; every other float output is the median
 BANDED = ("cor", "t0")
 
@@ -84,9 +93,9 @@ def check_uncertainty(where: str, scene: dict, catalogue) -> None:
     if unknown:
         raise ValueError(f"{key}: unknown keys {unknown}; allowed: {list(KEYS)}")
     b = spec.get("bootstrap")
-    if isinstance(b, bool) or not isinstance(b, (int, np.integer)) or not 2 <= b <= MAX_BOOTSTRAP:
+    if isinstance(b, bool) or not isinstance(b, (int, np.integer)) or not MIN_BOOTSTRAP <= b <= MAX_BOOTSTRAP:
         raise ValueError(f"{key}.bootstrap: the number of bootstrap samples, an integer in "
-                         f"[2, {MAX_BOOTSTRAP}], got {b!r}")
+                         f"[{MIN_BOOTSTRAP}, {MAX_BOOTSTRAP}], got {b!r}")
     seed = spec.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValueError(f"{key}.seed: an integer >= 0, got {seed!r}")
@@ -106,13 +115,19 @@ def check_uncertainty(where: str, scene: dict, catalogue) -> None:
 
 
 def samples_file(material_dir: str, name: str, spec: dict) -> str:
-    """The file of a fit's bootstrap samples for ``spec`` (:func:`uncertainty_of`), relative to the project."""
-    return f"{material_dir}/samples/{name}-b{spec['bootstrap']}-s{spec['seed']}.nc"
+    """The file of a fit's bootstrap samples for ``spec`` (:func:`uncertainty_of`), relative to the project
+    (:func:`vcor.study.paths.samples`: every sample, the jobs' parts merged)."""
+    return samples(material_dir, name, spec["bootstrap"], spec["seed"])
 
 
-def samples_identity(catalogue, name: str, spec: dict) -> str:
-    """Content identity of a samples file: the fit's identity and the bootstrap settings."""
-    return content_hash({"fit": catalogue.identity(name), "bootstrap": spec["bootstrap"], "seed": spec["seed"]})
+def samples_identity(catalogue, name: str, spec: dict, part: tuple[int, int] | None = None) -> str:
+    """Content identity of a samples file: the fit's identity and the bootstrap settings, and for one job's
+    share of the samples (``part``: (k, K), part k of K) that share. The merged file's identity does not
+    depend on the split: sample i is the same whichever job fits it."""
+    key = {"fit": catalogue.identity(name), "bootstrap": spec["bootstrap"], "seed": spec["seed"]}
+    if part is not None:
+        key["part"] = [int(part[0]), int(part[1])]
+    return content_hash(key)
 
 
 @functools.lru_cache(maxsize=16)
