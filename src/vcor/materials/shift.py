@@ -93,7 +93,8 @@ class ShiftFunction:
     @classmethod
     def table(cls, T_ref: float, T, log_aT) -> ShiftFunction:
         """A tabulated shift function: ``log_aT`` (decades) at temperatures ``T`` (deg C, increasing)."""
-        return cls("table", float(T_ref), T=tuple(np.asarray(T, float)), log_aT_table=tuple(np.asarray(log_aT, float)))
+        return cls(model="table", T_ref=float(T_ref), T=tuple(np.asarray(T, float)),
+                   log_aT_table=tuple(np.asarray(log_aT, float)))
 
     @classmethod
     def from_spec(cls, spec: dict, where: str = "shift") -> ShiftFunction:
@@ -114,7 +115,7 @@ class ShiftFunction:
             return cls.table(T_ref, spec["T"], spec["log_aT"])
         units = {"C1": "", "C2": "K", "E_a": "J/mol"}
         values = {k: positive(f"{where}.{k}", spec[k], unit=units[k]) for k in need if k != "T_ref"}
-        return cls(spec["model"], T_ref, **values)
+        return cls(model=spec["model"], T_ref=T_ref, **values)
 
     def valid_range(self) -> tuple[float, float]:
         """Temperatures (deg C) where a_T is defined: T > T_ref - C2 (WLF, open), T > -273.15
