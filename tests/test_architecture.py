@@ -1,6 +1,8 @@
 """The package layout: imports run one way (no circle, imports inside functions included; layers from
-the bottom up), no function anywhere has more than 12 parameters, no module uses another's private
-names, and the public surface stays what the documentation promises."""
+the bottom up), no function anywhere has more than 12 parameters, functions and modules short enough to
+read (at most 60 lines of code per function, 600 lines per module, outside the numba kernels and the
+NumPy reference), result records keyword-only, no module uses another's private names, and the public
+surface stays what the documentation promises."""
 
 from __future__ import annotations
 
@@ -27,6 +29,12 @@ LAYERS = (
     ("cli", "__main__"),
 )
 MAX_PARAMETERS = 12
+#: lines of code per function (no docstring, blank or comment lines) and lines per module
+MAX_FUNCTION_LINES, MAX_MODULE_LINES = 60, 600
+#: the stated exceptions to both: the numba kernels (one march per function, so that numba compiles
+#: it as one unit) and the plain NumPy reference solvers (each mirrors a kernel line by line)
+LONG_ALLOWED = ("solvers/_adaptive_kernels.py", "solvers/_fixed_kernels.py", "solvers/_step.py",
+                "solvers/_separation.py", "solvers/reference.py")
 
 
 def _module_name(path: Path) -> str:
@@ -126,6 +134,73 @@ def test_no_function_has_more_than_12_parameters():
                 if n > MAX_PARAMETERS:
                     wide.append(f"{path.relative_to(ROOT)}:{node.lineno} {getattr(node, 'name', 'lambda')} ({n})")
     assert not wide, wide
+
+
+def _src_files():
+    for path in sorted(PACKAGE.rglob("*.py")):
+        rel = path.relative_to(PACKAGE).as_posix()
+        if rel not in LONG_ALLOWED:
+            yield path, rel
+
+
+def code_lines(node: ast.AST, lines: list[str]) -> int:
+    """Lines of code of a function: its body without the docstring, blank lines and comments."""
+    body = node.body
+    if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+            and isinstance(body[0].value.value, str):
+        start = body[0].end_lineno + 1
+    else:
+        start = body[0].lineno
+    return sum(1 for line in lines[start - 1 : node.end_lineno] if line.strip() and not line.strip().startswith("#"))
+
+
+def test_functions_fit_on_a_screen():
+    long = []
+    for path, rel in _src_files():
+        text = path.read_text()
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                n = code_lines(node, text.splitlines())
+                if n > MAX_FUNCTION_LINES:
+                    long.append(f"{rel}:{node.lineno} {node.name} ({n} lines)")
+    assert not long, f"functions over {MAX_FUNCTION_LINES} lines of code: {long}"
+
+
+def test_modules_hold_one_idea():
+    big = [f"{rel} ({n} lines)" for path, rel in _src_files()
+           if (n := len(path.read_text().splitlines())) > MAX_MODULE_LINES]
+    assert not big, f"modules over {MAX_MODULE_LINES} lines: {big}"
+
+
+def _dataclass_kw_only(node: ast.ClassDef) -> bool | None:
+    """True/False for a dataclass (keyword-only or not), None for any other class."""
+    for d in node.decorator_list:
+        call = d if isinstance(d, ast.Call) else None
+        name = ast.unparse(call.func if call else d)
+        if name.split(".")[-1] == "dataclass":
+            return bool(call) and any(k.arg == "kw_only" and getattr(k.value, "value", False) for k in call.keywords)
+    return None
+
+
+def _fields(node: ast.ClassDef) -> int:
+    return sum(isinstance(s, ast.AnnAssign) and "ClassVar" not in ast.unparse(s.annotation) for s in node.body)
+
+
+#: records of at most this many fields may stay positional (a pair, a triple)
+POSITIONAL_FIELDS = 3
+#: values a user writes positionally, in the order the papers name them: a material model
+#: (``EqOne(E, nu, ...)`` like ``SLS(E_glassy, alpha, beta)``) and measured data (``CorData(v0, cor)``)
+POSITIONAL_ALLOWED = {"materials/eq_one.py": "EqOne", "fitting/calibrate.py": "CorData"}
+
+
+def test_result_records_are_keyword_only():
+    positional = []
+    for path, rel in _src_files():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ClassDef) and _dataclass_kw_only(node) is False \
+                    and _fields(node) > POSITIONAL_FIELDS and POSITIONAL_ALLOWED.get(rel) != node.name:
+                positional.append(f"{rel}:{node.lineno} {node.name} ({_fields(node)} fields)")
+    assert not positional, f"dataclasses of more than {POSITIONAL_FIELDS} fields without kw_only=True: {positional}"
 
 
 def _private(name: str) -> bool:

@@ -51,7 +51,7 @@ BODY_KEYS = {"sphere": {"material", "r", "rho", "nu"}, "plate": {"material", "h"
 NU_DEFAULTS = {"steel": 0.3, "polymer": 0.5}
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class Body:
     """One body: ``material`` (a Material, or None for a rigid body), ``size`` (sphere radius r or
     plate half-thickness h, m; None: the plate's default 2 r), density ``rho`` (kg/m^3) and Poisson
@@ -139,7 +139,7 @@ def body_from_spec(kind: str, spec: dict, swept=None, where: str | None = None) 
     nu = spec.get("nu", NU_DEFAULTS[family])
     if not (isinstance(nu, (int, float)) and -1 < nu <= 0.5):
         raise ValueError(f"{where}.nu must be in (-1, 0.5], got {nu!r}")
-    return Body(material, None if size is None else float(size), float(rho), float(nu))
+    return Body(material=material, size=None if size is None else float(size), rho=float(rho), nu=float(nu))
 
 
 @functools.lru_cache(maxsize=64)

@@ -82,7 +82,7 @@ def mark_failed(ax, x, ok, label="not ok"):
 FLAGGED_STYLE = {"marker": "o", "mfc": "none", "ls": "--"}
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class Drawn:
     """What :func:`sweep_line` drew: the line's colour, how many points were not ok (red crosses),
     how many were ok but flagged (open markers), and the union of their validity flags."""
@@ -96,8 +96,8 @@ class Drawn:
     def total(cls, drawn) -> Drawn:
         """The counts and flags of several :class:`Drawn` together (no colour)."""
         drawn = list(drawn)
-        return cls("", sum(d.not_ok for d in drawn), sum(d.flagged for d in drawn),
-                   int(np.bitwise_or.reduce([d.flags for d in drawn], initial=0)))
+        return cls(color="", not_ok=sum(d.not_ok for d in drawn), flagged=sum(d.flagged for d in drawn),
+                   flags=int(np.bitwise_or.reduce([d.flags for d in drawn], initial=0)))
 
     def note(self, newline=False) -> str:
         """The counts for a title: " (2 not ok, 5 outside the model's range)" (on a line of its own with
@@ -168,7 +168,8 @@ def sweep_line(ax, x, y, status, validity=None, *, label=None, color=None, ms=3.
             py = np.concatenate([[ys[i], ys[i + 1], np.nan] for i in seg])
             ax.plot(px, py, ls="--", color=color, lw=line.get_linewidth())
     not_ok = mark_failed(ax, x, ok)
-    return Drawn(color, not_ok, int(flagged.sum()), int(np.bitwise_or.reduce(validity[ok], initial=0)))
+    return Drawn(color=color, not_ok=not_ok, flagged=int(flagged.sum()),
+                 flags=int(np.bitwise_or.reduce(validity[ok], initial=0)))
 
 
 def status_name(var) -> str:

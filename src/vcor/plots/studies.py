@@ -64,7 +64,7 @@ def _stability_line(ax, d, name, codes):
     ax.set_ylabel("estimated COR error")
     flag_legend(ax, drawn.flags)
     ax.legend(fontsize=7)
-    return Drawn(drawn.color, int((~ok).sum()), drawn.flagged, drawn.flags)
+    return Drawn(color=drawn.color, not_ok=int((~ok).sum()), flagged=drawn.flagged, flags=drawn.flags)
 
 
 def _stability_grid(fig, ax, d, a, b, codes):
@@ -89,7 +89,7 @@ def _stability_grid(fig, ax, d, a, b, codes):
     ax.set_xlabel(axis_label(d, b))
     ax.set_ylabel(axis_label(d, a))
     fig.colorbar(im, ax=ax, label="estimated COR error, log10 (ok points)")
-    return Drawn("", int((st != 0).sum()), int((flags != 0).sum()), union)
+    return Drawn(color="", not_ok=int((st != 0).sum()), flagged=int((flags != 0).sum()), flags=union)
 
 
 def stability_map(sweep, opts):

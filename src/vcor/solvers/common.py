@@ -48,7 +48,7 @@ LONG_NAMES = {
 }
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Histories:
     """Time histories (SI). ``ghost`` marks samples after separation (t > t0).
 
@@ -77,7 +77,7 @@ class Histories:
         return self
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Result:
     """Outcome of one impact. Units: s, m, N, J, rad/s; cor and energy_residual are ratios. ``validity``:
     flags of an ok result outside the model's stated range, with ``validity_message``
