@@ -37,8 +37,9 @@ the full-data one. This is the usual way to bootstrap an iterative estimator: a 
 data by a resampled residual of the data's own size, so its optimum lies about a standard error from
 the full-data one, well inside the region where Levenberg-Marquardt converges fast; a cold start
 (start-free shifts, a spectrum from E'') would repeat the path the full-data fit has already taken.
-Davidson & MacKinnon (1999) and Andrews (2002) go further and take only k Newton steps from the
-original estimate. What the warm start can change: where the objective is flat along some direction
+Davidson & MacKinnon (1999, Bootstrap testing in nonlinear models, Int. Econ. Rev. 40, 487) and
+Andrews (2002, Higher-order improvements of a computationally attractive k-step bootstrap for extremum
+estimators, Econometrica 70, 119) go further and take only k Newton steps from the original estimate. What the warm start can change: where the objective is flat along some direction
 (a valley the data do not inform, such as the spectrum beyond the data's range or a shift traded
 against the lag), a solve stops once the predicted decrease falls below the tolerance, and from the
 full-data optimum that point may lie nearer to it than a cold start's end point would: the samples'

@@ -2,8 +2,8 @@ r"""Shift factors (and an instrument lag) refined together with the smooth spect
 is the Prony model itself.
 
 Minimised over the steps :math:`d_k = s_{k+1} - s_k` (bounded so that adjacent sets overlap by
-``min_overlap`` decades), :math:`\ln E_\infty`, the log-spectrum :math:`H` and, with ``lag``, a time
-lag :math:`\Delta t` of the instrument:
+:data:`vcor.fitting.dma.shifts.MIN_OVERLAP` decades, as in the start-free shifts), :math:`\ln E_\infty`,
+the log-spectrum :math:`H` and, with ``lag``, a time lag :math:`\Delta t` of the instrument:
 
 .. math:: \sum_{k,i} m_{ki}\Big[a'\Big(\frac{\mathrm{Re}\,M_{ki}}{E'_{ki}} - 1\Big)^2
           + a''\Big(\frac{\mathrm{Im}\,M_{ki}}{E''_{ki}} - 1\Big)^2\Big]
@@ -42,7 +42,7 @@ from ..spectrum.lm import levenberg_marquardt
 from ..spectrum.model import MARGIN, PER_DECADE, margins, tau_grid
 from ..spectrum.residual import Design, Residual, second_differences
 from ..spectrum.smooth import SpectrumFit, component_weights, fit_spectrum, log_spectrum
-from .shifts import anchor_matrix, step_matrix
+from .shifts import MIN_OVERLAP, anchor_matrix, step_matrix
 
 __all__ = ["LOSS_WEIGHT", "MAX_ITER", "MAX_LAG_PHASE", "SHIFT_ROOM", "TOL", "JointFit", "JointStart", "fit_with_shifts"]
 
@@ -286,12 +286,12 @@ def _shifts_and_lag(problem, p, T_ref, held):
     return held.copy(), np.zeros((data.K, data.K)), lag_s, lag_std
 
 
-def _notes(problem, d, p, at_bound, min_overlap, ok, iterations):
+def _notes(problem, d, p, at_bound, ok, iterations):
     notes = [] if ok else [f"joint solve: not converged (stopped after {iterations} of at most {MAX_ITER} iterations)"]
     T = problem.data.T
     for k in at_bound:
         notes.append(f"the step between {T[k]:.4g} and {T[k + 1]:.4g} deg C sits at the minimum overlap "
-                     f"({min_overlap} decades): these sets do not superpose with horizontal shifts")
+                     f"({MIN_OVERLAP} decades): these sets do not superpose with horizontal shifts")
     if problem.nq and abs(p[problem.iq]) > MAX_LAG_PHASE - 1e-6:
         notes.append(f"the instrument lag sits at its bound (a phase error of {MAX_LAG_PHASE} rad at "
                      f"{problem.data.f.max():.4g} Hz): the lag model does not describe these data")
@@ -299,7 +299,7 @@ def _notes(problem, d, p, at_bound, min_overlap, ok, iterations):
 
 
 def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT), per_decade=PER_DECADE, margin=MARGIN,
-                    min_overlap=0.5, lam=None, final_lam="gcv1se", start_spectrum=None, lag=False,
+                    lam=None, final_lam="gcv1se", start_spectrum=None, lag=False,
                     free_shifts=True, start=None) -> JointFit:
     r"""Refine shift factors (and an instrument lag) together with the spectrum (module docstring).
 
@@ -324,8 +324,6 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
         "uncertainty": :func:`vcor.fitting.spectrum.smooth.loss_weights` (per point).
     per_decade, margin : float, float or (float, float)
         As in :func:`vcor.fitting.spectrum.smooth.fit_spectrum`.
-    min_overlap : float
-        Decades adjacent sets must share.
     lam : float, optional
         Fix lambda in the joint solve (default: GCV minimiser, see above; required with ``start``).
     final_lam : "gcv1se", "gcv", "lcurve" or float
@@ -347,7 +345,7 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
     JointFit
     """
     t0 = time.perf_counter()
-    data = _Stacked(sets, T_ref, min_overlap)
+    data = _Stacked(sets, T_ref, MIN_OVERLAP)
     given = np.asarray(log_aT_start, float)
     d = np.clip(np.diff(given), data.lb + INSIDE, data.ub - INSIDE) if free_shifts else np.diff(given)
     a1, a2, _ = component_weights(components, data.es, data.el)
@@ -362,7 +360,7 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
     d = p[:problem.nd]
     at_bound = [int(k) for k in np.flatnonzero(np.isclose(d, data.lb, atol=1e-5) | np.isclose(d, data.ub, atol=1e-5))] \
         if free_shifts else []
-    notes = _notes(problem, d, p, at_bound, min_overlap, ok, iterations)
+    notes = _notes(problem, d, p, at_bound, ok, iterations)
     log_aT, cov, lag_s, lag_std = _shifts_and_lag(problem, p, T_ref, None if free_shifts else given)
     spec = fit_spectrum(data.f * 10 ** log_aT[data.idx], data.es, data.el, weight=data.m, per_decade=per_decade,
                         margin=margin, components=(a1, a2, 1.0), lam=final_lam,
