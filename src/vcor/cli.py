@@ -35,6 +35,7 @@ from pathlib import Path
 
 from .checks import number
 from .contact.impact import GEOMETRY_DEFAULTS, RANGE_UNITS, RANGES, Geometry
+from .materials import REGISTRY
 from .solvers.options import BOOLEAN_OPTIONS, OPTION_HELP, OPTION_UNITS, SolverOptions
 from .version import __version__
 
@@ -57,21 +58,10 @@ GEOMETRY_FLAGS = {
 #: printed on standard error when a solver kernel starts compiling (numba's cache empty or stale)
 COMPILE_NOTICE = "vcor: compiling the solver kernels, once (about 10 s; cached in {cache})"
 
-#: model kind -> (formula name, E(t), ((parameter, UDUNITS unit), ...) in the order the formula names them)
-MODEL_FORMULAS = {
-    "sls": ("standard linear solid (Zener), Green 2026 Eq. 13",
-            "E(t) = E_glassy [alpha/beta + (1 - alpha/beta) exp(-beta t)]",
-            (("E_glassy", "Pa"), ("alpha", "s-1"), ("beta", "s-1"))),
-    "prony": ("generalised Maxwell (Prony series)", "E(t) = E_inf + sum_i E_i exp(-beta_i t)",
-              (("E_inf", "Pa"), ("E", "Pa"), ("beta", "s-1"))),
-    "fractional": ("fractional, order 1/2 (Bagley-Torvik), Green 2026 Eq. 23", "E(t) = E0 + E1 / sqrt(pi t)",
-                   (("E0", "Pa"), ("E1", "Pa s0.5"))),
-    "cerf": ("Mittag-Leffler, order 1/2 (CERF), Green 2026 Eq. 24", "E(t) = E0 + E1 erfcx(b1 sqrt(t))",
-             (("E0", "Pa"), ("E1", "Pa"), ("b1", "s-0.5"))),
-    "kelvin-voigt": ("Kelvin-Voigt, Ramirez et al. 1999 Eq. 3 (A = tau)", "E(t) = E [1 + tau delta(t)]",
-                     (("E", "Pa"), ("tau", "s"))),
-    "elastic": ("elastic", "E(t) = E", (("E", "Pa"),)),
-}
+#: model kind -> (formula name, E(t), ((parameter, UDUNITS unit), ...) in the order the formula names them),
+#: from the material registry (the models a config may name)
+MODEL_FORMULAS = {kind: (f.title, f.formula, tuple((p.name, p.unit) for p in f.parameters))
+                  for kind, f in REGISTRY.items() if f.configurable}
 
 #: preset -> where its numbers come from
 PRESET_REFERENCES = {

@@ -135,11 +135,10 @@ def test_scene_point_with_bodies():
 
 
 @pytest.mark.slow
-def test_workflow_scene_with_bodies(tmp_path):
+def test_workflow_scene_with_bodies(make_project, smk, tmp_path):
     """A scene with sphere and plate bodies runs through the workflow; the sweep's COR is the one of
     vcor.simulate with the same bodies."""
     import xarray as xr
-    from test_workflow import make_project, smk
 
     scene = {**SCENE, "solver": {"method": "direct"}, "figures": {"fig8": {}}}
     cfg = {"shard_size": 100, "material_dir": "results/materials", "scenes": {"bodies": scene}}
@@ -152,11 +151,10 @@ def test_workflow_scene_with_bodies(tmp_path):
 
 
 @pytest.mark.slow
-def test_workflow_body_may_name_a_config_material(tmp_path):
+def test_workflow_body_may_name_a_config_material(make_project, smk, tmp_path):
     """A body naming a config material: its parameters are inlined into the scene's settings, so editing
     the material changes the shard names (its content is part of their identity)."""
     import xarray as xr
-    from test_workflow import make_project, smk
 
     scene = {"materials": ["sls"], "grid": {"v0": [10.0]}, "solver": {"method": "direct"},
              "sphere": {"material": "my-ball"}, "plate": {}}

@@ -125,11 +125,10 @@ def test_bad_calibration_specs_name_the_key(tmp_path, free, words):
 
 
 @pytest.mark.slow
-def test_workflow_calibrates_and_a_scene_uses_the_result(tmp_path, clean):
+def test_workflow_calibrates_and_a_scene_uses_the_result(make_project, smk, tmp_path, clean):
     """A calibrations block: the record (estimate, stderr, correlation, data, fit, residuals, band), the
     figure, and the calibrated material used by name in a scene; bad data stop the run before any job."""
     import xarray as xr
-    from test_workflow import make_project, smk
 
     rng = np.random.default_rng(5)
     cor = clean * (1 + 0.005 * rng.standard_normal(V0.size))

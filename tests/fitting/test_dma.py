@@ -127,11 +127,10 @@ def test_pyvisco_raw_sets_superposed_both_ways():
 
 
 @pytest.mark.slow
-def test_workflow_fits_measured_data_and_sweeps_temperature(tmp_path):
+def test_workflow_fits_measured_data_and_sweeps_temperature(make_project, smk, tmp_path):
     """A fit to raw DMA sets in the config (superposition, WLF, Prony master curve): the material
     file carries its shift function, and a scene sweeps T with it."""
     import xarray as xr
-    from test_workflow import make_project, smk
 
     cfg = {"shard_size": 100, "material_dir": "results/materials",
            "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": T_REF}}},

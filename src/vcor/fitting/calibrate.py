@@ -43,6 +43,7 @@ import numpy as np
 
 from .. import spheres as S
 from ..io.csvfile import cell_number, data_rows, read_rows, units_row
+from ..materials import REGISTRY
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 from ..materials.specs import from_spec
@@ -513,12 +514,10 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
 
 
 def _param_unit(name: str, kind: str = "") -> str:
-    name = name.split("[")[0]
-    if name == "E1" and kind == "fractional":
-        return "Pa s0.5"
-    if name.startswith("E"):
-        return "Pa"
-    return {"alpha": "s-1", "beta": "s-1", "tau": "s", "b1": "s-0.5"}.get(name, "1")
+    """The UDUNITS unit of a calibrated parameter (``E[2]``: an element of ``E``), from the material
+    registry; "1" for a name the model does not have."""
+    base, family = name.split("[")[0], REGISTRY.get(kind)
+    return family.unit(base) if family is not None and base in family.names else "1"
 
 
 # ----------------------------------------------------------------------------- the sphere limit: g*
