@@ -1,5 +1,6 @@
 """Shared fixtures: a seeded random generator, and the one way the tests copy the project and run
-Snakemake in it (``make_project``, ``smk``; session-scoped, so module fixtures can use them)."""
+Snakemake in it (``make_project``, ``smk``: fixtures built once per test run, so module fixtures can use
+them)."""
 
 import shutil
 import subprocess

@@ -106,7 +106,7 @@ def test_api_module_tables_are_not_reprs(built_site):
 HISTORY = {
     "issue number": r"\b[Ii]ssues?\s+#?\d+|(?<![\w&/#])#\d+\b",
     "commit hash": r"\b(?=[0-9a-f]*[0-9])(?=[0-9a-f]*[a-f])[0-9a-f]{7,40}\b",
-    "session": r"(?i)\bsessions?\b",
+    "session": r"(?i)(?<!scope=\")\bsessions?\b",  # pytest's fixture scope is not a work session
     # "X used to do Y", not the passive "X is used to compute Y"
     "used to": r"(?i)(?<!\bis )(?<!\bare )(?<!\bbe )(?<!\bbeen )(?<!\bbeing )(?<!\bwas )(?<!\bwere )\bused to\b",
     "tried and not kept": r"(?i)\btried,?\s+(and\s+)?not\s+kept\b|\bnot kept\b",
