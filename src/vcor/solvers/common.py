@@ -6,10 +6,8 @@ import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from ._records import Body, Nodes
-from ._separation import locate_separation, parabola_peak
 
 __all__ = ["LONG_NAMES", "OUTCOME", "UNITS", "Histories", "Result", "peak", "richardson", "separation"]
 
@@ -147,10 +145,16 @@ def peak(t, y, f=None):
     >>> round(peak(t, 1.0 - (t - 0.53) ** 2), 12)  # the parabola through three samples: exact here
     1.0
     """
+    # the kernels and scipy.optimize are imported on use: the records and the vocabulary of this module
+    # (OUTCOME, UNITS, Result) are read by jobs that solve nothing (aggregation, figures)
+    from ._separation import parabola_peak
+
     i = int(np.argmax(y))
     if i == 0 or i == y.size - 1:
         return float(y[i])
     if f is not None:
+        from scipy.optimize import minimize_scalar
+
         lo, hi = t[i - 1], t[i + 1]
         r = minimize_scalar(lambda x: -f(x), bounds=(lo, hi), method="bounded", options={"xatol": 1e-14 * hi})
         return float(max(-r.fun, y[i]))
@@ -167,6 +171,8 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0):
     root is always bracketed in a march's separation step; anything else raises (no silent guess).
     Returns a dict of the scalars and ``message`` (empty).
     """
+    from ._separation import locate_separation
+
     n = int(n_sep)
     out = np.empty(9)
     nodes = tuple(Nodes(*(np.ascontiguousarray(a, dtype=float) for a in (t, s, g, F, J, J))))
