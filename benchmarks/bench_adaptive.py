@@ -16,8 +16,8 @@ import sys
 import time
 
 import numpy as np
-import timing
 
+import timing
 import vcor
 from vcor.contact.impact import make_impact
 from vcor.materials.expsums import soe

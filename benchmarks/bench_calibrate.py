@@ -14,12 +14,11 @@ Run: python benchmarks/bench_calibrate.py [--runs 2] [--calls 3] [--quick] [--ou
 from __future__ import annotations
 
 import numpy as np
-import timing
 
+import timing
 import vcor
 from vcor.fitting import calibrate as cal
 from vcor.materials import SLS
-
 
 ICE_FITS = (("numeric", "overlap"), ("numeric", "force"), ("pade", "overlap"))
 
@@ -37,7 +36,8 @@ def measure(args):
     cor10 = noisy_cor(sls, v10, rng)
     free3 = {"alpha": [30.0, 1000.0], "modulus_scale": [0.1, 10.0], "log_aT": [-2.0, 2.0]}
     free2 = {"E_glassy": [1e6, 1e9], "beta": [400.0, 1e6]}
-    cases = [("SLS alpha + modulus_scale + log_aT, 20 points", lambda: cal.calibrate(cal.CorData(v20, cor20), sls, free3)),
+    cases = [("SLS alpha + modulus_scale + log_aT, 20 points",
+              lambda: cal.calibrate(cal.CorData(v20, cor20), sls, free3)),
              ("SLS E_glassy + beta, 10 points",
               lambda: cal.calibrate(cal.CorData(v10, cor10), SLS(10e6, 300.0, 2000.0), free2))]
     g = np.geomspace(0.05, 5.0, 21)
@@ -45,7 +45,8 @@ def measure(args):
         cases = cases[1:]
     for model, rule in (("pade", "overlap"),) if args.quick else ICE_FITS:
         label = f"ice g*, {model}{' ' + rule if model == 'numeric' else ''}, 21 points"
-        cases.append((label, lambda model=model, rule=rule: cal.fit_g_star(g, cal.bridges_ice(g), model=model, rule=rule)))
+        cases.append((label,
+                      lambda model=model, rule=rule: cal.fit_g_star(g, cal.bridges_ice(g), model=model, rule=rule)))
     out = {}
     for name, fn in cases:
         t, res = timing.warm_timed(fn, timing.calls(args))
@@ -56,8 +57,8 @@ def measure(args):
 def report(args, results):
     rows = [[name, timing.cell(timing.column(results, name, "time"), 1.0, ".3f"), info["model_runs"] or "-"]
             for name, info in results[0].items()]
-    return [f"Calibrations: median of {timing.calls(args)} warm call(s) after one untimed call, one fresh process with an "
-            "empty numba cache per run; cells: median over runs (min–max).",
+    return [f"Calibrations: median of {timing.calls(args)} warm call(s) after one untimed call, one fresh "
+            "process with an empty numba cache per run; cells: median over runs (min–max).",
             timing.table(["calibration", "time [s]", "model runs"], rows)]
 
 

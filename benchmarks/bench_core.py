@@ -13,7 +13,6 @@ from __future__ import annotations
 import statistics
 
 import timing
-
 import vcor
 
 SWEEP = [float(v) for v in range(1, 51)]  # v0 = 1..50 m/s
@@ -36,7 +35,8 @@ def measure(args):
     rows = {
         "direct, SLS, v0 = 10 m/s, dt = 1 µs, Volterra off (simulate call)":
             w(lambda: vcor.simulate("sls", 10.0, method="direct", dt=1e-6), calls),
-        "direct, SLS, v0 = 10 m/s, dt = 1 µs, solver loop only (Result.wall_time)": solver_time("sls", 10.0, calls, method="direct", dt=1e-6),
+        "direct, SLS, v0 = 10 m/s, dt = 1 µs, solver loop only (Result.wall_time)":
+            solver_time("sls", 10.0, calls, method="direct", dt=1e-6),
         "adaptive (the default), SLS, v0 = 10 m/s (simulate call)": w(lambda: vcor.simulate("sls", 10.0), calls),
         "direct, butyl-fc sweep v0 = 1..50 m/s (50 calls, default dt)": w(sweep("butyl-fc", method="direct"), sweeps),
         "direct, butyl-cerf sweep v0 = 1..50 m/s": w(sweep("butyl-cerf", method="direct"), sweeps),

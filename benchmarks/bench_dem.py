@@ -17,6 +17,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+
 import timing
 
 MATERIALS = ("sls", "butyl-prony3")
@@ -91,5 +92,6 @@ def configure(p):
 
 
 if __name__ == "__main__":
-    timing.main(__doc__, measure, report, quick=f"{QUICK_SPEEDS} speeds, one warm call, cases {' '.join(QUICK_CASES)} (default)", calls=5,
+    timing.main(__doc__, measure, report,
+                quick=f"{QUICK_SPEEDS} speeds, one warm call, cases {' '.join(QUICK_CASES)} (default)", calls=5,
                 configure=configure, jobs=jobs)

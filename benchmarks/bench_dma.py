@@ -225,7 +225,8 @@ def detail_tables(first):
     rows = []
     for k in range(T.size):
         rows.append([f"{T[k]:.2f}", f"{s1.log_aT[k]:.2f} ± {s1.log_aT_std[k]:.2f}",
-                     f"{fit.log_aT[k]:.2f} ± {fit.log_aT_std[k]:.2f}", f"{fit0.log_aT[k]:.2f} ± {fit0.log_aT_std[k]:.2f}",
+                     f"{fit.log_aT[k]:.2f} ± {fit.log_aT_std[k]:.2f}",
+                     f"{fit0.log_aT[k]:.2f} ± {fit0.log_aT_std[k]:.2f}",
                      f"{s1.set_rms['E_stor'][k]:.4f}",
                      f"{pv['log_aT'][k]:.2f}" if pv else "-",
                      f"{mc['E_stor:0.04']['log_aT'][k]:.2f} ± {mc['E_stor:0.04']['std'][k]:.2f}" if mc else "-"])

@@ -11,9 +11,9 @@ Run: python benchmarks/bench_fit.py [--runs 2] [--calls 3] [--quick] [--out FILE
 
 from __future__ import annotations
 
-import timing
 import yaml
 
+import timing
 from vcor.fitting import fits, prony
 
 
@@ -22,9 +22,11 @@ def measure(args):
     data = prony.bagley_torvik_data()
     cases = [("Prony, automatic N, tol 1 %", lambda: prony.fit_prony(data, None, tol=0.01)),
              ("CERF", lambda: prony.fit_cerf(data))]
-    cases += [(f"Prony, N = {n}", lambda n=n: prony.fit_prony(data, n)) for n in ((3, 7) if args.quick else (3, 7, 9, 12))]
+    terms = (3, 7) if args.quick else (3, 7, 9, 12)
+    cases += [(f"Prony, N = {n}", lambda n=n: prony.fit_prony(data, n)) for n in terms]
     spec = yaml.safe_load((timing.ROOT / "config.yaml").read_text())["fits"]["pyvisco-polymer"]
-    cases.append(("pyvisco raw DMA (`fits.pyvisco-polymer`): shifts + lag + spectrum", lambda: fits.run_fit(spec, timing.ROOT)[0]))
+    cases.append(("pyvisco raw DMA (`fits.pyvisco-polymer`): shifts + lag + spectrum",
+                  lambda: fits.run_fit(spec, timing.ROOT)[0]))
     out = {}
     for name, fn in cases:
         t, res = timing.warm_timed(fn, calls)

@@ -36,7 +36,8 @@ def worker(calls: int, method: str) -> dict:
 
 
 def run_worker(src: Path, calls: int, method: str) -> dict:
-    out = timing.fresh_json([timing.PYTHON, __file__, timing.WORKER_FLAG, str(calls), method], env={"PYTHONPATH": str(src)})
+    out = timing.fresh_json([timing.PYTHON, __file__, timing.WORKER_FLAG, str(calls), method],
+                            env={"PYTHONPATH": str(src)})
     if Path(out["vcor"]) != (src / "vcor").resolve():
         raise RuntimeError(f"the worker for {src} imported vcor from {out['vcor']}")
     return out["times"]

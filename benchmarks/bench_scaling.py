@@ -22,15 +22,16 @@ import sys
 import tempfile
 from pathlib import Path
 
-import timing
 import yaml
 
+import timing
 from vcor.study import cost, runner, scene
 
 ROOT = timing.ROOT
 SCENE = {
     "materials": ["sls"],
-    "grid": {"v0": {"start": 1, "stop": 100, "step": 1}, "beta": {"start": 100, "stop": 1.0e5, "num": 100, "log": True}},
+    "grid": {"v0": {"start": 1, "stop": 100, "step": 1},
+             "beta": {"start": 100, "stop": 1.0e5, "num": 100, "log": True}},
     "tie": {"alpha": {"to": "beta", "ratio": 0.25}},
 }
 #: about a minute of one core's solver work: the size from which a run's fixed costs are amortised

@@ -11,7 +11,6 @@ Run: python benchmarks/bench_soe.py [--runs 2] [--calls 15] [--quick] [--out FIL
 from __future__ import annotations
 
 import timing
-
 import vcor
 
 MATERIALS = ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3")
@@ -39,9 +38,9 @@ def report(args, results):
         ive = c([r["ive"] for r in runs], 1e3, ".3f") if name in PRONY else "-"
         rows.append([name, c([r["direct"] for r in runs], 1e3, ".3f"), c([r["soe"] for r in runs], 1e3, ".3f"),
                      c([r["soe"] / r["direct"] for r in runs]), ive, f"{runs[-1]['gap']:.1e}"])
-    return [f"Per impact, v0 = 10 m/s, whole simulate call, fixed-step defaults; warm: median of {timing.calls(args, 2)} calls "
-            "after one untimed call, one fresh process with an empty numba cache per run; cells: median over "
-            "runs (min–max).",
+    return [f"Per impact, v0 = 10 m/s, whole simulate call, fixed-step defaults; warm: median of "
+            f"{timing.calls(args, 2)} calls after one untimed call, one fresh process with an empty numba cache "
+            "per run; cells: median over runs (min–max).",
             timing.table(["material", "direct [ms]", "soe [ms]", "soe / direct", "ive-numba [ms]",
                           "abs(COR soe − COR direct)"], rows)]
 

@@ -16,9 +16,9 @@ import collections
 import time
 
 import numpy as np
-import timing
 import yaml
 
+import timing
 from vcor import status
 from vcor.study import runner, scene
 
@@ -44,7 +44,8 @@ def measure(args):
     names = [status.STATUS_NAMES[int(code)] for code in ds["status"].values]
     ok = ds["status"].values == status.code("ok")
     axes = [a for a in ds.coords if a not in ("point", "material", "material_id")]
-    flagged = [f"{names[i]}: {ds['material'].values[i]}, " + ", ".join(f"{a} = {float(ds[a].values[i]):g}" for a in axes)
+    flagged = [f"{names[i]}: {ds['material'].values[i]}, "
+               + ", ".join(f"{a} = {float(ds[a].values[i]):g}" for a in axes)
                for i in np.where(~ok)[0]]
     err = float(np.nanmax(ds["cor_err"].values[ok])) if ok.any() else float("nan")
     return {"points": len(points), "statuses": dict(collections.Counter(names)), "max_cor_err": err, "wall": wall,
@@ -77,7 +78,8 @@ def report(args, results):
                      timing.cell(timing.column(res, "wall"), 1.0, ".1f")])
         if method == last_method:
             flagged += [f"- {name}: {line}" for line in last["flagged"]]
-    blocks = [f"Stability scenes by method{' (--quick: every %dth point)' % QUICK_STRIDE if args.quick else ''}: "
+    quick = f" (--quick: every {QUICK_STRIDE}th point)" if args.quick else ""
+    blocks = [f"Stability scenes by method{quick}: "
               "statuses and the largest cor_err over the ok points (of the last run), and the wall time of "
               "run_points in a fresh process with an empty numba cache (compile included).",
               timing.table(["scene", "method", "points", "statuses", "max cor_err", "wall [s]"], rows),

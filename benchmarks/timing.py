@@ -199,7 +199,7 @@ def invocation() -> str:
 
 def header(runs: int, *, command: str | None = None, rev: str | None = None) -> str:
     """The line above every table: command, commit, date (UTC), machine, number of runs."""
-    date = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    date = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     return (f"`{command or invocation()}` · commit {rev or commit()} · {date} · {machine()} · "
             f"{runs} run{'s' if runs != 1 else ''}")
 

@@ -8,6 +8,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE / "_ext"))
 
 import offline_mathjax  # noqa: E402  (docs/_ext)
+
 import vcor  # noqa: E402  (installed from ../src, editable)
 
 project = "vcor"

@@ -3,11 +3,11 @@ COR against impact speed, with what the model cannot vouch for
 ==============================================================
 
 The COR of the four plate materials of Green (2026) against the impact speed, each point one call
-of :func:`vcor.simulate <vcor.solvers.simulate.simulate>`. Every result carries ``validity``: 0 inside the model's stated range, else
-a bit mask of the reasons (:data:`vcor.solvers.validity.FLAGS`) with a sentence in
-``validity_message``. Flagged points are drawn open: they are computed accurately, but Hertz
-contact (indentation much smaller than the radius) or a quasi-static contact (impact slow against
-the plate's wave speed) no longer holds there.
+of :func:`vcor.simulate <vcor.solvers.simulate.simulate>`. Every result carries ``validity``: 0
+inside the model's stated range, else a bit mask of the reasons (:data:`vcor.solvers.validity.FLAGS`)
+with a sentence in ``validity_message``. Flagged points are drawn open: they are computed
+accurately, but Hertz contact (indentation much smaller than the radius) or a quasi-static contact
+(impact slow against the plate's wave speed) no longer holds there.
 """
 
 import matplotlib.pyplot as plt

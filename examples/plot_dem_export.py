@@ -17,8 +17,8 @@ import numpy as np
 
 from vcor.dem.export import dem_dataset
 from vcor.dem.fit import collision, fit_laws
-from vcor.dem.laws import PARAMETERS
 from vcor.dem.lammps import deck_name, write_deck
+from vcor.dem.laws import PARAMETERS
 
 v0 = np.geomspace(0.1, 10.0, 25)  # m/s
 col = collision("sls", v0, sphere={"r": 0.005}, target={"sphere": {}})

@@ -3,9 +3,10 @@ A first impact
 ==============
 
 A steel sphere (radius 10 mm) hits the paper's standard-linear-solid plate at 10 m/s.
-:func:`vcor.simulate <vcor.solvers.simulate.simulate>` returns a :class:`~vcor.solvers.common.Result`; with ``history=True`` it also
-keeps the time histories, from which we draw the force against the indentation: the area inside
-the loop is the energy the material dissipates.
+:func:`vcor.simulate <vcor.solvers.simulate.simulate>` returns a
+:class:`~vcor.solvers.common.Result`; with ``history=True`` it also keeps the time histories, from
+which we draw the force against the indentation: the area inside the loop is the energy the
+material dissipates.
 """
 
 import matplotlib.pyplot as plt

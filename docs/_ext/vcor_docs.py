@@ -113,8 +113,14 @@ class SolverOptionsTable(Directive):
     """Every solver option: methods, default (and per-method defaults), unit, allowed values, meaning."""
 
     def run(self):
-        from vcor.solvers.options import (DEFAULT_METHOD, FIXED_STEP_METHODS, METHOD_NAMES, OPTION_HELP,
-                                          OPTION_UNITS, SolverOptions)
+        from vcor.solvers.options import (
+            DEFAULT_METHOD,
+            FIXED_STEP_METHODS,
+            METHOD_NAMES,
+            OPTION_HELP,
+            OPTION_UNITS,
+            SolverOptions,
+        )
 
         rows = []
         for name in SolverOptions.names():

@@ -163,8 +163,11 @@ def cor_root(b):
     """
     b = _check_b(b)
     x = abs(C[0]) * np.atleast_1d(b)
-    out = np.array([1.0 if xi == 0 else brentq(lambda e: e + xi * e**0.6 - 1.0, 0.0, 1.0, xtol=1e-15)
-                    for xi in x])
+
+    def root(xi):
+        return brentq(lambda e: e + xi * e**0.6 - 1.0, 0.0, 1.0, xtol=1e-15)
+
+    out = np.array([1.0 if xi == 0 else root(xi) for xi in x])
     return out.reshape(np.shape(b))
 
 
@@ -265,7 +268,7 @@ def _pair(R1, R2, m1, m2, E, nu):
     """(R_eff, m_eff, rho) for two spheres of one material; R2 = m2 = inf is a sphere on an immovable
     half-space of the same material (rho = 2 E sqrt(R_eff) / (3 (1 - nu^2)), Ramirez Eq. 2)."""
     R1, m1, E = positive("R1", R1), positive("m1", m1), positive("E", E)
-    R2 = math.inf if R2 == math.inf else positive("R2", R2)
+    R2 = math.inf if R2 == math.inf else positive("R2", R2)  # noqa: SIM300 (R2 is a radius, not a constant)
     m2 = math.inf if m2 == math.inf else positive("m2", m2)
     if not (-1 < nu <= 0.5):
         raise ValueError(f"nu must be in (-1, 0.5], got {nu!r}")

@@ -221,7 +221,7 @@ def series_modulus(a: _materials.Material, c_a: float, b: _materials.Material, c
         for bk in beta:
             den = den * np.poly1d([1.0, bk])
         num = den * float(c * e_inf)
-        for k, (ek, bk) in enumerate(zip(e, beta)):
+        for k, ek in enumerate(e):
             others = np.poly1d([1.0])
             for j, bj in enumerate(beta):
                 if j != k:

@@ -31,7 +31,8 @@ from ..checks import interned, number
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 
-__all__ = ["DENSITIES", "GEOMETRY_AXES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "Geometry", "Impact", "make_impact"]
+__all__ = ["DENSITIES", "GEOMETRY_AXES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "Geometry", "Impact",
+           "make_impact"]
 
 #: densities (kg/m^3) used when rho_a / rho_b are not given: the viscoelastic body is the paper's polymer
 #: (1100), a stiff elastic one steel (7800). Case 1 and 3: steel sphere on a polymer plate; case 2: both

@@ -178,7 +178,7 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
         for p, (unit, meaning) in PARAMETERS[model].items():
             key = p if p not in params else f"{p}_{model}"
             params[key] = (model, unit, meaning, np.array([f[model][p] for f in fits]))
-    for key, (model, unit, meaning, values) in params.items():
+    for key, (_, _, _, values) in params.items():
         data[key] = (("T",), values) if with_t else ((), values[0])
     coords = {"model": ("model", np.array(models, dtype=str)), "v0": ("v0", v0)}
     if with_t:

@@ -47,8 +47,9 @@ variable Eeff    equal v_E/(2.0*(1.0-v_nu^2))
 """
 #: the header line of each LAMMPS law
 _USAGE = {
-    "lammps-viscoelastic": "# -var model viscoelastic       damping viscoelastic, eta_n0, limit_damping (the force clipped "
-                           "at zero;\n#                               vcor's separation where the force vanishes)"
+    "lammps-viscoelastic": "# -var model viscoelastic       damping viscoelastic, eta_n0, limit_damping "
+                           "(the force clipped at zero;\n"
+                           "#                               vcor's separation where the force vanishes)"
                            "            [default]\n",
     "lammps-coeff-restitution": "# -var model coeff_restitution  damping coeff_restitution, the constant e, no "
                                 "limit_damping\n",
@@ -56,6 +57,8 @@ _USAGE = {
 #: per LAMMPS law of the dataset: the deck's model name, its coefficient variable, the tail keyword
 _LAWS = {"lammps-viscoelastic": ("viscoelastic", "eta_n0", "limit_damping"),
          "lammps-coeff-restitution": ("coeff_restitution", "e", " ")}
+#: the contact law of both decks (pair_coeff, fix wall/gran): Hertz with the chosen damping
+_HERTZ = "hertz/material ${E} ${coef} ${nu} tangential linear_nohistory 0.0 0.0 damping ${model} ${tail}"
 
 _PAIR = """\
 variable R1      index {r1:.12g}
@@ -87,7 +90,7 @@ velocity         all set 0.0 0.0 0.0 units box
 set              atom 1 vx ${{vh}}
 set              atom 2 vx ${{mvh}}
 pair_style       granular
-pair_coeff       * * hertz/material ${{E}} ${{coef}} ${{nu}} tangential linear_nohistory 0.0 0.0 damping ${{model}} ${{tail}}
+pair_coeff       * * {hertz}
 neighbor         ${{R1}} bin
 neigh_modify     delay 0 every 1 check yes
 fix              integ all nve/sphere
@@ -123,7 +126,7 @@ velocity         all set 0.0 0.0 0.0 units box
 set              atom 1 vx ${{mv}}
 pair_style       zero ${{R}}
 pair_coeff       * *
-fix              wall all wall/gran granular hertz/material ${{E}} ${{coef}} ${{nu}} tangential linear_nohistory 0.0 0.0 damping ${{model}} ${{tail}} xplane 0.0 NULL
+fix              wall all wall/gran granular {hertz} xplane 0.0 NULL
 neighbor         ${{R}} bin
 neigh_modify     delay 0 every 1 check yes
 fix              integ all nve/sphere
@@ -180,7 +183,7 @@ def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
     law_vars = "".join(f"variable {_LAWS[m][1]:<7s} index {first(_LAWS[m][1]):.12g}\n" for m in present)
     values = {"E": first("E_lammps"), "nu": contact["nu"], "model": _LAWS[present[0]][0], "law_vars": law_vars,
               "choice": _choice(present), "nsteps": int(nsteps), "r1": radii[0], "rho1": dens[0],
-              "r2": radii[-1], "rho2": dens[-1]}
+              "r2": radii[-1], "rho2": dens[-1], "hertz": _HERTZ}
     what = ("two spheres, head-on, v0 = relative approach speed" if kind == "pair"
             else "a sphere on a flat wall, v0 = approach speed")
     usage = "".join(_USAGE[m] for m in present)

@@ -6,9 +6,9 @@ free parameters of a material to COR data at several impact speeds with the forw
 
 * data: CSV ``v0,cor[,cor_std]`` (m/s, dimensionless; a units row ``m/s,-,-`` or ``cm/s`` is allowed);
 * free parameters: any parameter of the material (``Material.params()``: E_glassy, alpha, beta for
-  sls; E0, E1 for fractional; a Prony term's modulus or rate as ``E[i]``, ``beta[i]``; ...), and for any material ``modulus_scale`` (all moduli times
-  a factor) and ``log_aT`` (the time scale: E(t) -> E(t / a_T), log10 a_T); each with bounds
-  ``[lo, hi]`` that contain its start value;
+  sls; E0, E1 for fractional; a Prony term's modulus or rate as ``E[i]``, ``beta[i]``; ...), and
+  for any material ``modulus_scale`` (all moduli times a factor) and ``log_aT`` (the time scale:
+  E(t) -> E(t / a_T), log10 a_T); each with bounds ``[lo, hi]`` that contain its start value;
 * weighted least squares (``scipy.optimize.least_squares``, trust-region reflective, central
   differences) on ln(p / p_start) for positive parameters (log_aT as it is), residual
   (COR_model - COR) / cor_std (cor_std omitted: unweighted).
@@ -92,7 +92,7 @@ def read_cor_data(path) -> CorData:
     unknown = [c for c in header if c not in _UNITS]
     if unknown:
         raise ValueError(f"{path}, line 1, column {unknown[0]!r}: unknown column; allowed: v0, cor, cor_std")
-    scale, start = units_row(path, rows, header, _UNITS, {c: 1.0 for c in header})
+    scale, start = units_row(path, rows, header, _UNITS, dict.fromkeys(header, 1.0))
     cols, lines = {c: [] for c in header}, []
     for lineno, row in data_rows(path, rows, header, start):
         for col, cell in zip(header, row):
@@ -153,11 +153,13 @@ def _check_free(material, free: dict, m: int, where: str = "free") -> tuple[list
     names, start, lo, hi = [], [], [], []
     for name, bounds in free.items():
         if name not in allowed:
-            raise ValueError(f"{where}.{name}: not a free parameter of a {material.kind!r} material; allowed: {allowed}")
+            raise ValueError(f"{where}.{name}: not a free parameter of a {material.kind!r} material; "
+                             f"allowed: {allowed}")
         if not (isinstance(bounds, (list, tuple)) and len(bounds) == 2
                 and all(isinstance(b, (int, float)) and not isinstance(b, bool) and math.isfinite(b) for b in bounds)
                 and bounds[0] < bounds[1]):
-            raise ValueError(f"{where}.{name}: bounds must be [lower, upper], finite numbers, lower < upper; got {bounds!r}")
+            raise ValueError(f"{where}.{name}: bounds must be [lower, upper], finite numbers, lower < upper; "
+                             f"got {bounds!r}")
         value = {"modulus_scale": 1.0, "log_aT": 0.0}.get(name, params.get(name))
         if name != "log_aT" and bounds[0] <= 0:
             raise ValueError(f"{where}.{name}: bounds of a positive parameter must be > 0 (fitted in log space), "
@@ -477,7 +479,8 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
     ds = xr.Dataset(coords={"parameter": ("parameter", cal.names), "parameter_2": ("parameter_2", cal.names)})
     for name, values, long in (("estimate", cal.estimate, "estimate"), ("stderr", cal.stderr, "standard error"),
                                ("lower95", cal.lower95, "95 % interval, lower end"),
-                               ("upper95", cal.upper95, "95 % interval, upper end"), ("start", cal.start, "start value"),
+                               ("upper95", cal.upper95, "95 % interval, upper end"),
+                               ("start", cal.start, "start value"),
                                ("lower_bound", cal.bounds[:, 0], "lower bound"),
                                ("upper_bound", cal.bounds[:, 1], "upper bound")):
         ds[name] = ("parameter", np.asarray(values, float), {"long_name": long, "units_by_parameter": json.dumps(

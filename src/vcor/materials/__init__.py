@@ -22,5 +22,5 @@ from .models import (
 )
 from .presets import PRESETS, get
 
-__all__ = ["PRESETS", "REGISTRY", "SLS", "Catalogue", "Cerf", "Elastic", "EqOne", "FractionalPower", "KelvinVoigt", "Material",
-           "Prony", "from_dict", "from_file", "get"]
+__all__ = ["PRESETS", "REGISTRY", "SLS", "Catalogue", "Cerf", "Elastic", "EqOne", "FractionalPower", "KelvinVoigt",
+           "Material", "Prony", "from_dict", "from_file", "get"]

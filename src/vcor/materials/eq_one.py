@@ -23,10 +23,10 @@ class EqOne(Material, kind="eq1"):
 
     This is *not* the viscoelastic series combination (compliances adding in the Laplace domain,
     :func:`vcor.contact.bodies.series_modulus`); the two agree when one body is rigid, both are elastic, or
-    both are the same material (E'/2), and differ in between (the documentation, user guide "Bodies"). E'(t) has no closed
-    form for its step integrals or its complex modulus: steps are integrated by Gauss-Legendre (the
-    base class), the antiderivatives by composite Gauss-Legendre on a grid graded towards t = 0. Kelvin-
-    Voigt (Dirac) bodies cannot be combined pointwise and are refused.
+    both are the same material (E'/2), and differ in between (the documentation, user guide "Bodies").
+    E'(t) has no closed form for its step integrals or its complex modulus: steps are integrated by
+    Gauss-Legendre (the base class), the antiderivatives by composite Gauss-Legendre on a grid graded
+    towards t = 0. Kelvin-Voigt (Dirac) bodies cannot be combined pointwise and are refused.
     """
 
     TITLE: ClassVar[str] = "two bodies' plane-strain moduli combined pointwise, Green 2026 Eq. 1"

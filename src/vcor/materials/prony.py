@@ -55,7 +55,8 @@ class Prony(Material, kind="prony"):
     FORMULA: ClassVar[str] = "E(t) = E_inf + sum_i E_i exp(-beta_i t)"
     PARAMETERS: ClassVar[tuple] = (Parameter(name="E_inf", unit="Pa", meaning="rubbery (equilibrium) modulus"),
                                    Parameter(name="E", unit="Pa", meaning="term moduli", shape="terms"),
-                                   Parameter(name="beta", unit="s-1", meaning="relaxation rates (1/tau)", shape="terms"))
+                                   Parameter(name="beta", unit="s-1", meaning="relaxation rates (1/tau)",
+                                             shape="terms"))
 
     E_inf: float
     E: tuple = ()
@@ -63,7 +64,8 @@ class Prony(Material, kind="prony"):
 
     def __post_init__(self):
         _positive("E_inf", self.E_inf, allow_zero=True, unit="Pa")
-        e = tuple(_term(f"Prony E[{i}]", x, "Pa") for i, x in enumerate(np.atleast_1d(np.asarray(self.E, dtype=object))))
+        e = tuple(_term(f"Prony E[{i}]", x, "Pa")
+                  for i, x in enumerate(np.atleast_1d(np.asarray(self.E, dtype=object))))
         b = tuple(_term(f"Prony beta[{i}]", x, "1/s")
                   for i, x in enumerate(np.atleast_1d(np.asarray(self.beta, dtype=object))))
         if len(e) != len(b):

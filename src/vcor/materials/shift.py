@@ -104,11 +104,13 @@ class ShiftFunction:
         if not isinstance(spec, dict) or spec.get("model") not in SHIFT_MODELS:
             raise ValueError(f"{where}: a mapping with model wlf (C1, C2 [K], T_ref [deg C]), arrhenius "
                              f"(E_a [J/mol], T_ref [deg C]) or table (T [deg C], log_aT, T_ref [deg C]), got {spec!r}")
-        need = {"wlf": ("C1", "C2", "T_ref"), "arrhenius": ("E_a", "T_ref"), "table": ("T", "log_aT", "T_ref")}[spec["model"]]
+        need = {"wlf": ("C1", "C2", "T_ref"), "arrhenius": ("E_a", "T_ref"),
+                "table": ("T", "log_aT", "T_ref")}[spec["model"]]
         extra = set(spec) - set(need) - {"model"}
         missing = [k for k in need if k not in spec]
         if missing or extra:
-            raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; takes {list(need)}")
+            raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; "
+                             f"takes {list(need)}")
         T_ref = number(f"{where}.T_ref", spec["T_ref"], -ZERO_CELSIUS, unit="deg C")
         if spec["model"] == "table":
             _check_table(spec["T"], spec["log_aT"], T_ref, where)
@@ -135,12 +137,13 @@ class ShiftFunction:
                                  f"(the measured sets' range, T_ref = {self.T_ref:g} deg C; a table is not "
                                  f"extrapolated), got {T!r}")
             return float(self._interpolant(T))
-        if not (number_like and math.isfinite(T) and T > lo):
+        if not (number_like and math.isfinite(T) and lo < T):
             raise ValueError(f"temperature T must be in ({lo:g}, inf) deg C for this {self.model} shift function "
                              f"(T_ref = {self.T_ref:g} deg C), got {T!r}")
         if self.model == "wlf":
             return float(wlf_log_aT(T, self.T_ref, self.C1, self.C2))
-        return self.E_a / (GAS_CONSTANT * math.log(10.0)) * (1.0 / (T + ZERO_CELSIUS) - 1.0 / (self.T_ref + ZERO_CELSIUS))
+        return (self.E_a / (GAS_CONSTANT * math.log(10.0))
+                * (1.0 / (T + ZERO_CELSIUS) - 1.0 / (self.T_ref + ZERO_CELSIUS)))
 
     @functools.cached_property
     def _interpolant(self):
@@ -179,10 +182,11 @@ def _check_table(T, log_aT, T_ref, where):
     except (TypeError, ValueError):
         raise ValueError(f"{where}: T and log_aT must be lists of numbers, got {T!r} and {log_aT!r}") from None
     if x.ndim != 1 or x.shape != y.shape or x.size < 2:
-        raise ValueError(f"{where}: T and log_aT must be lists of equal length >= 2, got {np.shape(x)} and {np.shape(y)}")
+        raise ValueError(f"{where}: T and log_aT must be lists of equal length >= 2, "
+                         f"got {np.shape(x)} and {np.shape(y)}")
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y)) and np.all(np.diff(x) > 0) and x[0] > -ZERO_CELSIUS):
-        raise ValueError(f"{where}.T: temperatures (deg C) must be finite, above {-ZERO_CELSIUS:g} and strictly increasing, "
-                         f"with finite log_aT; got T = {x.tolist()}")
+        raise ValueError(f"{where}.T: temperatures (deg C) must be finite, above {-ZERO_CELSIUS:g} and strictly "
+                         f"increasing, with finite log_aT; got T = {x.tolist()}")
     if not x[0] <= T_ref <= x[-1]:
         raise ValueError(f"{where}.T_ref: {T_ref:g} deg C lies outside the table's {x[0]:g}..{x[-1]:g} deg C")
 

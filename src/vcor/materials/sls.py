@@ -33,7 +33,8 @@ class SLS(Prony, kind="sls"):
     TITLE: ClassVar[str] = "standard linear solid (Zener), Green 2026 Eq. 13"
     FORMULA: ClassVar[str] = "E(t) = E_glassy [alpha/beta + (1 - alpha/beta) exp(-beta t)]"
     PARAMETERS: ClassVar[tuple] = (Parameter(name="E_glassy", unit="Pa", meaning="glassy modulus E(0)"),
-                                   Parameter(name="alpha", unit="s-1", meaning="rate with rubbery modulus E_glassy alpha/beta"),
+                                   Parameter(name="alpha", unit="s-1",
+                                             meaning="rate with rubbery modulus E_glassy alpha/beta"),
                                    Parameter(name="beta", unit="s-1", meaning="relaxation rate"))
 
     E_glassy: float = 0.0

@@ -138,9 +138,9 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
     keys = set(spec) - {"model", "shift"}
     missing, unknown = required - keys, keys - required - optional
     if missing or unknown:
-        raise ValueError(f"{where} ({model}): " + "; ".join(
-            x for x in (f"missing {sorted(missing)}" if missing else "", f"unknown {sorted(unknown)}" if unknown else "")
-            if x) + f"; a {model} material takes {sorted(required | optional)}")
+        problems = [f"missing {sorted(missing)}" if missing else "", f"unknown {sorted(unknown)}" if unknown else ""]
+        raise ValueError(f"{where} ({model}): " + "; ".join(x for x in problems if x)
+                         + f"; a {model} material takes {sorted(required | optional)}")
     if "shift" in spec:
         ShiftFunction.from_spec(spec["shift"], f"{where}.shift")  # checked here, applied per temperature
     spec = {k: v for k, v in spec.items() if k != "shift"}

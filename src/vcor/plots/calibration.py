@@ -34,7 +34,8 @@ def calibration(cal):
         e, s = float(cal["estimate"].sel(parameter=p)), float(cal["stderr"].sel(parameter=p))
         ok = int(cal["identified"].sel(parameter=p)) == 1
         parts.append(f"{p} = {e:.4g} +- {s:.2g} {units.get(p, '')}" if ok else f"{p} = {e:.4g}: NOT IDENTIFIED")
-    ax1.set_title("\n".join(parts) + f"\nchi2 = {cal.attrs.get('chi2', float('nan')):.3g}, dof = {cal.attrs.get('dof', '?')}",
+    ax1.set_title("\n".join(parts)
+                  + f"\nchi2 = {cal.attrs.get('chi2', float('nan')):.3g}, dof = {cal.attrs.get('dof', '?')}",
                   fontsize=8)
     return fig
 

@@ -21,8 +21,8 @@ _SOLVER_LABELS = {"direct-a": "direct", "direct-b": "direct, form b", "direct-a+
                   "ive-Radau": "internal variables (Radau)", "ive-BDF": "internal variables (BDF)",
                   "ive": "internal variables (solve_ivp)", "ive-numba": "internal variables, fixed step",
                   "soe": "exponential-sum history, fixed step", "adaptive": "adaptive (extrapolated)",
-                  "adaptive-plain": "adaptive (not extrapolated)", "paper-explicit": "explicit baseline (paper's scheme)",
-                  "paper": "explicit baseline (paper's scheme)"}
+                  "adaptive-plain": "adaptive (not extrapolated)",
+                  "paper-explicit": "explicit baseline (paper's scheme)", "paper": "explicit baseline (paper's scheme)"}
 
 
 def unit_label(units: str) -> str:

@@ -77,7 +77,8 @@ def dem(ds):
     flag_legend(axes[0, 0], flags)  # the reasons of every column's flagged points, once
     axes[0, 0].legend(fontsize=7, loc="lower left")
     contact = json.loads(ds.attrs.get("contact", "{}"))
-    fig.suptitle(f"DEM entry {ds.attrs.get('dem', '')}: {contact.get('kind', '')}, m_eff = "
-                 f"{contact.get('m_eff_kg', float('nan')):.3g} kg, R_eff = {contact.get('r_eff_m', float('nan')):.3g} m",
+    fig.suptitle(f"DEM entry {ds.attrs.get('dem', '')}: {contact.get('kind', '')}, "
+                 f"m_eff = {contact.get('m_eff_kg', float('nan')):.3g} kg, "
+                 f"R_eff = {contact.get('r_eff_m', float('nan')):.3g} m",
                  fontsize=10)
     return fig

@@ -26,7 +26,8 @@ def spheres_eps(sph, opts):
     ax.set_title("Viscoelastic spheres: ε(b)")
     for rule, ref in (("overlap", "eps_pade"), ("force", "eps_pade_force")):
         if rule in sph["rule"].values:
-            ax2.loglog(b, np.abs(sph["eps_numeric"].sel(rule=rule) / sph[ref] - 1), label=f"|numerical/{ref} - 1|, {rule}")
+            ax2.loglog(b, np.abs(sph["eps_numeric"].sel(rule=rule) / sph[ref] - 1),
+                       label=f"|numerical/{ref} - 1|, {rule}")
     if "overlap" in sph["rule"].values:
         ax2.loglog(b, np.abs(sph["eps_numeric"].sel(rule="overlap") - sph["eps_series"].sel(order=4)),
                    label="|numerical - series(4)|, overlap")

@@ -98,7 +98,8 @@ def stability_map(sweep, opts):
     axes_names = [d for d in sweep["cor"].dims if d != "material"]
     mats = sweep["material"].values
     fig, axs = plt.subplots(1, len(mats), figsize=(5.5 * len(mats), 4.5), layout="constrained", squeeze=False)
-    codes = {int(v): n for v, n in zip(sweep["status"].attrs["flag_values"], sweep["status"].attrs["flag_meanings"].split())}
+    flags = sweep["status"].attrs
+    codes = {int(v): n for v, n in zip(flags["flag_values"], flags["flag_meanings"].split())}
     for ax, m in zip(axs[0], mats):
         d = sweep.sel(material=m)
         if len(axes_names) == 1:

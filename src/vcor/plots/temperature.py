@@ -59,7 +59,8 @@ def cor_v0_temperature(sweep, opts):
     if "T" not in sweep.dims:
         raise ValueError("figure cor_v0_temperature needs a sweep with a temperature axis T (deg C)")
     temps = sweep["T"].values
-    chosen = opts.get("T", list(temps[np.unique(np.linspace(0, temps.size - 1, min(5, temps.size)).round().astype(int))]))
+    spread = np.unique(np.linspace(0, temps.size - 1, min(5, temps.size)).round().astype(int))  # five, evenly spaced
+    chosen = opts.get("T", list(temps[spread]))
     missing = [t for t in chosen if t not in temps]
     if missing:
         raise ValueError(f"figure option T: {missing} not on the sweep's T axis {list(temps)}")

@@ -62,14 +62,14 @@ _SPEC = {
     "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
                                bounds=("int", 10, math.inf, "an integer >= 10"), unit="1"),
     "max_steps": _spec(200_000, FIXED_STEP_METHODS, "step budget of the fixed-step march (integer >= 100; "
-                       "4000000 for soe and ive-numba, whose cost is linear in the steps); a run that reaches it without "
-                       "separating ends with status step-budget",
+                       "4000000 for soe and ive-numba, whose cost is linear in the steps); a run that reaches it "
+                       "without separating ends with status step-budget",
                        bounds=("int", 100, math.inf, "an integer >= 100"),
                        method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000}, unit="1"),
     "step_tol": _spec(3e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
-                      "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in (0, 0.01); "
-                      "the default 3e-4 is the largest that keeps the extrapolated COR and t0 within 1e-6 of the "
-                      "reference on every preset", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
+                      "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in "
+                      "(0, 0.01); the default 3e-4 is the largest that keeps the extrapolated COR and t0 within 1e-6 "
+                      "of the reference on every preset", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
     "richardson": _spec(True, ("adaptive",), "adaptive only: march again on the accepted grid with every step "
                         "halved and quartered and Richardson-extrapolate the results (eliminates the h^2 and h^2.5 "
                         "error terms; 7 times the steps of the grid, error order ~3 instead of 2)"),
@@ -86,9 +86,9 @@ _SPEC = {
     "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in [1e-13, 1) (scipy clamps smaller "
                   "ones)", bounds=("float", 1e-13, 1.0, "[1e-13, 1)"), unit="1"),
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
-    "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's history part "
-                     "(vcor.materials.expsums), in [1e-15, 0.01)", bounds=("float", 1e-15, 1e-2, "[1e-15, 0.01)"),
-                     unit="1"),
+    "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's "
+                     "history part (vcor.materials.expsums), in [1e-15, 0.01)",
+                     bounds=("float", 1e-15, 1e-2, "[1e-15, 0.01)"), unit="1"),
     "ghost": _spec(0.5, METHOD_NAMES, "histories only: continue the solution this fraction of t0 past separation, "
                    "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]"), unit="1"),
 }

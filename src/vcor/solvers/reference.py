@@ -67,6 +67,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 from numpy.polynomial import Polynomial
@@ -274,7 +275,7 @@ def _fixed_step_march(impact, dt, n_steps, rule, history):
         t_n = n * dt
         u_known = np.array(nodes.u)
         step = trapezoidal_step(nodes.last(), dt, _mobility(impact, t_n), body,
-                                lambda u_n: history.force(n, u_known, u_n))
+                                partial(history.force, n, u_known))
         nodes.append(t_n, *step)
         history.accept(np.array(nodes.u))
         if watch.update(n, step[0], step[2]):

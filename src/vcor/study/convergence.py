@@ -84,7 +84,7 @@ def study(name, v0, *, catalogue: Catalogue | None = None, repeat=3):
     cor, t0, wall, param, steps = (np.full(shape, np.nan) for _ in range(5))
     status = np.full(shape, _status.code("invalid-input"), dtype=np.int8)
     message = np.full(shape, "not on this solver's ladder", dtype=object)
-    for i, (mname, kw, ladder) in enumerate(methods):
+    for i, (_, kw, ladder) in enumerate(methods):
         for j, level in enumerate(ladder):
             r, w = _run(material, v0, kw, level, repeat)
             cor[i, j], t0[i, j], wall[i, j], steps[i, j] = r.cor, r.t0, w, r.steps
@@ -99,7 +99,8 @@ def study(name, v0, *, catalogue: Catalogue | None = None, repeat=3):
             "t0": (("solver", "level"), t0, {"units": "s", "long_name": "separation time"}),
             "wall_time": (("solver", "level"), wall, {"units": "s", "long_name": "solver wall time (median)"}),
             "param": (("solver", "level"), param,
-                      {"units": "1", "long_name": "steps per contact time (fixed step), rtol (ive) or step_tol (adaptive)"}),
+                      {"units": "1",
+                       "long_name": "steps per contact time (fixed step), rtol (ive) or step_tol (adaptive)"}),
             "steps": (("solver", "level"), steps, {"units": "1", "long_name": "time steps to separation"}),
             "err_cor": (("solver", "level"), np.abs(cor - rc), {"units": "1", "long_name": "|COR - reference|"}),
             "err_t0": (("solver", "level"), np.abs(t0 - rt), {"units": "s", "long_name": "|t0 - reference|"}),
@@ -107,7 +108,8 @@ def study(name, v0, *, catalogue: Catalogue | None = None, repeat=3):
             "message": (("solver", "level"), message.astype(str), {"long_name": "solver message"}),
             "solver_options": ("solver", np.array([json.dumps(solver_options(**m[1]).to_dict(), sort_keys=True)
                                                     for m in methods], dtype=str),
-                               {"long_name": "resolved solver options (JSON; the ladder sets steps_per_contact, rtol or step_tol)"}),
+                               {"long_name": "resolved solver options (JSON; the ladder sets steps_per_contact, "
+                                             "rtol or step_tol)"}),
             "cor_ref": ((), ref_cor, {"units": "1", "long_name": "reference COR (Richardson, direct-a)"}),
             "cor_ref_volterra": ((), ref_v_cor, {"units": "1", "long_name": "reference COR with Volterra"}),
             "cor_ive_1e12": ((), cross, {"units": "1", "long_name": "ive Radau rtol 1e-12 (Prony only)"}),

@@ -38,7 +38,8 @@ def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e
     st, lo = np.array(st), np.array(lo)
     ds = xr.Dataset(
         {
-            "relaxation_modulus": (("material", "t"), np.array(et), {"units": "Pa", "long_name": "relaxation modulus E(t)"}),
+            "relaxation_modulus": (("material", "t"), np.array(et),
+                                   {"units": "Pa", "long_name": "relaxation modulus E(t)"}),
             "storage_modulus": (("material", "omega"), st, {"units": "Pa", "long_name": "storage modulus Re E*"}),
             "loss_modulus": (("material", "omega"), lo, {"units": "Pa", "long_name": "loss modulus Im E*"}),
             "tan_delta": (("material", "omega"), lo / st, {"units": "1", "long_name": "loss tangent"}),
@@ -221,7 +222,8 @@ def _ice_fits(ice, rules):
         msg.append(message)
     return xr.Dataset(
         {
-            "ice_g_star": ("ice_model", np.array(gs), {"units": "cm s-1", "long_name": "g* fitted to the Bridges ice law"}),
+            "ice_g_star": ("ice_model", np.array(gs),
+                           {"units": "cm s-1", "long_name": "g* fitted to the Bridges ice law"}),
             "ice_g_star_stderr": ("ice_model", np.array(se),
                                   {"units": "cm s-1", "long_name": "standard error of g* (residual scatter)"}),
             "ice_rms": ("ice_model", np.array(rms), {"units": "1", "long_name": "rms misfit in eps"}),

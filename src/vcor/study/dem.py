@@ -14,8 +14,9 @@
 ``sphere.material`` and a target body's ``material`` are names of the project's catalogue (preset,
 config material, fit or calibration), inline specs ``{model: ...}`` or (a target's) ``rigid``; a
 target sphere without ``material`` is the sphere's twin. With ``T``, every viscoelastic body's
-material is taken at each temperature through its shift function. :func:`check_dem` checks an entry before any job (every message names the key);
-:func:`run_dem` is the job: the collisions at every temperature and the laws fitted to each.
+material is taken at each temperature through its shift function. :func:`check_dem` checks an entry
+before any job (every message names the key); :func:`run_dem` is the job: the collisions at every
+temperature and the laws fitted to each.
 """
 
 from __future__ import annotations
@@ -120,7 +121,8 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
             temps = axis_values(spec["T"])
         except (ValueError, TypeError) as exc:
             raise ValueError(f"{where}.T: {exc}") from None
-    bodies = [("sphere", sphere)] + ([(f"target.{k}", b) for k, b in target.items()] if isinstance(target, dict) else [])
+    targets = [(f"target.{k}", b) for k, b in target.items()] if isinstance(target, dict) else []
+    bodies = [("sphere", sphere), *targets]
     names = [b.get("material") if isinstance(b, dict) else None for _, b in bodies]
     for (key, _), value in zip(bodies, names):
         if isinstance(value, str) and value != "rigid":

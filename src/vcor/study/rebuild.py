@@ -30,9 +30,9 @@ def _attr(ds, key):
 
 
 def scene_from_dataset(ds) -> tuple[Scene, Catalogue]:
-    """(:class:`~vcor.study.project.Scene`, catalogue) of a sweep dataset (module docstring). ValueError when the dataset lacks
-    the attributes, or a preset's recorded parameters differ from the running code's preset (the
-    preset changed since: the scene cannot be rebuilt under its name)."""
+    """(:class:`~vcor.study.project.Scene`, catalogue) of a sweep dataset (module docstring).
+    ValueError when the dataset lacks the attributes, or a preset's recorded parameters differ from
+    the running code's preset (the preset changed since: the scene cannot be rebuilt under its name)."""
     scene = _attr(ds, "scene_config")
     described = _attr(ds, "materials")
     specs = {}

@@ -3,8 +3,9 @@ combines a scene's shards), every variable with its units and long name.
 
 A failed point never sinks its shard: it is stored with its status and message
 (:mod:`vcor.status`). With ``error_estimate`` every ok point is solved again (dt/2 for fixed-step
-methods: Richardson; rtol/100 for ``ive``; step_tol/16 for ``adaptive``) and the estimates ``cor_err``, ``t0_err`` get their own
-``error_status`` / ``error_message``: a failing estimate run never overwrites the point's status.
+methods: Richardson; rtol/100 for ``ive``; step_tol/16 for ``adaptive``) and the estimates
+``cor_err``, ``t0_err`` get their own ``error_status`` / ``error_message``: a failing estimate run
+never overwrites the point's status.
 """
 
 from __future__ import annotations
@@ -87,7 +88,8 @@ def _rows_to_dataset(points, rows, settings):
 
     n = len(points)
     estimate = bool(settings.get("error_estimate"))
-    data = {k: ("point", np.array([float(r.get(k, math.nan)) for r in rows])) for k in SCALARS + (ERRORS if estimate else ())}
+    data = {k: ("point", np.array([float(r.get(k, math.nan)) for r in rows]))
+            for k in SCALARS + (ERRORS if estimate else ())}
     data["status"] = ("point", _status.codes_of(r["status"] for r in rows))
     data["message"] = ("point", np.array([r.get("message", "") for r in rows], dtype=object))
     data["validity"] = ("point", np.array([r.get("validity", 0) for r in rows], dtype=np.int8))

@@ -18,5 +18,6 @@ from .shifts import ShiftResult, anchor_matrix, global_shifts, pairwise_shifts, 
 
 __all__ = ["LOSS_WEIGHT", "MAX_LAG_PHASE", "MODES_PER_DECADE", "QUANTITIES", "DMAFit", "DMASet", "DMATable",
            "JointFit", "MasterCurve", "ShiftResult", "anchor_matrix", "arrhenius_fit", "check_data", "fit_curve",
-           "fit_dma", "fit_with_shifts", "given_shifts", "global_shifts", "master_curve", "pairwise_shifts", "read_table", "shift_function", "split_sets",
-           "superpose", "superposition_rms", "tan_delta_extrema", "wlf_fit"]
+           "fit_dma", "fit_with_shifts", "given_shifts", "global_shifts", "master_curve", "pairwise_shifts",
+           "read_table", "shift_function", "split_sets", "superpose", "superposition_rms", "tan_delta_extrema",
+           "wlf_fit"]

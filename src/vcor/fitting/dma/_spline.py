@@ -103,8 +103,8 @@ class SplineObjective:
         self.mask = {q: np.concatenate([np.full(s.f.size, float(masks[q][k])) for k, s in enumerate(sets)])
                      for q in quantities}
         self.omega = {q: np.ones(self.x.size) for q in quantities}
-        self.wq = {q: 1.0 for q in quantities}
-        self.mu = {q: 1.0 for q in quantities}
+        self.wq = dict.fromkeys(quantities, 1.0)
+        self.mu = dict.fromkeys(quantities, 1.0)
         # s = S d: s_k = sum_{j<k} d_j - sum_{j<k_ref} d_j
         self.S = step_matrix(len(sets), k_ref)
 

@@ -14,8 +14,17 @@ The joint fit of a spectrum with the shift factors of temperature sets, which sh
 
 from .lam import GCV_GAMMA, LAM_GRID
 from .leverage import leverage
-from .model import (MARGIN, N_DENSE, PER_DECADE, complex_modulus, count_extrema, fit_metrics, relaxation_modulus,
-                    shift_derivative, tau_grid)
+from .model import (
+    MARGIN,
+    N_DENSE,
+    PER_DECADE,
+    complex_modulus,
+    count_extrema,
+    fit_metrics,
+    relaxation_modulus,
+    shift_derivative,
+    tau_grid,
+)
 from .modes import ReducedModes, reduce_modes
 from .smooth import SpectrumFit, component_weights, fit_spectrum, loss_weights
 

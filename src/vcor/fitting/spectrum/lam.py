@@ -75,9 +75,9 @@ def _parabola(problem, scan, i, th):
 
 def _one_se(problem, scan, sols, i, N):
     """The smoothest lambda whose GCV is within one standard error of the minimum at i: (lam, theta)."""
-    L, G = scan["lam"], scan["gcv"]
-    thr = G[i] * (1 + math.sqrt(2.0 / max(N - scan["edf"][i], 1.0)))
-    j = int(np.flatnonzero(G <= thr)[0])          # grid descends: first = largest lam
+    L, gcv = scan["lam"], scan["gcv"]
+    thr = gcv[i] * (1 + math.sqrt(2.0 / max(N - scan["edf"][i], 1.0)))
+    j = int(np.flatnonzero(gcv <= thr)[0])        # grid descends: first = largest lam
     if j == 0:
         return float(L[j]), sols[j]
     # bisect log lam on the threshold crossing between L[j-1] (above) and L[j] (below)
@@ -126,7 +126,8 @@ def choose_lambda(problem, th, lam, *, warm=False):
         return lam_used, th, scan, lam, notes
     lam_used = float(lam)
     if not warm:
-        for lm in LAM_GRID[LAM_GRID > lam_used]:      # continuation down to the given lam
+        # continuation down to the given lam
+        for lm in LAM_GRID[LAM_GRID > lam_used]:  # noqa: SIM300 (the NumPy mask idiom a[a > x])
             th, _, _ = problem.solve(th, lm)
     th, _, ok = problem.solve(th, lam_used)
     if not ok:

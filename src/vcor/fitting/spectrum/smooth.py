@@ -50,8 +50,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve
 
-from .lm import levenberg_marquardt
 from .lam import choose_lambda
+from .lm import levenberg_marquardt
 from .model import MARGIN, PER_DECADE, complex_modulus, fit_metrics, relaxation_modulus, tau_grid
 from .residual import Design, Residual, second_differences
 
