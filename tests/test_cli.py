@@ -92,7 +92,7 @@ def test_validity_in_words_in_text_and_json(v0, expected, capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["validity_flags"] == expected and out["validity"]["value"] == api.validity
     assert cli.main(["impact", "--material", "sls", "--v0", str(v0)]) == 0
-    line = next(l for l in capsys.readouterr().out.splitlines() if l.startswith("validity"))
+    line = next(ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("validity"))
     if expected:
         assert line.split(None, 1)[1].startswith(", ".join(expected)) and api.validity_message in line
     else:
@@ -133,7 +133,7 @@ def test_compile_notice_on_a_cold_cache_only(tmp_path):
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba-cache")}
     cold = _run("impact", "--material", "sls", "--v0", "10", "--json", env=env)
     assert cold.returncode == 0, cold.stderr
-    notices = [l for l in cold.stderr.splitlines() if l.startswith("vcor: compiling the solver kernels")]
+    notices = [ln for ln in cold.stderr.splitlines() if ln.startswith("vcor: compiling the solver kernels")]
     assert len(notices) == 1 and str(tmp_path / "numba-cache") in notices[0]
     res = json.loads(cold.stdout)
     assert res["kernel_load_time"]["value"] > 1.0  # compiling, not loading
@@ -276,7 +276,7 @@ def test_materials_text_has_units_formulas_and_sources(capsys):
         block = text.split(f"{name}  (preset")[1]
         assert formula_name in block and formula in block
         lines = block.splitlines()[3: 3 + len(params)]
-        assert [l.split()[0] for l in lines] == [p for p, _ in params]  # the formula's order
+        assert [ln.split()[0] for ln in lines] == [p for p, _ in params]  # the formula's order
         for line, (_, unit) in zip(lines, params):
             assert line.endswith(f" [{cli.TEXT_UNITS.get(unit, unit)}]"), line
     assert "Green 2026, Eq. 14" in text and "Eq. 26" in text and "[Pa s^0.5]" in text

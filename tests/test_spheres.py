@@ -10,7 +10,7 @@ from vcor import spheres as S
 
 
 def test_c1_closed_form_and_a_coefficients():
-    assert S.C1_CLOSED_FORM == pytest.approx(1.153449, abs=1e-6)  # Eq. 67
+    assert pytest.approx(1.153449, abs=1e-6) == S.C1_CLOSED_FORM  # Eq. 67
     assert math.floor(S.C1_CLOSED_FORM * 1e5) / 1e5 == 1.15344  # Eq. 31 as printed (truncated)
     assert S.A_COEFFS[1] == pytest.approx(3 / 5, abs=1e-6)  # exact a2 (Eq. 69)
     assert S.A_COEFFS[2] == pytest.approx(0.315119, abs=1e-6) and S.A_COEFFS[3] == pytest.approx(0.161167, abs=1e-6)
@@ -80,7 +80,8 @@ def test_dimensional_and_dimensionless_agree():
         # one direct run (2000 steps per contact) against the Richardson-extrapolated eps(b): the gap is
         # that run's discretisation error (3.9e-7, 5.6e-7), 16 times smaller at 4x the steps (second order)
         coarse = abs(S.cor_spheres(**pair, g=g, options={"method": "direct"}) - S.cor_numeric(b))
-        fine = abs(S.cor_spheres(**pair, g=g, options={"method": "direct", "steps_per_contact": 8000}) - S.cor_numeric(b))
+        fine = abs(S.cor_spheres(**pair, g=g, options={"method": "direct", "steps_per_contact": 8000})
+                   - S.cor_numeric(b))
         assert coarse < 1e-6 and fine < coarse / 10, (coarse, fine)
         # the default method (adaptive) is within its default accuracy of the dimensionless eps
         assert abs(S.cor_spheres(**pair, g=g) - S.cor_numeric(b)) < 1e-6

@@ -63,8 +63,8 @@ def test_eq1_against_series_combination():
     t = np.geomspace(1e-7, 1.0, 200)
     rel = eq1.relaxation_modulus(t) / series.relaxation_modulus(t) - 1
     for lim in (0.0, np.inf):
-        assert eq1.relaxation_modulus(np.array([lim]))[0] == pytest.approx(series.relaxation_modulus(np.array([lim]))[0],
-                                                                          rel=1e-12)
+        at = np.array([lim])
+        assert eq1.relaxation_modulus(at)[0] == pytest.approx(series.relaxation_modulus(at)[0], rel=1e-12)
     geo = bodies.impact_inputs(bodies.body_from_spec("sphere", {"material": "sls"}),
                                bodies.body_from_spec("plate", {"material": "butyl-prony3"}))[1]
     r_eq1 = vcor.simulate(eq1, 10.0, method="direct", **geo)

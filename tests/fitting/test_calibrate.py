@@ -166,8 +166,8 @@ def test_ice_g_star_against_the_paper():
         eps = C.bridges_ice(g)
         fits = [C.fit_g_star(g, eps, model="pade"), C.fit_g_star(g, eps, rule="overlap"),
                 C.fit_g_star(g, eps, rule="force")]
-        print(f"{lo:5g} .. {hi:<5g}   {spacing:7s} {n:4d}  " + " ".join(f"{f.g_star:6.3f} +- {f.stderr:5.3f} ({f.rms:.3f})"
-                                                           for f in fits))
+        print(f"{lo:5g} .. {hi:<5g}   {spacing:7s} {n:4d}  "
+              + " ".join(f"{f.g_star:6.3f} +- {f.stderr:5.3f} ({f.rms:.3f})" for f in fits))
         assert fits[2].g_star < fits[0].g_star < fits[1].g_star
 
 

@@ -69,7 +69,8 @@ def _synthetic(path, seed):
     for k, T in enumerate(TEMPS):
         es = TRUE.complex_modulus(2 * np.pi * f * 10 ** tts.wlf_log_aT(T, T_REF, C1, C2))
         noise = 1 + 0.01 * rng.standard_normal((2, f.size))
-        rows += [f"{fi:.17g},{e.real * n1 / 1e6:.17g},{e.imag * n2 / 1e6:.17g},{T},{k}" for fi, e, n1, n2 in zip(f, es, *noise)]
+        rows += [f"{fi:.17g},{e.real * n1 / 1e6:.17g},{e.imag * n2 / 1e6:.17g},{T},{k}"
+                 for fi, e, n1, n2 in zip(f, es, *noise)]
     path.write_text("\n".join(rows) + "\n")
     return dma.read_table(path)
 
@@ -236,7 +237,7 @@ def test_pyvisco_cor_against_temperature(pyvisco_fits):
     shown = [-50, -35, -20, 0, 20, 40, 60, 80, 90, 95, 100]
     print("\nfit      nu   v0 [m/s]  " + " ".join(f"{t:>6g}" for t in shown) + "   (COR at T [deg C])  T_min")
     cor = {}
-    for name, (mat, shift, met) in pyvisco_fits.items():
+    for name, (mat, shift, _) in pyvisco_fits.items():
         for nu in (0.5, 0.35):
             for v0 in (1.0, 10.0):
                 rs = [vcor.simulate(tts.time_shifted(mat, shift.log_aT(t)), v0, method="adaptive", nu=nu, **geometry)
@@ -297,8 +298,9 @@ def test_pyvisco_fit_report(pyvisco_fits):
 def test_pyvisco_loss_peak_temperature(pyvisco_fits):
     """README: where the fitted master curve's loss peak (tan delta maximum, the glass transition) meets
     an impact's frequency f = 1 / (2 t0): T* with log10 a_T(T*) = log10(f_peak / f), by the WLF
-    function fitted to each fit's shifts (T* may lie beyond the data, where the table refuses). Contact times of the 1 and 10 m/s impacts at 100 deg C (nu = 0.5). Asserts that
-    T* lies at or above the data's hot edge minus 10 K and rises with v0."""
+    function fitted to each fit's shifts (T* may lie beyond the data, where the table refuses).
+    Contact times of the 1 and 10 m/s impacts at 100 deg C (nu = 0.5). Asserts that T* lies at or
+    above the data's hot edge minus 10 K and rises with v0."""
     from scipy.optimize import brentq
 
     print("\nfit       f_peak(T_ref) [Hz]  v0 [m/s]  t0 [us]  T* [deg C]")

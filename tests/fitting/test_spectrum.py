@@ -107,7 +107,8 @@ def test_an_instrument_lag_is_told_from_the_material():
     got = [dma.fit_dma(synthetic(seed, 0.005, temps=temps, material=SMOOTH, lag=30e-6), T_REF, lag=True)
            for seed in range(4)]
     lags, stds = np.array([g.lag for g in got]), np.array([g.lag_std for g in got])
-    print("0.5 % noise, 11 sets, lag 30 us: " + ", ".join(f"{1e6 * a:.1f} +- {1e6 * b:.1f}" for a, b in zip(lags, stds)))
+    print("0.5 % noise, 11 sets, lag 30 us: "
+          + ", ".join(f"{1e6 * a:.1f} +- {1e6 * b:.1f}" for a, b in zip(lags, stds)))
     assert np.all(np.abs(lags - 30e-6) < 3.5 * stds)
     assert abs(lags.mean() - 30e-6) < 2 * np.sqrt(np.sum(stds**2)) / lags.size
     for g in got:

@@ -17,8 +17,10 @@ E_0 = E_INF + sum(MODULI)
 
 
 def _forms(tmp_path):
-    (tmp_path / "prony3_tau.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
-    (tmp_path / "prony3_g.csv").write_text("tau,g\n" + "".join(f"{1 / b!r},{e / E_0!r}\n" for b, e in zip(RATES, MODULI)))
+    (tmp_path / "prony3_tau.csv").write_text("tau,E\n"
+                                             + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
+    (tmp_path / "prony3_g.csv").write_text("tau,g\n"
+                                           + "".join(f"{1 / b!r},{e / E_0!r}\n" for b, e in zip(RATES, MODULI)))
     return {
         "class form": {"model": "prony", "E_inf": E_INF, "E": MODULI, "beta": RATES},
         "relaxation times": {"model": "prony", "E_inf": E_INF, "E": MODULI, "tau": [1 / b for b in RATES]},
@@ -90,7 +92,8 @@ def test_bad_csv_names_file_line_and_column(tmp_path, table, words):
 
 def test_cli_takes_a_config_material(tmp_path, capsys):
     cfg = tmp_path / "config.yaml"
-    cfg.write_text(yaml.safe_dump({"materials": {"mine": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200}}}))
+    mine = {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200}
+    cfg.write_text(yaml.safe_dump({"materials": {"mine": mine}}))
     assert cli.main(["impact", "--config", str(cfg), "--material", "mine", "--v0", "10", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["cor"]["value"] == vcor.simulate("sls", 10.0).cor
     assert cli.main(["impact", "--config", str(cfg), "--material", "other", "--v0", "10"]) == 2
@@ -173,8 +176,10 @@ def test_temperature_axis_shifts_the_material(make_project, smk, tmp_path):
     shift = tts.ShiftFunction.from_spec(WLF)
     for T in (0.0, 20.0, 40.0):
         mat = tts.time_shifted(PRONY3, shift.log_aT(T))
-        assert ds["cor"].sel(material="warm-prony", v0=10.0, T=T).item() == vcor.simulate(mat, 10.0, method="adaptive").cor
-    assert ds["cor"].sel(material="warm-prony", v0=10.0, T=20.0).item() == vcor.simulate(PRONY3, 10.0, method="adaptive").cor
+        got = ds["cor"].sel(material="warm-prony", v0=10.0, T=T).item()
+        assert got == vcor.simulate(mat, 10.0, method="adaptive").cor
+    at_ref = ds["cor"].sel(material="warm-prony", v0=10.0, T=20.0).item()
+    assert at_ref == vcor.simulate(PRONY3, 10.0, method="adaptive").cor
     # colder is stiffer-and-slower: the curve moves, it is not the same number
     assert ds["cor"].sel(v0=10.0, T=0.0).item() != ds["cor"].sel(v0=10.0, T=40.0).item()
 

@@ -108,7 +108,8 @@ def _maxwell():
 
         TITLE: ClassVar[str] = "Maxwell element (a test model)"
         FORMULA: ClassVar[str] = "E(t) = E exp(-t / tau)"
-        PARAMETERS: ClassVar[tuple] = (Parameter(name="E", unit="Pa", meaning="glassy modulus"), Parameter(name="tau", unit="s", meaning="relaxation time"))
+        PARAMETERS: ClassVar[tuple] = (Parameter(name="E", unit="Pa", meaning="glassy modulus"),
+                                       Parameter(name="tau", unit="s", meaning="relaxation time"))
 
         E: float
         tau: float
@@ -182,4 +183,4 @@ def test_the_cli_formula_table_is_the_registry():
 
     expected = {kind: (fam.title, fam.formula, tuple((p.name, p.unit) for p in fam.parameters))
                 for kind, fam in REGISTRY.items() if fam.configurable}
-    assert cli.MODEL_FORMULAS == expected
+    assert expected == cli.MODEL_FORMULAS

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import pytest
 
+# vcor.plots imports matplotlib, so the imports below follow the skips
+# ruff: noqa: E402
 xr = pytest.importorskip("xarray")
 pytest.importorskip("matplotlib")
 

@@ -76,7 +76,10 @@ def test_cli_flags_are_the_options():
         extra = [flag] if name in BOOLEAN_OPTIONS else [flag, CLI_VALUES[name]]
         args = parser.parse_args(["impact", "--material", "sls", "--v0", "1", *extra])
         got = getattr(args, name)
-        assert got is True if name in BOOLEAN_OPTIONS else str(got) == CLI_VALUES[name] or got == float(CLI_VALUES[name])
+        if name in BOOLEAN_OPTIONS:
+            assert got is True
+        else:
+            assert str(got) == CLI_VALUES[name] or got == float(CLI_VALUES[name])
         if SolverOptions.allowed_of(name) is not None:
             with pytest.raises(SystemExit):
                 parser.parse_args(["impact", "--material", "sls", "--v0", "1", flag, "no-such-value"])

@@ -116,7 +116,8 @@ def test_invariants_random_prony():
 
     worst = {"energy_residual": 0.0, "direct - ive": 0.0, "adaptive - ive": 0.0, "adaptive energy_residual": 0.0}
     check()
-    print(f"\nrandom Prony examples: {dict(outcomes)}; largest " + ", ".join(f"|{k}| {v:.1e}" for k, v in worst.items()))
+    print(f"\nrandom Prony examples: {dict(outcomes)}; largest "
+          + ", ".join(f"|{k}| {v:.1e}" for k, v in worst.items()))
     assert sum(outcomes.values()) >= N_EXAMPLES  # every example ran (none filtered away)
     assert outcomes["step-budget"] <= MAX_FLAGGED
     assert set(outcomes) <= {"ok", "step-budget"}

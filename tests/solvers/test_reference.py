@@ -189,7 +189,8 @@ def test_adaptive_grid(name, v0, target):
                                              float(not np.array_equal(ref["levels"], numba_levels)))
     if not np.array_equal(ref["levels"], numba_levels):
         warnings.warn(f"{name} {v0} {target}: the reference's error control chose other levels than the kernel "
-                      "(a decision flipped by rounding?); comparing the replay of the kernel's levels instead")
+                      "(a decision flipped by rounding?); comparing the replay of the kernel's levels instead",
+                      stacklevel=1)
         ref = R.adaptive_reference(impact, tc, STEP_TOL, plan=numba_levels)
     assert res.steps == ref["n_sep"]
     check_scalars("adaptive grid", impact, ref, res)

@@ -33,7 +33,8 @@ def cluster(tmp_path_factory):
     if os.geteuid() != 0 or shutil.which("apt-get") is None and shutil.which("slurmctld") is None:
         pytest.skip("the local SLURM needs root and apt-get (or an installed slurm-wlm)")
     state = tmp_path_factory.mktemp("slurm-state")
-    up = subprocess.run(["bash", str(SCRIPT), "start", str(state)], capture_output=True, text=True, timeout=600, check=False)
+    up = subprocess.run(["bash", str(SCRIPT), "start", str(state)], capture_output=True, text=True, timeout=600,
+                        check=False)
     assert up.returncode == 0, up.stdout + up.stderr
     yield state
     subprocess.run(["bash", str(SCRIPT), "stop", str(state)], capture_output=True, text=True, timeout=120, check=False)

@@ -119,7 +119,8 @@ def test_sweep_dataset_layout_and_values(tiny_run):
     assert np.all(ds["status"].values == 0)
     two = xr.open_dataset(tiny_run / "results/two/sweep.nc")
     assert list(two["material"].values) == ["butyl-fc", "butyl-prony3", "tiny-prony"]
-    assert two["cor"].sel(material="butyl-prony3", v0=5.0).item() == vcor.simulate("butyl-prony3", 5.0, method="adaptive").cor
+    assert (two["cor"].sel(material="butyl-prony3", v0=5.0).item()
+            == vcor.simulate("butyl-prony3", 5.0, method="adaptive").cor)
 
 
 def test_failed_point_kept_with_status(tiny_run):
@@ -242,7 +243,8 @@ def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):
         (lambda c: c["scenes"]["tiny"]["geometry"].update(nu=0.7) if "geometry" in c["scenes"]["tiny"]
          else c["scenes"]["tiny"].update(geometry={"nu": 0.7}), ["nu"]),
         (lambda c: c["scenes"]["thin"]["grid"].update(h=[0.02, -0.1]), ["scenes.thin", "h must be in"]),
-        (lambda c: c["scenes"]["tiny"].update(materials=["butyl-fc"]), ["scenes.tiny.grid.beta", "no parameter 'beta'"]),
+        (lambda c: c["scenes"]["tiny"].update(materials=["butyl-fc"]),
+         ["scenes.tiny.grid.beta", "no parameter 'beta'"]),
         (lambda c: c.update(shard_size=0), ["shard_size"]),
         (lambda c: c["scenes"]["thin"].update(figures={"fig2": {}}), ["scenes.thin", "histories"]),
         (lambda c: c["scenes"]["thin"].update(figures={"master_curve": {"materials": ["sls"]}}),
