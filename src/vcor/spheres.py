@@ -28,7 +28,6 @@ from scipy.special import gamma
 from .checks import positive
 from .materials import models as _materials
 from .solvers.common import richardson
-from .solvers.simulate import simulate
 
 __all__ = [
     "A_COEFFS",
@@ -182,6 +181,8 @@ T_C_UNIT = 2.9432 * 1.25**0.4
 def _numeric(material, rule, steps_per_contact, extrapolate):
     # Kelvin-Voigt and SLS kernels are Prony kernels: the fixed-step internal-variable march is the
     # same second-order scheme in O(N), which matters for the long, creeping contacts at large b.
+    from .solvers.simulate import simulate  # the kernels load on use: the closed forms need none
+
     kw = dict(rule=rule, method="ive-numba", **_UNIT)
     r1 = simulate(material, 1.0, steps_per_contact=steps_per_contact, **kw)
     if r1.status != "ok":
@@ -324,6 +325,8 @@ def cor_spheres(*, R1, R2, m1, m2, E, nu, A, g, rule="overlap", options=None):
     >>> round(cor_spheres(R1=0.01, R2=0.01, m1=4.6e-3, m2=4.6e-3, E=1e7, nu=0.3, A=1e-4, g=1.0), 3)
     0.692
     """
+    from .solvers.simulate import simulate
+
     r_eff, m_eff, _ = _pair(R1, R2, m1, m2, E, nu)
     if not (A >= 0):
         raise ValueError(f"A must be >= 0 s, got {A!r}")
