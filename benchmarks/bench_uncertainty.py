@@ -3,7 +3,8 @@ truth, and what does it cost?
 
 ``coverage``: synthetic DMA data of known Prony materials shifted by WLF (C1 = 8.86,
 C2 = 101.6 K, T_ref = 20 deg C; five sets at -10..50 deg C, ten frequencies 0.1..100 Hz, 1 % noise on
-E' and E''), one data set per seed; each is fitted and resampled (vcor.fitting.resample.samples_dataset, B samples) and the COR of a
+E' and E''), one data set per seed; each is fitted and resampled (vcor.fitting.resample.samples_dataset,
+B samples) and the COR of a
 steel sphere (r = 10 mm) on a rigid target at 1 m/s is computed for every sample at 0, 20 and 40 deg C.
 The table counts the seeds whose 95 % band (2.5 % .. 97.5 % quantiles) holds the true material's COR,
 and gives the band's median width; a noise-free data set gives the band's width without noise. This
@@ -37,8 +38,9 @@ import time
 from pathlib import Path
 
 import numpy as np
-import timing
 import yaml
+
+import timing
 
 ROOT = timing.ROOT
 TEMPS = (0.0, 20.0, 40.0)
@@ -166,9 +168,9 @@ def spread(args) -> list[str]:
                 err.append(vcor.simulate(full.material(), V0, rigid=True).cor - want)
                 res = resample.residuals(raw, full)
                 rng = np.random.default_rng(seed)
-                draw = {"wild": lambda: resample.wild_sample(res, rng),
-                        "bayesian": lambda: resample.resample(raw, rng, T_ref=WLF[2]),
-                        "parametric": lambda: _parametric(res, rng)}
+                draw = {"wild": lambda res=res, rng=rng: resample.wild_sample(res, rng),
+                        "bayesian": lambda raw=raw, rng=rng: resample.resample(raw, rng, T_ref=WLF[2]),
+                        "parametric": lambda res=res, rng=rng: _parametric(res, rng)}
                 for mode, make in draw.items():
                     cor = [vcor.simulate(resample.refit(make(), full).material(), V0, rigid=True).cor for _ in range(n)]
                     sd[mode].append(np.std(cor, ddof=1))

@@ -85,7 +85,8 @@ def test_the_material_file_records_the_full_data_fit(lagged, tmp_path):
     assert np.array_equal(resample.refit(sample, back).log_aT, resample.refit(sample, full).log_aT)
     # the fit rule's attributes: the record of the material they describe
     path = write_csv(tmp_path / "dma.csv", data)
-    result, _, attrs = fits.run_fit({"model": "prony", "data": {"file": str(path), "T_ref": T_REF, "instrument_lag": True}})
+    spec = {"model": "prony", "data": {"file": str(path), "T_ref": T_REF, "instrument_lag": True}}
+    result, _, attrs = fits.run_fit(spec)
     record = fits.full_fit_from_record(json.loads(attrs[fits.START_ATTR]))
     assert record.material().to_dict() == result.material.to_dict() and record.joint.lag_fitted
     xr.Dataset(attrs={"material": "{}"}).to_netcdf(tmp_path / "old.nc")

@@ -45,13 +45,13 @@ from . import dma
 from .dma.joint import JointStart
 from .dma.laws import SHIFT_LAWS, arrhenius_fit, wlf_fit
 from .dma.pipeline import MODES_PER_DECADE
+from .prony import FitData, FitResult, bagley_torvik_data, fit, metrics
 from .spectrum.modes import reduce_modes
 from .spectrum.smooth import SpectrumFit
-from .prony import FitData, FitResult, bagley_torvik_data, fit, metrics
 
-__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "SHIFT_MODELS", "START_ATTR", "check_fit_spec", "data_from_spec",
-           "expand_fits", "full_fit_from_file", "full_fit_from_record", "full_fit_record", "metrics_table", "result_dataset",
-           "run_fit", "scene_metrics_table"]
+__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "SHIFT_MODELS", "START_ATTR", "check_fit_spec",
+           "data_from_spec", "expand_fits", "full_fit_from_file", "full_fit_from_record", "full_fit_record",
+           "metrics_table", "result_dataset", "run_fit", "scene_metrics_table"]
 
 
 def expand_fits(fits: dict, where: str = "fits") -> dict:
@@ -284,8 +284,10 @@ def full_fit_record(fitted) -> dict:
         record["joint"] = {
             "start": {"tau_s": sol.tau.tolist(), "E_Pa": sol.E.tolist(), "E_inf_Pa": float(sol.E_inf),
                       "lag_s": float(sol.lag)},
-            "lam_joint": float(joint.lam_joint), "components": [np.asarray(c, float).tolist() for c in joint.components],
-            "free_shifts": bool(joint.free_shifts), "lag_fitted": bool(joint.lag_fitted), "held_set": int(joint.held_set),
+            "lam_joint": float(joint.lam_joint),
+            "components": [np.asarray(c, float).tolist() for c in joint.components],
+            "free_shifts": bool(joint.free_shifts), "lag_fitted": bool(joint.lag_fitted),
+            "held_set": int(joint.held_set),
             "at_bound": list(joint.at_bound), "objective": float(joint.objective), "iterations": int(joint.nfev),
             "cov": np.asarray(joint.cov, float).tolist(), "notes": list(joint.notes)}
     return record
@@ -368,7 +370,8 @@ def result_dataset(result: FitResult, data: FitData, spec: dict):
         ds["E_t_fit"] = ("t", ef, {"units": "Pa", "long_name": "relaxation modulus, fit"})
         ds["E_t_rel_err"] = ("t", ef / data.E_t - 1, {"units": "1", "long_name": "relative error of E(t)"})
     if data.has_freq:
-        ds = ds.assign_coords(omega=("omega", data.omega, {"units": "rad s-1", "long_name": "angular frequency (fit band)"}))
+        ds = ds.assign_coords(omega=("omega", data.omega,
+                                     {"units": "rad s-1", "long_name": "angular frequency (fit band)"}))
         es = mat.complex_modulus(data.omega)
         for part, fn in (("storage", np.real), ("loss", np.imag)):
             ds[f"{part}_data"] = ("omega", fn(data.E_star), {"units": "Pa", "long_name": f"{part} modulus, data"})

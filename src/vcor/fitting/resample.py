@@ -39,7 +39,8 @@ the full-data one, well inside the region where Levenberg-Marquardt converges fa
 (start-free shifts, a spectrum from E'') would repeat the path the full-data fit has already taken.
 Davidson & MacKinnon (1999, Bootstrap testing in nonlinear models, Int. Econ. Rev. 40, 487) and
 Andrews (2002, Higher-order improvements of a computationally attractive k-step bootstrap for extremum
-estimators, Econometrica 70, 119) go further and take only k Newton steps from the original estimate. What the warm start can change: where the objective is flat along some direction
+estimators, Econometrica 70, 119) go further and take only k Newton steps from the original estimate.
+What the warm start can change: where the objective is flat along some direction
 (a valley the data do not inform, such as the spectrum beyond the data's range or a shift traded
 against the lag), a solve stops once the predicted decrease falls below the tolerance, and from the
 full-data optimum that point may lie nearer to it than a cold start's end point would: the samples'
@@ -80,16 +81,16 @@ from .dma.pipeline import MODES_PER_DECADE
 from .spectrum.leverage import leverage
 from .spectrum.modes import reduce_modes
 
-__all__ = ["BOOTSTRAP_ATTRS", "MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "merge_samples", "part_indices", "refit", "resample",
-           "residuals", "sample_materials", "samples_dataset", "wild_sample"]
+__all__ = ["BOOTSTRAP_ATTRS", "MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "merge_samples", "part_indices",
+           "refit", "resample", "residuals", "sample_materials", "samples_dataset", "wild_sample"]
 
 #: resampling schemes (the first is the default)
 MODES = ("wild", "bayesian", "classical")
 #: Webb's six-point distribution of the wild weights (mean 0, variance 1)
 WEBB = np.array([-math.sqrt(1.5), -1.0, -math.sqrt(0.5), math.sqrt(0.5), 1.0, math.sqrt(1.5)])
 #: attributes of a samples dataset that name its bootstrap (the same in every part of it; :func:`merge_samples`)
-BOOTSTRAP_ATTRS = ("fit_name", "spec", "n", "seed", "mode", "T_ref", "shift_model", "smoothing", "instrument_lag_full_s",
-                   "instrument_lag_std_full_s", "material", "shift")
+BOOTSTRAP_ATTRS = ("fit_name", "spec", "n", "seed", "mode", "T_ref", "shift_model", "smoothing",
+                   "instrument_lag_full_s", "instrument_lag_std_full_s", "material", "shift")
 #: draws of one sample whose data cannot be superposed before the bootstrap gives up (a wild sample keeps the
 #: design, so its sets always overlap; a pairs sample that drops sets may not)
 MAX_REDRAWS = 20
@@ -500,7 +501,8 @@ def _samples_variables(full, samples, indices):
     for i, (_, e, b) in enumerate(terms):
         E[i, :len(e)], beta[i, :len(b)] = e, b
     return xr.Dataset(
-        {"E_inf": ("sample", np.array([t[0] for t in terms]), {"units": "Pa", "long_name": "equilibrium modulus E_inf"}),
+        {"E_inf": ("sample", np.array([t[0] for t in terms]),
+                   {"units": "Pa", "long_name": "equilibrium modulus E_inf"}),
          "E": (("sample", "mode"), E, {"units": "Pa", "long_name": "Prony term modulus (0: padding)"}),
          "beta": (("sample", "mode"), beta, {"units": "s-1", "long_name": "Prony relaxation rate (NaN: padding)"}),
          "n_modes": ("sample", np.array([len(e) for _, e, _ in terms]), {"units": "1", "long_name": "Prony terms"}),
