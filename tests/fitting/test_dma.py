@@ -221,7 +221,7 @@ def pyvisco_fits():
     for name, r in got.items():
         out[name] = (vcor.materials.from_dict(r["material"]), tts.ShiftFunction.from_spec(r["shift"]), r["metrics"])
         out.residuals[name], out.T = r["residual"], r["T"]
-        out.wlf[name] = tts.ShiftFunction("wlf", -5.0, C1=r["wlf"]["C1"], C2=r["wlf"]["C2"])
+        out.wlf[name] = tts.ShiftFunction(model="wlf", T_ref=-5.0, C1=r["wlf"]["C1"], C2=r["wlf"]["C2"])
     return out
 
 

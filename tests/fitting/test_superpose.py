@@ -114,7 +114,7 @@ def test_tabulated_shift_function():
     for b, words in bad:
         with pytest.raises(ValueError, match=words):
             ShiftFunction.from_spec(b, "materials.m.shift")
-    w = ShiftFunction("wlf", 20.0, C1=C1, C2=C2)
+    w = ShiftFunction(model="wlf", T_ref=20.0, C1=C1, C2=C2)
     assert ShiftFunction.from_spec(w.to_dict()) == w and w.log_aT(50.0) == pytest.approx(float(TRUE[4]))
 
 

@@ -129,14 +129,13 @@ def test_significant_reversals_count_the_turns_the_band_supports():
 
 
 @pytest.mark.slow
-def test_workflow_carries_every_sample_through_the_sweep(tmp_path):
+def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_path):
     """A fit to synthetic DMA data (the instrument lag fitted) with 4 bootstrap samples: the samples file
     (with every sample's lag), the sample axis in the shards, the reduced sweep (median, band, samples;
     every sample's COR is vcor.simulate of that sample's material at its own shift), the band and the
     lag in the figure's title, and extending the grid solves only the new points."""
     import yaml
     from test_dma import _synthetic
-    from test_workflow import make_project, smk
 
     import vcor
     from vcor.fitting.resample import sample_materials

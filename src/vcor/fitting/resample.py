@@ -537,8 +537,9 @@ def sample_materials(ds) -> list:
         if model == "table":
             shift = ShiftFunction.table(T_ref, T, ds["log_aT"].values[i])
         elif model == "wlf":
-            shift = ShiftFunction("wlf", T_ref, C1=float(ds["wlf_C1"].values[i]), C2=float(ds["wlf_C2"].values[i]))
+            shift = ShiftFunction(model="wlf", T_ref=T_ref, C1=float(ds["wlf_C1"].values[i]),
+                                  C2=float(ds["wlf_C2"].values[i]))
         else:
-            shift = ShiftFunction("arrhenius", T_ref, E_a=float(ds["arrhenius_E_a"].values[i]))
+            shift = ShiftFunction(model="arrhenius", T_ref=T_ref, E_a=float(ds["arrhenius_E_a"].values[i]))
         out.append((mat, shift))
     return out

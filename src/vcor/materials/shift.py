@@ -64,7 +64,7 @@ def time_shifted(material: Material, log_aT: float) -> Material:
     return material.scaled(time=10.0**value)
 
 
-@dataclass(frozen=True)
+@dataclass(kw_only=True, frozen=True)
 class ShiftFunction:
     r"""log10 a_T(T) of a material at the reference temperature ``T_ref`` (deg C).
 

@@ -99,7 +99,7 @@ def shift_function(fit, model: str = "table") -> ShiftFunction:
     if model == "table":
         return ShiftFunction.table(fit.T_ref, fit.T, fit.log_aT)
     if model == "wlf":
-        return ShiftFunction("wlf", fit.T_ref, C1=fit.wlf["C1"], C2=fit.wlf["C2"])
+        return ShiftFunction(model="wlf", T_ref=fit.T_ref, C1=fit.wlf["C1"], C2=fit.wlf["C2"])
     if model == "arrhenius":
-        return ShiftFunction("arrhenius", fit.T_ref, E_a=fit.arrhenius["E_a"])
+        return ShiftFunction(model="arrhenius", T_ref=fit.T_ref, E_a=fit.arrhenius["E_a"])
     raise ValueError(f"shift model must be one of {list(SHIFT_LAWS)}, got {model!r}")
