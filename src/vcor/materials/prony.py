@@ -35,6 +35,17 @@ def _term(name, value, unit):
     return _positive(name, value, allow_zero=True, unit=unit)
 
 
+def _terms(name, values, unit) -> tuple:
+    """Prony moduli or rates as floats, each checked by :func:`_term`; floats that are all finite and
+    >= 0 (every material a fit or a temperature shift builds) pass in one vectorised check."""
+    seq = np.atleast_1d(np.asarray(values, dtype=object))
+    if all(isinstance(x, float) for x in seq):
+        arr = seq.astype(float)
+        if np.isfinite(arr).all() and (arr >= 0).all():
+            return tuple(arr.tolist())
+    return tuple(_term(f"{name}[{i}]", x, unit) for i, x in enumerate(seq))
+
+
 @dataclass(frozen=True)
 class Prony(Material, kind="prony"):
     """Generalised Maxwell (Prony) solid.
@@ -64,10 +75,8 @@ class Prony(Material, kind="prony"):
 
     def __post_init__(self):
         _positive("E_inf", self.E_inf, allow_zero=True, unit="Pa")
-        e = tuple(_term(f"Prony E[{i}]", x, "Pa")
-                  for i, x in enumerate(np.atleast_1d(np.asarray(self.E, dtype=object))))
-        b = tuple(_term(f"Prony beta[{i}]", x, "1/s")
-                  for i, x in enumerate(np.atleast_1d(np.asarray(self.beta, dtype=object))))
+        e = _terms("Prony E", self.E, "Pa")
+        b = _terms("Prony beta", self.beta, "1/s")
         if len(e) != len(b):
             raise ValueError(f"Prony: E and beta must have equal length, got {len(e)} and {len(b)}")
         object.__setattr__(self, "E", e)

@@ -146,12 +146,23 @@ def sample_material(path, k: int, overrides: dict | None, T: float | None, name:
     if not path.is_file():
         raise ValueError(f"material {name!r} has no bootstrap samples file {path} yet: it is computed by the "
                          f"workflow's fit_samples rule")
-    samples = _samples(str(path.resolve()), path.stat().st_mtime_ns)
+    frozen = tuple(sorted((overrides or {}).items()))
+    return _sample_at(str(path.resolve()), path.stat().st_mtime_ns, int(k), frozen, T, name)
+
+
+#: materials built per job: a sweep visits each (sample, temperature) once per speed and geometry, and
+#: building a sample's material at a temperature costs more than its impact (tens of Prony modes)
+BUILT_MATERIALS = 8192
+
+
+@functools.lru_cache(maxsize=BUILT_MATERIALS)
+def _sample_at(path: str, mtime_ns: int, k: int, overrides: tuple, T: float | None, name: str):
+    samples = _samples(path, mtime_ns)
     if not 0 <= k < len(samples):
         raise ValueError(f"sample {k} of material {name!r}: the file {path} holds {len(samples)} samples")
     material, shift = samples[k]
     if overrides:
-        material = with_parameters(material, overrides, name)
+        material = with_parameters(material, dict(overrides), name)
     return material if T is None else at_temperature(material, shift, T, name)
 
 
