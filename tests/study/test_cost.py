@@ -86,3 +86,13 @@ def test_the_default_config_plans_two_pyvisco_jobs_and_one_per_other_scene(root,
                                             from_data=project.fitted_to_data))
     assert jobs.pop("pyvisco") == 2 and project.scenes["pyvisco"].grid.size == 31_000
     assert set(jobs.values()) == {1}
+
+
+def test_all_points_at_once_equal_one_by_one():
+    """Grid.points builds every point at once; each equals Grid.point(i), keys in the same order (the
+    shard index files and the point names depend on it)."""
+    from vcor.study.grid import Grid
+
+    grid = Grid.from_scene({"materials": ["sls", "butyl-fc"], "grid": {"v0": [1, 2, 3], "T": [0, 20], "h": [0.01]}},
+                           samples=4)
+    assert [list(p.items()) for p in grid.points()] == [list(grid.point(i).items()) for i in range(grid.size)]

@@ -29,7 +29,6 @@ from scipy.optimize import minimize_scalar
 from ..contact.bodies import body_from_spec
 from ..contact.impact import make_impact
 from ..contact.pair import target_inputs, twin_defaults
-from ..solvers.simulate import simulate
 from .laws import MODELS, Contact, brilliantov_cor, eta_n0, lammps_modulus, yade_en, yade_young
 
 __all__ = ["B_RANGE", "Collision", "collision", "fit_laws"]
@@ -83,6 +82,8 @@ def collision(material, v0, *, sphere: dict | None = None, target="rigid", optio
     a, b = _bodies(material, dict(sphere or {}), target)
     geometry = {"r": a.size, "rho_a": a.rho, "nu": a.nu}
     v0 = np.asarray(v0, dtype=float)
+    from ..solvers.simulate import simulate  # the kernels load on use: the workflow's planning reads this module
+
     results = [simulate(a.material, float(v), target=target, options=options, **geometry) for v in v0]
     cor = np.array([r.cor if r.ok else math.nan for r in results])
     t0 = np.array([r.t0 if r.ok else math.nan for r in results])

@@ -48,7 +48,6 @@ from ..materials import models as _materials
 from ..materials.presets import get as _preset
 from ..materials.specs import from_spec
 from ..solvers.common import UNITS
-from ..solvers.simulate import simulate
 
 __all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "check_spec",
            "read_cor_data", "run_calibration", "scaled"]
@@ -252,6 +251,8 @@ class _Model:
         return scaled(mat, values.get("modulus_scale", 1.0), values.get("log_aT", 0.0))
 
     def cor(self, x, v0s, mat=None):
+        from ..solvers.simulate import simulate  # the kernels load on use: the workflow reads this module
+
         mat = self.material(x) if mat is None else mat
         out = np.empty(len(v0s))
         for i, v in enumerate(v0s):

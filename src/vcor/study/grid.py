@@ -309,8 +309,12 @@ class Grid:
         return out
 
     def points(self) -> list[dict]:
-        """Every point, in index order."""
-        return [self.point(i) for i in range(self.size)]
+        """Every point, in index order (as :meth:`point` gives them, built for all at once)."""
+        pos = np.unravel_index(np.arange(self.size), self.shape)
+        names = ["material", *(a.name for a in self.axes)]
+        columns = [[self.materials[i] for i in pos[0].tolist()],
+                   *([a.values[i] for i in p.tolist()] for a, p in zip(self.axes, pos[1:]))]
+        return [{"index": i, **dict(zip(names, values))} for i, values in enumerate(zip(*columns))]
 
     def index_of(self, point: dict) -> int:
         """The index of a point given by its material and axis values (exact values, as the grid holds

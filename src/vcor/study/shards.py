@@ -77,6 +77,12 @@ def identified_points(scene, identities: dict, grid: Grid | None = None) -> list
     return [{**p, "material_id": identities[p["material"]]} for p in grid.points()]
 
 
+def _lookup(point: dict) -> tuple:
+    """A point's identity for matching planned and finished points: its items without the index (the
+    same identity as :func:`point_key`, whose JSON text names new shards, at a fraction of the cost)."""
+    return tuple(sorted((k, v) for k, v in point.items() if k != "index"))
+
+
 def _read_index(idx: Path, order: list) -> list[dict]:
     """The points of a shard's index file, keys in the grid's order (so that Snakemake sees unchanged
     params); ValueError when it cannot be read or was written before shards carried their index."""
@@ -103,7 +109,7 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
     settings = settings or settings_of(scene)
     h = settings_hash(scene, settings)
     wanted = identified_points(scene, identities, grid)
-    todo = {point_key(p): p for p in wanted}
+    todo = {_lookup(p): p for p in wanted}
     index_of = {k: p["index"] for k, p in todo.items()}
     order = list(wanted[0]) if wanted else []
     plan: dict[str, Shard] = {}
@@ -117,7 +123,7 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
             if on_invalid is not None:
                 on_invalid(nc, str(exc))
             continue
-        keys = [point_key(p) for p in pts]
+        keys = [_lookup(p) for p in pts]
         if not any(k in todo for k in keys):
             continue
         reason = receipts.problem(nc, idx.stem)
