@@ -86,6 +86,7 @@ def _hostile_case(data):
     return material, v0, kwargs, target
 
 
+@pytest.mark.slow  # hundreds of generated calls, many of them solved: ~20 s
 def test_api_refuses_or_solves_every_hostile_call():
     start, counts = time.perf_counter(), {"refused": 0, "solved": 0}
 
