@@ -87,7 +87,11 @@ def test_summary_logs_and_cores(make_project, smk, tmp_path):
     # the shard's job log says what it solved, with the same counts and its time
     (log,) = (path / "results/tiny/logs/shards").glob("*.log")
     note = line.split(": ", 1)[1].rsplit(": ", 1)[0].removeprefix("2 points, ")
-    assert re.fullmatch(rf"solved 2 points of scene tiny: {re.escape(note)}, in \S+ s\n", log.read_text())
+    # the lines: the kernels (loaded or compiled), what it solved, and where the job's time went
+    kernels, solved, timed = log.read_text().splitlines()
+    assert re.fullmatch(r"numba kernels of method adaptive ready \(loaded or compiled\) in \S+ s", kernels)
+    assert re.fullmatch(rf"solved 2 points of scene tiny: {re.escape(note)}, in \S+ s", solved)
+    assert re.fullmatch(r"job sweep_shard: start-up [\d.]+ s, work [\d.]+ s", timed)
     assert "in results/tiny/MANIFEST.txt" in (path / "results/tiny/logs/manifest.log").read_text()
 
     out = smk(path, "-j1", "--forcerun", "manifest")
