@@ -2,7 +2,7 @@
 new points into jobs of about equal estimated work.
 
 A sweep job pays a fixed start-up (a Python process, imports, loading the numba cache, reading the
-materials: about 1-2.5 s, ``benchmarks/bench_reproduction.py`` measures it per rule) before it solves
+materials: about a second per sweep job; ``benchmarks/bench_rules.py`` measures it per rule) before it solves
 anything. Jobs are therefore sized by the *work* they hold, not by their number of points: a scene
 whose points are estimated at less than ``job_seconds`` of solver work runs in one job; a larger one is
 cut into ``ceil(work / job_seconds)`` jobs of equal estimated work, so that a job's work dwarfs its
