@@ -152,6 +152,7 @@ def test_workflow_calibrates_and_a_scene_uses_the_result(make_project, smk, tmp_
     assert out.returncode != 0 and "cor.csv, line 3, column 'cor'" in out.stdout + out.stderr
 
 
+@pytest.mark.slow  # a calibration over the paper's ice data: ~10 s
 def test_ice_g_star_against_the_paper():
     """README table: g* (cm/s) of the Ramirez model fitted to the Bridges law eps = 0.32 g^-0.234 as the
     paper quotes it: vcor's exact eps with both separation rules, and the Pade (the paper's procedure,

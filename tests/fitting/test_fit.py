@@ -48,6 +48,7 @@ def test_fitted_cerf_beats_paper_set(data):
     print(f"\nCERF fit {res.material.to_dict()}: COR {c_fit.cor:.6f} vs fractional law {c_fc:.6f}")
 
 
+@pytest.mark.slow  # Prony fits of growing N, each solved: ~5 s
 def test_prony_cor_converges_to_fractional_law(data, auto_prony):
     c_fc = vcor.simulate("butyl-fc", 10.0).cor
     gaps = {}

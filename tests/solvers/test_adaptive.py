@@ -264,6 +264,7 @@ def test_options_are_checked():
         vcor.simulate("sls", 1.0, method="adaptive", dt=1e-7)
 
 
+@pytest.mark.slow  # every method and path compiled in a fresh process: ~10 s
 def test_each_kernel_is_compiled_once():
     """Every numba kernel gets one type signature over all methods and paths (one-call and general
     adaptive, histories, thin plate, every preset kind): a literal argument in a call from another

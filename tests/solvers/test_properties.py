@@ -67,6 +67,7 @@ MAX_FLAGGED = 2
 N_EXAMPLES = 25
 
 
+@pytest.mark.slow  # 25 random Prony materials, each solved several ways: ~7 s
 def test_invariants_random_prony():
     """Invariants over random Prony materials and geometries. Every example is counted: a flagged one
     (step-budget, with its message) is allowed at most MAX_FLAGGED times, any other status fails."""

@@ -38,7 +38,7 @@ def test_kernel_within_tolerance_on_the_interval(name, tol):
     assert rep.n_terms < 20 * math.log10(T_MAX / T_MIN / tol)
 
 
-@pytest.mark.parametrize("name", ["butyl-fc", "butyl-cerf"])
+@pytest.mark.parametrize("name", [pytest.param("butyl-fc", marks=pytest.mark.slow), "butyl-cerf"])  # fc: ~5 s
 def test_step_integrals_within_tolerance(name):
     """The step integrals W_m (what the march uses) from step 1 on, against the exact ones."""
     mat = M.get(name)
