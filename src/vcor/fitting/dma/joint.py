@@ -28,6 +28,12 @@ A refit of perturbed data (a bootstrap sample) can start from another joint solv
 (:class:`JointStart`, :attr:`JointFit.solution`): its relaxation-time grid, spectrum and lag, with the
 shifts started at that fit's; the solve then stops on the same criterion (:data:`TOL`) from a start
 near its own optimum.
+
+Every joint solve, of the full data and of a bootstrap sample alike, takes geodesically accelerated
+Levenberg-Marquardt steps (:func:`vcor.fitting.spectrum.lm.levenberg_marquardt` with ``curvature``;
+Transtrum & Sethna 2012, arXiv:1201.5885): the shifts and the spectrum trade off along a long curved
+valley of the objective, which plain steps follow slowly; one solver for both, so that a refit started
+at the full-data optimum stops where the full-data solve would.
 """
 
 from __future__ import annotations
@@ -38,7 +44,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..spectrum.lm import levenberg_marquardt
+from ..spectrum.lm import curvature_gradient, levenberg_marquardt
 from ..spectrum.model import MARGIN, PER_DECADE, margins, tau_grid
 from ..spectrum.residual import Design, Residual, second_differences
 from ..spectrum.smooth import SpectrumFit, component_weights, fit_spectrum, log_spectrum
@@ -184,6 +190,7 @@ class _JointProblem:
         self.iq, self.ie = self.nd, self.nd + self.nq            # where the lag and ln E_inf sit in p
         self.g = data.f / float(data.f.max())                    # the lag parameter: its phase at the top frequency
         self.Dm = second_differences(tau.size)
+        self._jac = (None, None)                                 # (p, Jacobian at p) of the last normal()
 
     def shifts(self, p):
         return self.data.S @ p[:self.nd] if self.s_held is None else self.s_held
@@ -218,7 +225,17 @@ class _JointProblem:
 
     def normal(self, p, r):
         J = self.jacobian(p)
+        self._jac = (p.copy(), J)
         return J.T @ J, J.T @ r
+
+    def curvature(self, p, r, v):
+        """J^T r_vv at p along v (:func:`vcor.fitting.spectrum.lm.curvature_gradient`), with the Jacobian
+        of the last :meth:`normal` when that was at p (the solver asks at the point it just linearised)."""
+        at, J = self._jac
+        if at is None or not np.array_equal(at, p):
+            J = self.jacobian(p)
+        lo, hi = self.bounds()
+        return curvature_gradient(self.value, J, p, r, v, lo=lo, hi=hi)
 
     def bounds(self):
         big = math.log(float(np.max(self.data.es)))
@@ -305,8 +322,9 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
 
     The start is ``log_aT_start`` (the start-free spline shifts); :math:`\lambda` is the GCV minimiser
     (a flexible master curve) at the start shifts (unless given); the final spectrum at the refined
-    shifts uses ``final_lam``.  Projected Levenberg-Marquardt with the analytic Jacobian, converged at
-    :data:`TOL` (or after :data:`MAX_ITER` iterations, with a note).
+    shifts uses ``final_lam``.  Projected Levenberg-Marquardt with the analytic Jacobian and geodesic
+    acceleration (module docstring), converged at :data:`TOL` (or after :data:`MAX_ITER` iterations, with a
+    note).
 
     Parameters
     ----------
@@ -356,7 +374,8 @@ def fit_with_shifts(sets, T_ref, log_aT_start, *, components=(1.0, LOSS_WEIGHT),
                             s_held=None if free_shifts else given, lag=lag)
     lo, hi = problem.bounds()
     p = np.clip(np.concatenate([d[:problem.nd], np.full(problem.nq, phase), [ln_e_inf], H]), lo + INSIDE, hi - INSIDE)
-    p, iterations, ok = levenberg_marquardt(problem.cost, problem.normal, p, lo=lo, hi=hi, max_iter=MAX_ITER, tol=TOL)
+    p, iterations, ok = levenberg_marquardt(problem.cost, problem.normal, p, lo=lo, hi=hi, max_iter=MAX_ITER, tol=TOL,
+                                            curvature=problem.curvature)
     d = p[:problem.nd]
     at_bound = [int(k) for k in np.flatnonzero(np.isclose(d, data.lb, atol=1e-5) | np.isclose(d, data.ub, atol=1e-5))] \
         if free_shifts else []
