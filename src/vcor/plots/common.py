@@ -9,9 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FLAGGED_STYLE", "Drawn", "axis_label", "cor_line", "fixed_axes", "flag_legend", "flag_reasons",
-           "flagged_label", "json_materials", "mark_failed", "plt", "point", "run_label", "save", "solver_label",
-           "status_name", "sweep_line", "unit_label", "v0_line", "validity_of"]
+__all__ = ["FLAGGED_STYLE", "PNG_DPI", "Drawn", "axis_label", "cor_line", "fixed_axes", "flag_legend",
+           "flag_reasons", "flagged_label", "json_materials", "mark_failed", "plt", "point", "run_label", "save",
+           "solver_label", "status_name", "sweep_line", "unit_label", "v0_line", "validity_of"]
 
 #: UDUNITS strings of the datasets -> the one unit style of the figures
 _UNIT_LABELS = {"m s-1": "m/s", "kg m-3": "kg/m³", "s-1": "1/s", "rad s-1": "rad/s", "degC": "°C", "s-1/2": "1/√s",
@@ -231,16 +231,39 @@ def json_materials(ds) -> dict:
     return json.loads(ds.attrs["materials"])
 
 
+#: resolution of the PNG (for the report), dots per inch
+PNG_DPI = 130
+
+
+def _layout_once(fig, dpi) -> None:
+    """Run ``fig``'s layout engine once, at the resolution ``dpi`` of the first file written, and switch
+    the engine off: ``savefig`` with an engine draws the figure twice (an invisible draw that lays it out,
+    then the real one, which lays it out again), and every later file would repeat both."""
+    import matplotlib
+
+    engine = fig.get_layout_engine()
+    if engine is None:
+        return
+    dpi0 = fig.dpi
+    fig.dpi = dpi
+    try:
+        engine.execute(fig)
+    finally:
+        fig.dpi = dpi0
+    with matplotlib.rc_context({"figure.autolayout": False, "figure.constrained_layout.use": False}):
+        fig.set_layout_engine(None)
+
+
 def save(fig, png, pdf) -> None:
-    """Write ``fig`` as PNG (130 dpi, for the report) and PDF (for print), then close it. The PDF
-    reuses the layout computed for the PNG (the layout engine is switched off after the first save):
-    constrained layout costs up to a second per save on the many log axes of work_precision."""
+    """Write ``fig`` as PNG (:data:`PNG_DPI`, for the report) and PDF (for print), then close it. The layout
+    is computed once, for the PNG, and both files reuse it (:func:`_layout_once`); the PDF's rasterized
+    parts (colorbars) keep the figure's own resolution."""
     from ..io.receipts import atomic
 
+    dpi = fig.dpi
+    _layout_once(fig, PNG_DPI)
     with atomic(png) as tmp:
-        fig.savefig(tmp, dpi=130, format="png")
-    fig.set_layout_engine("none")
+        fig.savefig(tmp, dpi=PNG_DPI, format="png")
     with atomic(pdf) as tmp:
-        fig.savefig(tmp, metadata={"CreationDate": None}, format="pdf")
+        fig.savefig(tmp, dpi=dpi, metadata={"CreationDate": None}, format="pdf")
     plt.close(fig)
-
