@@ -104,13 +104,14 @@ def test_the_box_holds_with_acceleration():
     is evaluated at lies in the box, the rate ends on its bound (an active variable, held there), and the
     constrained minimum is the plain solver's within 1e-8, reached along another path."""
     lo, hi = np.array([0.0, 0.1, -1.0]), np.array([10.0, 1.0, 1.0])
-    x0 = np.array([1.0, 0.2, 0.0])
+    x0 = np.array([5.0, 0.5, -0.5])
     seen = []
     x_geo, _, ok_geo = _solve(_decay, _decay_jacobian, x0, geodesic=True, lo=lo, hi=hi, seen=seen)
     seen_plain = []
     x_plain, _, ok_plain = _solve(_decay, _decay_jacobian, x0, geodesic=False, lo=lo, hi=hi, seen=seen_plain)
     assert ok_geo and ok_plain
-    assert len(seen) != len(seen_plain) or not np.allclose(seen, seen_plain)   # the acceleration took steps
+    n = min(len(seen), len(seen_plain))
+    assert np.abs(np.array(seen[:n]) - np.array(seen_plain[:n])).max() > 1e-3   # the acceleration took steps
     pts = np.array(seen)
     assert np.all(pts >= lo) and np.all(pts <= hi)
     assert x_geo[1] == hi[1]
