@@ -13,7 +13,7 @@ import yaml
 import vcor
 from vcor import materials as M
 from vcor import spheres as S
-from vcor.fitting import dma, fits
+from vcor.fitting import dma, fits, spec
 from vcor.fitting import prony as fit
 from vcor.study import scene
 from vcor.study.config import load_project
@@ -206,13 +206,13 @@ ROWS = [
      ["fits.pyvisco-polymer.data.file", "relative path inside the project"]),
     ("config: DMA file missing", lambda: _validate(_config_with(
         lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="data/pyvisco/none.csv"))), ["none.csv"]),
-    ("fit: instrument_lag not a boolean", lambda: fits.check_fit_spec(
+    ("fit: instrument_lag not a boolean", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": -5, "instrument_lag": "yes"}},
         base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "true or false", "'yes'"]),
-    ("fit: method free is refused", lambda: fits.check_fit_spec(
+    ("fit: method free is refused", lambda: spec.check_fit_spec(
         {"model": "prony", "method": "free", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": -5}},
         base_dir=ROOT, where="fits.x"), ["fits.x.method", "'free'", "method: spectrum"]),
-    ("fit: instrument_lag on a master curve", lambda: fits.check_fit_spec(
+    ("fit: instrument_lag on a master curve", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5, "instrument_lag": True}},
         base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "master curve", "two or more temperatures"]),
     ("dma: a lag beyond the measured loss angle", lambda: dma.superpose(

@@ -10,6 +10,9 @@ from vcor import spheres as S
 
 
 def test_c1_closed_form_and_a_coefficients():
+    from scipy.special import gamma
+
+    assert math.sqrt(math.pi) * gamma(0.6) / (2 ** 0.2 * 5 ** 0.4 * gamma(2.1)) == S.C1_CLOSED_FORM  # Eq. 30
     assert pytest.approx(1.153449, abs=1e-6) == S.C1_CLOSED_FORM  # Eq. 67
     assert math.floor(S.C1_CLOSED_FORM * 1e5) / 1e5 == 1.15344  # Eq. 31 as printed (truncated)
     assert S.A_COEFFS[1] == pytest.approx(3 / 5, abs=1e-6)  # exact a2 (Eq. 69)

@@ -22,8 +22,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
-from scipy.special import gamma
 
 from .checks import positive
 from .materials import models as _materials
@@ -60,8 +58,10 @@ class SolverFailure(RuntimeError):
 
 #: series coefficients of eps = 1 + sum_k C_k b^k (Ramirez Eqs. 6, 65, 67; Schwager & Poeschel 1998)
 C = (-1.153449, 0.798267, -0.483582, 0.285279)
-#: C1 in closed form (Eq. 30): sqrt(pi) Gamma(3/5) / (2^(1/5) 5^(2/5) Gamma(21/10))
-C1_CLOSED_FORM = math.sqrt(math.pi) * gamma(0.6) / (2 ** 0.2 * 5 ** 0.4 * gamma(2.1))
+#: C1 in closed form (Eq. 30): sqrt(pi) Gamma(3/5) / (2^(1/5) 5^(2/5) Gamma(21/10)), evaluated with
+#: scipy.special.gamma (tests/test_spheres.py recomputes it) and written out so that importing this
+#: module, as the workflow's planning does, loads no scipy
+C1_CLOSED_FORM = 1.1534488580952884
 #: ``a_k = |C_k| / C1^k``, the coefficients of eps = 1 - a1 x + a2 x^2 - a3 x^3 + a4 x^4, x = (g/g*)^(1/5)
 A_COEFFS = tuple(abs(c) / abs(C[0]) ** (k + 1) for k, c in enumerate(C))
 #: Table I of Ramirez et al. (d1..d5 of the [1/4] Pade, Eq. 35), as printed
@@ -162,6 +162,8 @@ def cor_root(b):
     """
     b = _check_b(b)
     x = abs(C[0]) * np.atleast_1d(b)
+
+    from scipy.optimize import brentq
 
     def root(xi):
         return brentq(lambda e: e + xi * e**0.6 - 1.0, 0.0, 1.0, xtol=1e-15)

@@ -99,11 +99,11 @@ def test_synthetic_prony_wlf_material_is_recovered(tmp_path, seed):
 def test_method_free_is_refused_naming_its_replacement():
     """``method: free`` is refused in one line naming the key and ``method: spectrum``; a spectrum fit
     records the local extrema of its tan delta over the master curve's range."""
-    from vcor.fitting import fits
+    from vcor.fitting import fits, spec
 
     raw = {"file": str(DATA / "freq_user_raw.csv"), "T_ref": -5.0}
     with pytest.raises(ValueError) as err:
-        fits.check_fit_spec({"model": "prony", "method": "free", "data": raw}, where="fits.x")
+        spec.check_fit_spec({"model": "prony", "method": "free", "data": raw}, where="fits.x")
     message = str(err.value)
     assert "\n" not in message and all(w in message for w in ("fits.x.method", "'free'", "method: spectrum")), message
     result, data, _ = fits.run_fit({"model": "prony", "data": raw})

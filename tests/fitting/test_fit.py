@@ -7,7 +7,7 @@ import pytest
 
 import vcor
 from vcor import materials as M
-from vcor.fitting import fits
+from vcor.fitting import fits, spec
 from vcor.fitting import prony as fit
 from vcor.io import netcdf as io
 
@@ -78,10 +78,10 @@ def test_fit_is_deterministic_bytes(tmp_path, data):
 
 
 def test_expand_fits():
-    out = fits.expand_fits({"p-n{n}": {"model": "prony", "n_terms": [1, 3]}, "c": {"model": "cerf"}})
+    out = spec.expand_fits({"p-n{n}": {"model": "prony", "n_terms": [1, 3]}, "c": {"model": "cerf"}})
     assert set(out) == {"p-n1", "p-n3", "c"} and out["p-n3"]["n_terms"] == 3
     with pytest.raises(ValueError, match="needs a list"):
-        fits.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
+        spec.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
 
 
 #: README "Fitted materials" table: (max E(t), max |E*|, max tan delta) relative errors and the COR gap

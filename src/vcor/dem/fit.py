@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from ..contact.bodies import body_from_spec
 from ..contact.impact import make_impact
@@ -99,6 +98,8 @@ def collision(material, v0, *, sphere: dict | None = None, target="rigid", optio
 
 def _fit_dissipation(contact: Contact, v0, cor) -> float:
     """The A (s) of the clipped Brilliantov law that fits ``cor`` at ``v0`` in least squares."""
+    from scipy.optimize import minimize_scalar  # on use: the workflow's planning imports this module
+
     scale = 1.5 * (contact.stiffness / contact.m_eff) ** 0.4
     lo = math.log(B_RANGE[0] / (scale * float(np.max(v0)) ** 0.2))
     hi = math.log(B_RANGE[1] / (scale * float(np.min(v0)) ** 0.2))

@@ -41,7 +41,6 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import spheres as S
 from ..io.csvfile import cell_number, data_rows, read_rows, units_row
 from ..materials import REGISTRY
 from ..materials import models as _materials
@@ -555,6 +554,8 @@ def fit_g_star(g, eps, *, model: str = "numeric", rule: str = "overlap", start: 
     (vcor.spheres: x = (g/g*)^(1/5) = C1 b). The exact numerical eps uses ``spheres.cor_numeric``
     (Kelvin-Voigt, rigid target, Richardson-extrapolated, error ~1e-9)."""
     from scipy.optimize import least_squares
+
+    from .. import spheres as S
 
     g, eps = np.asarray(g, float), np.asarray(eps, float)
     if g.ndim != 1 or g.size < 2 or g.shape != eps.shape or np.any(g <= 0) or not np.all(np.isfinite(eps)):

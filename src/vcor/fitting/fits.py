@@ -38,132 +38,19 @@ from pathlib import Path
 
 import numpy as np
 
-from ..materials.catalogue import FIT_SCALARS
 from ..materials.files import from_file
 from ..materials.presets import get as _preset
 from . import dma
 from .dma.joint import JointStart
-from .dma.laws import SHIFT_LAWS, arrhenius_fit, wlf_fit
+from .dma.laws import arrhenius_fit, wlf_fit
 from .dma.pipeline import MODES_PER_DECADE
 from .prony import FitData, FitResult, bagley_torvik_data, fit, metrics
+from .spec import check_measured
 from .spectrum.modes import reduce_modes
 from .spectrum.smooth import SpectrumFit
 
-__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "SHIFT_MODELS", "START_ATTR", "check_fit_spec",
-           "data_from_spec", "expand_fits", "full_fit_from_file", "full_fit_from_record", "full_fit_record",
+__all__ = ["START_ATTR", "data_from_spec", "full_fit_from_file", "full_fit_from_record", "full_fit_record",
            "metrics_table", "result_dataset", "run_fit", "scene_metrics_table"]
-
-
-def expand_fits(fits: dict, where: str = "fits") -> dict:
-    """Config ``fits`` -> {material name: spec}. A name containing ``{n}`` with a list ``n_terms``
-    expands to one Prony fit per N (e.g. ``butyl-prony-n{n}`` -> butyl-prony-n1, ...).
-
-    Examples
-    --------
-    >>> from vcor.fitting.fits import expand_fits
-    >>> expand_fits({"butyl-prony-n{n}": {"model": "prony", "n_terms": [2, 3]}})
-    {'butyl-prony-n2': {'model': 'prony', 'n_terms': 2}, 'butyl-prony-n3': {'model': 'prony', 'n_terms': 3}}
-    """
-    out = {}
-    for name, spec in (fits or {}).items():
-        n_terms = spec.get("n_terms", "auto")
-        if "{n}" in name:
-            if not isinstance(n_terms, list):
-                raise ValueError(f"{where}.{name}: a name with {{n}} needs a list n_terms")
-            for n in n_terms:
-                out[name.replace("{n}", str(int(n)))] = {**spec, "n_terms": int(n)}
-        else:
-            if isinstance(n_terms, list):
-                raise ValueError(f"{where}.{name}: a list n_terms needs {{n}} in the name")
-            out[name] = dict(spec)
-    return out
-
-
-#: the models a fit may have (the scalar parameters of each: vcor.materials.catalogue.FIT_SCALARS)
-FIT_MODELS = tuple(FIT_SCALARS)
-#: keys of a measured-data fit's ``data`` mapping
-DMA_DATA_KEYS = {"file", "T_ref", "shift_file", "shift_model", "instrument_lag"}
-#: methods of a measured-data fit (module docstring); the first is the default
-FIT_METHODS = ("spectrum",)
-#: method names vcor does not fit, and what replaces each (the one-line refusal names it)
-REMOVED_METHODS = {"free": "method: spectrum replaces it (smooth spectrum with start-free shifts: on pyvisco's "
-                           "data E' 0.89 % rms against 6.6 % and 3 tan delta extrema against 50); drop the key"}
-#: shift functions a measured-data fit may store; the first is the default
-SHIFT_MODELS = SHIFT_LAWS
-
-
-def _check_measured(spec: dict, where: str) -> tuple[dict, float, str]:
-    """The keys of a measured-data fit spec, checked without reading its files: (data, T_ref [deg C],
-    shift model); ValueError naming ``<where>.<key>``."""
-    d = spec["data"]
-    unknown = set(d) - DMA_DATA_KEYS
-    if unknown or "T_ref" not in d:
-        raise ValueError(f"{where}.data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
-    if spec.get("model") != "prony":
-        raise ValueError(f"{where}.model: a fit to measured data is a Prony fit (model: prony), "
-                         f"got {spec.get('model')!r}")
-    _check_method(spec, where)
-    shift_model = d.get("shift_model", SHIFT_MODELS[0])
-    if shift_model not in SHIFT_MODELS:
-        raise ValueError(f"{where}.data.shift_model must be one of {list(SHIFT_MODELS)}, got {shift_model!r}")
-    lag = d.get("instrument_lag", False)
-    if not isinstance(lag, bool):
-        raise ValueError(f"{where}.data.instrument_lag: true or false, got {lag!r}")
-    try:
-        T_ref = float(d["T_ref"])
-    except (TypeError, ValueError):
-        raise ValueError(f"{where}.data.T_ref must be a temperature in deg C, got {d['T_ref']!r}") from None
-    if not math.isfinite(T_ref):
-        raise ValueError(f"{where}.data.T_ref must be a finite temperature in deg C, got {d['T_ref']!r}")
-    return d, T_ref, shift_model
-
-
-def _check_method(spec: dict, where: str) -> str:
-    """The measured-data fit's method (module docstring); ValueError naming ``where.method``."""
-    method = spec.get("method", FIT_METHODS[0])
-    if method in REMOVED_METHODS:
-        raise ValueError(f"{where}.method: {method!r} is not a method; {REMOVED_METHODS[method]}")
-    if method not in FIT_METHODS:
-        raise ValueError(f"{where}.method must be one of {list(FIT_METHODS)}, got {method!r}")
-    if spec.get("n_terms", "auto") != "auto":
-        raise ValueError(f"{where}.n_terms: method spectrum places its modes on a fixed grid (2 per decade of the "
-                         f"data's reduced range): n_terms must be auto")
-    return method
-
-
-def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
-    """What can be checked of a fit spec before fitting, naming ``<where>.<key>`` (or the data file's
-    line and column): the model, and for measured data the keys, T_ref, and the files read and checked
-    (frequency-domain data; raw sets at two or more temperatures; shift factors covering the sets).
-
-    Examples
-    --------
-    >>> from vcor.fitting.fits import check_fit_spec
-    >>> check_fit_spec({"model": "prony", "n_terms": 3}) is None
-    True
-    >>> check_fit_spec({"model": "maxwell"}, where="fits.rubber")
-    Traceback (most recent call last):
-    ...
-    ValueError: fits.rubber.model: one of ['prony', 'cerf'], got 'maxwell'
-    """
-    model = spec.get("model")
-    if model not in FIT_MODELS:
-        raise ValueError(f"{where}.model: one of {list(FIT_MODELS)}, got {model!r}")
-    if "file" not in (spec.get("data") or {}):
-        return
-    d, T_ref, shift_model = _check_measured(spec, where)
-    raw = dma.read_table(Path(base_dir) / d["file"])
-    shifts = dma.read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
-    dma.check_data(raw, shifts)
-    if d.get("instrument_lag") and not raw.is_raw:
-        raise ValueError(f"{where}.data.instrument_lag: {raw.path} is a master curve (no T, Set columns); the lag is "
-                         f"told from the material by superposing sets at two or more temperatures")
-    if raw.is_raw and shift_model == "table" and "shift_file" not in d:
-        T = np.array([s.T for s in dma.split_sets(raw)])
-        if not T.min() <= T_ref <= T.max():
-            raise ValueError(f"{where}.data.T_ref: {T_ref:g} deg C lies outside the sets' {T.min():.4g}..{T.max():.4g} "
-                             f"deg C: a tabulated shift function (shift_model: table) needs T_ref inside; "
-                             f"use shift_model wlf or arrhenius")
 
 
 def run_fit(spec: dict, base_dir="."):
@@ -188,7 +75,7 @@ def run_fit(spec: dict, base_dir="."):
     if "file" not in (spec.get("data") or {}):
         data = data_from_spec(spec)
         return fit(spec, data), data, {}
-    d, T_ref, shift_model = _check_measured(spec, "fit")
+    d, T_ref, shift_model = check_measured(spec, "fit")
     raw = dma.read_table(Path(base_dir) / d["file"])
     if raw.kind != "frequency":
         raise ValueError(f"{raw.path}: measured-data fits take frequency-domain data (f,E_stor,E_loss)")

@@ -78,6 +78,7 @@ from . import dma, fits
 from .dma.joint import fit_with_shifts
 from .dma.laws import arrhenius_fit, wlf_fit
 from .dma.pipeline import MODES_PER_DECADE
+from .spec import SHIFT_MODELS, check_fit_spec
 from .spectrum.leverage import leverage
 from .spectrum.modes import reduce_modes
 
@@ -418,7 +419,7 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
     except ValueError as exc:
         raise ValueError(f"{where}: {exc}") from None
     ds = _samples_variables(full, samples, info["indices"])
-    shift_model = d.get("shift_model", fits.SHIFT_MODELS[0])
+    shift_model = d.get("shift_model", SHIFT_MODELS[0])
     ds.attrs.update({
         "fit_name": name, "spec": json.dumps(spec, sort_keys=True), "n": int(n), "seed": int(seed),
         "mode": MODES[0], "T_ref": T_ref, "shift_model": shift_model,
@@ -472,7 +473,7 @@ def merge_samples(parts):
 def _bootstrap_data(spec, where, base_dir):
     """(raw table, T_ref [deg C], given shifts or None) of a measured-data fit spec a bootstrap can resample;
     ValueError naming ``where`` otherwise."""
-    fits.check_fit_spec(spec, base_dir=base_dir, where=where)
+    check_fit_spec(spec, base_dir=base_dir, where=where)
     d = spec.get("data") or {}
     if "file" not in d:
         raise ValueError(f"{where}: a bootstrap resamples measured data (data: {{file, T_ref}}), got {d!r}")

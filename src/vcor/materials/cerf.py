@@ -3,12 +3,12 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
-from scipy.special import erfcx, gamma
 
 from ..checks import positive as _positive
 from .base import Material, Parameter
@@ -16,6 +16,22 @@ from .base import Material, Parameter
 __all__ = ["Cerf"]
 
 _SQRT_PI = math.sqrt(math.pi)
+
+
+def erfcx(x):
+    """:func:`scipy.special.erfcx` (scipy loads on first use: the workflow's planning imports the
+    material classes, not their numerics)."""
+    from scipy.special import erfcx as f
+
+    return f(x)
+
+
+@functools.cache
+def _gamma_half():
+    """Gamma(n/2 + 1) for n = 0..79 (scipy's values, computed on first use)."""
+    from scipy.special import gamma
+
+    return gamma(np.arange(80) / 2 + 1)
 
 
 def _erfcx_tail(x, start: int):
@@ -28,19 +44,16 @@ def _erfcx_tail(x, start: int):
     x = np.atleast_1d(np.asarray(x, dtype=float))
     head = np.zeros_like(x)
     for n in range(start):
-        head = head + (-x) ** n / _GAMMA_HALF[n]
+        head = head + (-x) ** n / _gamma_half()[n]
     out = np.asarray(erfcx(x) - head)
     small = x < 0.2
     if np.any(small):
         xs = x[small]
         series = np.zeros_like(xs)
         for n in range(start, start + 30):
-            series = series + (-xs) ** n / _GAMMA_HALF[n]
+            series = series + (-xs) ** n / _gamma_half()[n]
         out[small] = series
     return out.reshape(shape)
-
-
-_GAMMA_HALF = gamma(np.arange(80) / 2 + 1)
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ import re
 from pathlib import Path
 
 from ..fitting.calibrate import check_spec
-from ..fitting.fits import check_fit_spec, expand_fits
+from ..fitting.spec import check_fit_spec, expand_fits
 from ..materials.catalogue import Catalogue
 from ..materials.presets import PRESETS
 from ..materials.specs import from_spec

@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from ...materials.shift import GAS_CONSTANT, ZERO_CELSIUS, ShiftFunction, wlf_log_aT
 
@@ -53,6 +52,8 @@ def wlf_fit(T, log_aT, T_ref, sigma=None):
         ``C1`` (-), ``C2`` (K), ``C1_std``, ``C2_std`` (linearised), ``residual`` (decades, fit - data)
         and its ``rms``.
     """
+    from scipy.optimize import least_squares  # on use: planning a run imports the law names only
+
     T, y = np.asarray(T, float), np.asarray(log_aT, float)
     dT = T - T_ref
     w = _weights(y, sigma, 1)
