@@ -15,6 +15,7 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
+include: "workflow/rules/kernels.smk"
 include: "workflow/rules/fit.smk"
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/spheres.smk"

@@ -73,6 +73,24 @@ def test_outputs_exist(tiny_run):
     assert "tiny-prony" in table and "butyl-prony3" in table
 
 
+def test_kernels_compiled_in_a_job_per_method(tiny_run):
+    # the methods the run solves with: adaptive (scene tiny), direct (thin, histories), ive (histories)
+    logs = sorted(p.stem for p in (tiny_run / "results/logs/kernels").glob("*.log"))
+    assert logs == ["adaptive", "direct", "ive"], logs
+    assert "numba kernels of method adaptive ready" in (tiny_run / "results/logs/kernels/adaptive.log").read_text()
+    assert sorted(p.stem for p in (tiny_run / "results/.kernels").glob("*.ready")) == logs
+
+
+def test_missing_kernel_marks_rerun_nothing(smk, tiny_run):
+    # an archive restored without results/.kernels: the marks come back, no finished job runs again
+    for p in (tiny_run / "results/.kernels").glob("*.ready"):
+        p.unlink()
+    out = smk(tiny_run, "-n", "-j1")
+    text = out.stdout + out.stderr
+    assert "Nothing to be done" in text and "results/.kernels/adaptive.ready: missing" in text, text
+    assert (tiny_run / "results/.kernels/adaptive.ready").exists()
+
+
 def test_fit_rule_deterministic_and_used(smk, tiny_run):
     import hashlib
 

@@ -14,10 +14,12 @@ import vcor.plots as vplots
 import vcor.provenance as vprovenance
 import vcor.study.archive as varchive
 import vcor.study.config as vconfig
+import vcor.study.kernels as vkernels
 import vcor.study.paths as vpaths
 import vcor.study.schema as vschema
 import vcor.study.shards as vshards
 import vcor.study.uncertainty as vuncertainty
+from vcor.solvers.options import METHOD_NAMES
 
 SCHEMA = Path(workflow.basedir) / "workflow" / "schemas" / "config.schema.yaml"
 try:
@@ -72,6 +74,10 @@ if EXECUTES:
         print(_line, file=sys.stderr)
 # outputs that are not what their writer wrote are moved aside and computed again (a dry run says so)
 for _line in varchive.heal(PROJECT, ".", apply=EXECUTES):
+    print(_line, file=sys.stderr)
+# marks of compiled kernels order jobs only: a project with results missing them gets them back
+# (otherwise every finished job that solves would run again; vcor.study.kernels)
+for _line in vkernels.restore_marks(METHOD_NAMES, "."):
     print(_line, file=sys.stderr)
 
 
@@ -137,6 +143,32 @@ def shard_plan(scene):
             from_data=PROJECT.fitted_to_data,
         )
     return _PLANS[scene]
+
+
+def kernels_of(methods):
+    """The marks of the numba kernels of ``methods`` compiled (rule kernels), one per method; ancient:
+    a mark's time never makes a finished job run again (vcor.study.kernels)."""
+    return [ancient(vpaths.fmt(vpaths.KERNELS, method=m)) for m in sorted(set(methods))]
+
+
+def get_scene_kernels(wildcards):
+    """The kernels of a scene's solver method (its sweep's shards)."""
+    return kernels_of([SCENES[wildcards.scene].settings["solver"]["method"]])
+
+
+def get_histories_kernels(wildcards):
+    """The kernels of the methods of a scene's time histories."""
+    return kernels_of(method for _, method in get_histories_spec(wildcards)["runs"])
+
+
+def get_all_kernels(wildcards):
+    """The kernels of every method (the work-precision study runs them all)."""
+    return kernels_of(METHOD_NAMES)
+
+
+def get_dem_kernels(wildcards):
+    """The kernels a dem: entry's collisions use (its solver's method, adaptive by default)."""
+    return kernels_of([(PROJECT.dem[wildcards.dem].get("solver") or {}).get("method", "adaptive")])
 
 
 def get_scene(wildcards):

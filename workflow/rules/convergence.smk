@@ -4,6 +4,7 @@
 rule convergence_case:
     input:
         materials=get_material_files,
+        kernels=get_all_kernels,
     output:
         vpaths.CONVERGENCE_CASE,
     log:

@@ -5,7 +5,8 @@
 
 rule dem:
     input:
-        get_dem_material_files,
+        materials=get_dem_material_files,
+        kernels=get_dem_kernels,
     output:
         nc=vpaths.DEM,
         table=vpaths.DEM_TABLE,

@@ -4,6 +4,7 @@
 rule sweep_shard:
     input:
         materials=get_material_files,
+        kernels=get_scene_kernels,
     output:
         nc=vpaths.SHARD,
         index=vpaths.SHARD_INDEX,
@@ -63,6 +64,7 @@ rule moduli:
 rule histories:
     input:
         materials=get_material_files,
+        kernels=get_histories_kernels,
     output:
         vpaths.fmt(vpaths.DATASET, scene="{scene}", dataset="histories"),
     log:

@@ -11,7 +11,7 @@ from vcor.study import dem, summary
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     name, spec = smk.wildcards.dem, smk.params.spec
-    load_kernels(["adaptive"])  # compiled once per machine (vcor.solvers.backend)
+    load_kernels([(spec.get("solver") or {}).get("method", "adaptive")])  # compiled once per machine
     collisions, fits, temps = dem.run_dem(name, spec, Catalogue(**smk.params.catalogue))
     ds = export.dem_dataset(name, collisions, fits, temps, config=spec)
     netcdf.write_dataset(ds, smk.output.nc, title=f"vcor DEM parameters, {name}", command="snakemake rule dem")

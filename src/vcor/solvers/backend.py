@@ -7,9 +7,13 @@ second copy, ~1 s of compile per process for the adaptive march).
 
 Compiled kernels are cached on disk (numba's ``cache=True``: ``NUMBA_CACHE_DIR`` when set, otherwise
 ``__pycache__`` beside the modules). With an empty cache, parallel workflow jobs would each compile
-the same kernels (~6 s for the adaptive method, ~15 s for every method). :func:`load_kernels` runs
-one small impact per method a job uses while holding an exclusive lock on a file in that cache
-folder: the first job compiles and writes the cache, the others wait and then load it (~0.6 s).
+the same kernels (~7 s for the adaptive method, ~11 s for every method). :func:`load_kernels` runs
+one small impact per method a job uses while holding an exclusive lock on that method's file in the
+cache folder: the first job compiles a method's kernels and writes the cache, the others wait and
+then load them (~0.3 s); two jobs compile two different methods at the same time. (A kernel that two
+methods share may then be compiled twice; numba writes its cache files atomically.) The workflow
+also compiles each method in a job of its own (rule ``kernels``) before the jobs that use it, so
+that waiting for a compile leaves no core idle while jobs without kernels (fits) could run.
 """
 
 from __future__ import annotations
@@ -24,10 +28,7 @@ import numba
 
 from . import _adaptive_kernels, _fixed_kernels, _separation, _step
 
-__all__ = ["KERNEL_MODULES", "LOCK_NAME", "cache_folder", "compiled_signatures", "load_kernels"]
-
-#: the lock file's name in the numba cache folder
-LOCK_NAME = "vcor-compile.lock"
+__all__ = ["KERNEL_MODULES", "cache_folder", "compiled_signatures", "load_kernels", "lock_name"]
 
 #: the modules that hold numba kernels
 KERNEL_MODULES = (_step, _fixed_kernels, _adaptive_kernels, _separation)
@@ -50,12 +51,17 @@ def cache_folder() -> Path:
     return Path(env) if env else Path(_step.__file__).parent / "__pycache__"
 
 
+def lock_name(method: str) -> str:
+    """The name of the lock file of ``method``'s kernels in the numba cache folder."""
+    return f"vcor-compile-{method}.lock"
+
+
 @contextlib.contextmanager
-def _compile_lock():
-    """An exclusive lock on :data:`LOCK_NAME` in the cache folder, for the block (module docstring)."""
+def _compile_lock(method: str):
+    """An exclusive lock on ``method``'s lock file in the cache folder, for the block (module docstring)."""
     folder = cache_folder()
     folder.mkdir(parents=True, exist_ok=True)
-    with open(folder / LOCK_NAME, "a") as fh:
+    with open(folder / lock_name(method), "a") as fh:
         fcntl.flock(fh, fcntl.LOCK_EX)
         try:
             yield
@@ -65,12 +71,12 @@ def _compile_lock():
 
 def load_kernels(methods) -> float:
     """Compile or load (from numba's cache) the kernels of each solver method in ``methods`` (names of
-    :data:`vcor.solvers.METHODS`) under the machine-wide lock of the module docstring; the seconds it
+    :data:`vcor.solvers.METHODS`), each under its machine-wide lock (module docstring); the seconds it
     took (compile: seconds; load: under one)."""
     from .simulate import simulate
 
     start = time.perf_counter()
-    with _compile_lock():
-        for method in dict.fromkeys(methods):
+    for method in dict.fromkeys(methods):
+        with _compile_lock(method):
             simulate("sls", 1.0, options={"method": method})
     return time.perf_counter() - start

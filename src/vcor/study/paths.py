@@ -22,6 +22,7 @@ __all__ = [
     "DEM_YADE",
     "FIGURE",
     "FIT_METRICS",
+    "KERNELS",
     "MANIFEST",
     "ORDERS",
     "CALIBRATIONS_DIR",
@@ -74,6 +75,9 @@ DEM_YADE = "results/dem/{dem}/yade/collision.py"
 DEM_FIGURE = "results/dem/{dem}.{ext}"
 #: the one target that builds every output of a DEM entry
 DEM_MANIFEST = "results/dem/{dem}/MANIFEST.txt"
+#: a run's mark that the numba kernels of a solver method are compiled (a temporary file: the rule
+#: ``kernels`` writes it, the jobs that solve with that method wait for it, the run then removes it)
+KERNELS = "results/.kernels/{method}.ready"
 
 
 def fmt(pattern: str, **wildcards) -> str:

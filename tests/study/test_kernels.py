@@ -1,0 +1,21 @@
+"""Marks of compiled kernels (vcor.study.kernels): written back only in a project with results."""
+
+from vcor.study import kernels, paths
+
+
+def test_no_marks_written_in_a_fresh_project(tmp_path):
+    assert kernels.restore_marks(["adaptive"], tmp_path) == []
+    assert not kernels.mark("adaptive", tmp_path).exists()
+
+
+def test_missing_marks_written_back_when_results_exist(tmp_path):
+    shard = tmp_path / paths.fmt(paths.SHARD, scene="s", shard="0123456789-0123456789ab")
+    shard.parent.mkdir(parents=True)
+    shard.write_bytes(b"")
+    kernels.mark("direct", tmp_path).parent.mkdir(parents=True)
+    kernels.mark("direct", tmp_path).write_text("compiled\n")
+    lines = kernels.restore_marks(["adaptive", "direct", "adaptive"], tmp_path)
+    assert len(lines) == 1 and "adaptive.ready: missing" in lines[0]
+    assert kernels.mark("adaptive", tmp_path).exists()
+    assert kernels.mark("direct", tmp_path).read_text() == "compiled\n"  # an existing mark is left alone
+    assert kernels.restore_marks(["adaptive", "direct"], tmp_path) == []
