@@ -256,11 +256,14 @@ def _layout_once(fig, dpi) -> None:
 
 def save(fig, png, pdf) -> None:
     """Write ``fig`` as PNG (:data:`PNG_DPI`, for the report) and PDF (for print), then close it. The layout
-    is computed once, for the PNG, and both files reuse it (:func:`_layout_once`); the PDF's rasterized
-    parts (colorbars) keep the figure's own resolution."""
+    is computed once, for the PNG, and both files reuse it (:func:`_layout_once`); log axes compute only
+    the minor ticks in view (:mod:`vcor.plots.ticks`); the PDF's rasterized parts (colorbars) keep the
+    figure's own resolution."""
     from ..io.receipts import atomic
+    from .ticks import minor_ticks_in_view
 
     dpi = fig.dpi
+    minor_ticks_in_view(fig)
     _layout_once(fig, PNG_DPI)
     with atomic(png) as tmp:
         fig.savefig(tmp, dpi=PNG_DPI, format="png")
