@@ -83,12 +83,40 @@ def _lookup(point: dict) -> tuple:
     return tuple(sorted((k, v) for k, v in point.items() if k != "index"))
 
 
+class _Matcher:
+    """Finds the current grid index of a finished shard's points. A point recorded with index i that
+    equals the grid's point i (the grid has not moved) is matched at once; any other point by its
+    identity (:func:`_lookup`, built on first need). ``todo``: the grid indices not yet covered."""
+
+    def __init__(self, wanted: list[dict]):
+        self.wanted = wanted
+        self.todo = set(range(len(wanted)))
+        self._by_key = None
+
+    def row(self, point: dict) -> int:
+        i = point.get("index")
+        if isinstance(i, int) and 0 <= i < len(self.wanted) and self.wanted[i] == point:
+            return i
+        if self._by_key is None:
+            self._by_key = {_lookup(p): p["index"] for p in self.wanted}
+        return self._by_key.get(_lookup(point), -1)
+
+    def rows(self, points: list[dict]) -> list[int]:
+        """The grid index of each of ``points`` (-1: no longer on the grid)."""
+        return [self.row(p) for p in points]
+
+
+def _in_order(point: dict, order: list) -> dict:
+    """``point`` with the keys of ``order`` first, in that order, then the others sorted."""
+    return {k: point[k] for k in order if k in point} | {k: point[k] for k in sorted(point) if k not in order}
+
+
 def _read_index(idx: Path, order: list) -> list[dict]:
     """The points of a shard's index file, keys in the grid's order (so that Snakemake sees unchanged
     params); ValueError when it cannot be read or was written before shards carried their index."""
     try:
         pts = json.loads(idx.read_text())["points"]
-        pts = [{k: p[k] for k in order if k in p} | {k: p[k] for k in sorted(p) if k not in order} for p in pts]
+        pts = [p if list(p) == order else _in_order(p, order) for p in pts]
     except (OSError, ValueError, KeyError, TypeError):
         raise ValueError(f"its index {idx.name} cannot be read") from None
     if any("index" not in p for p in pts):
@@ -109,8 +137,7 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
     settings = settings or settings_of(scene)
     h = settings_hash(scene, settings)
     wanted = identified_points(scene, identities, grid)
-    todo = {_lookup(p): p for p in wanted}
-    index_of = {k: p["index"] for k, p in todo.items()}
+    matcher = _Matcher(wanted)
     order = list(wanted[0]) if wanted else []
     plan: dict[str, Shard] = {}
     for idx in sorted(Path(shard_dir).glob(f"{h}-*.json")):
@@ -123,17 +150,17 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
             if on_invalid is not None:
                 on_invalid(nc, str(exc))
             continue
-        keys = [_lookup(p) for p in pts]
-        if not any(k in todo for k in keys):
+        rows = matcher.rows(pts)
+        if not any(r in matcher.todo for r in rows):
             continue
         reason = receipts.problem(nc, idx.stem)
         if reason is not None:
             if on_invalid is not None:
                 on_invalid(nc, reason)
             continue
-        plan[idx.stem] = Shard(id=idx.stem, points=pts, rows=[index_of.get(k, -1) for k in keys])
-        for k in keys:
-            todo.pop(k, None)
+        plan[idx.stem] = Shard(id=idx.stem, points=pts, rows=rows)
+        matcher.todo.difference_update(rows)
+    todo = {i: wanted[i] for i in sorted(matcher.todo)}
     cost = partial(point_seconds, settings=settings, from_data=from_data)
     for chunk in split_by_work(list(todo.values()), cost, job_seconds, shard_size):
         sid = f"{h}-{content_hash([point_key(p) for p in chunk])}"
