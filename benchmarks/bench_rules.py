@@ -5,8 +5,8 @@ Every job's log ends with ``job <rule>: start-up S s, work W s`` (:mod:`vcor.io.
 the time from the job's process start to its work (Python, imports), work the rest (loading or
 compiling numba kernels, solving, writing). This script reads those lines from the logs of one or more
 finished projects (e.g. the runs of ``benchmarks/bench_reproduction.sh``, which calls it) and prints
-the medians over the projects per rule; the figure rules of all scenes count as one row
-(``figures_*``).
+the medians over the projects per rule; the rules made one per scene or per DEM entry count as one row
+each (``figures_*``, ``dem_entry_*``).
 
 Run: python benchmarks/bench_rules.py PROJECT [PROJECT ...] [--out FILE] [--command TEXT]
 """
@@ -21,6 +21,8 @@ from pathlib import Path
 
 import timing
 
+#: prefixes of the rules the workflow makes one per scene (figures) or per DEM entry: one row each
+GROUPED = ("figures_", "dem_entry_")
 LINE = re.compile(r"^job (\S+): start-up ([\d.]+) s, work ([\d.]+) s$", re.M)
 
 
@@ -29,7 +31,7 @@ def by_rule(project: Path) -> dict[str, list[tuple[float, float]]]:
     out = defaultdict(list)
     for log in sorted((project / "results").rglob("*.log")):
         for rule, startup, work in LINE.findall(log.read_text(errors="replace")):
-            rule = "figures_*" if rule.startswith("figures_") else rule
+            rule = next((f"{p}*" for p in GROUPED if rule.startswith(p)), rule)
             out[rule].append((float(startup), float(work)))
     return out
 

@@ -226,20 +226,19 @@ def test_a_deck_holds_the_lammps_laws_the_entry_fitted(tmp_path):
 
 
 def test_every_file_the_dem_rules_write_is_a_target_of_the_entry():
-    """The default target and an entry's MANIFEST.txt require every output of the DEM rules (the path
-    patterns of workflow/rules/dem.smk's outputs, from vcor.study.paths), so
+    """The default target and an entry's MANIFEST.txt require every output of the DEM rules (the entry's
+    job writes ``Project.dem_files``, workflow/rules/dem.smk; the figure rule its PNG and PDF), so
     `snakemake results/dem/<name>/MANIFEST.txt` builds them all."""
-    import re
     from pathlib import Path
 
     from vcor.study import paths
 
-    rules = Path(__file__).resolve().parents[2] / "workflow" / "rules" / "dem.smk"
-    names = set()
-    for block in re.findall(r"\n    output:\n((?:        .*\n|            .*\n)+)", rules.read_text()):
-        names |= set(re.findall(r"vpaths\.(DEM_[A-Z]+|DEM)\b", block))
-    names -= {"DEM_MANIFEST"}
-    assert {"DEM_YADE", "DEM_PARAMETERS", "DEM_DECK", "DEM_FIGURE"} <= names
-    targets = set(load_project(BASE, ".").dem_targets("d"))
-    expected = {getattr(paths, n).format(dem="d", kind="pair", ext="png") for n in names}
-    assert expected <= targets, sorted(expected - targets)
+    rules = (Path(__file__).resolve().parents[2] / "workflow" / "rules" / "dem.smk").read_text()
+    assert "**PROJECT.dem_files(_dem)" in rules and "vpaths.DEM_FIGURE" in rules
+    project = load_project(BASE, ".")
+    files = project.dem_files("d")
+    assert set(files) == {"nc", "table", "parameters", "deck", "yade"}  # the entry fits LAMMPS and Yade laws
+    figures = {paths.fmt(paths.DEM_FIGURE, dem="d", ext=e) for e in ("png", "pdf")}
+    expected = set(files.values()) | figures
+    targets = set(project.dem_targets("d"))
+    assert expected == targets, sorted(expected ^ targets)

@@ -166,9 +166,13 @@ def get_all_kernels(wildcards):
     return kernels_of(METHOD_NAMES)
 
 
-def get_dem_kernels(wildcards):
-    """The kernels a dem: entry's collisions use (its solver's method, adaptive by default)."""
-    return kernels_of([(PROJECT.dem[wildcards.dem].get("solver") or {}).get("method", "adaptive")])
+def dem_method(name):
+    """The solver method of a dem: entry's collisions (its solver options', adaptive by default)."""
+    return (PROJECT.dem[name].get("solver") or {}).get("method", "adaptive")
+
+
+def dem_rule_name(name):
+    return "dem_entry_" + re.sub(r"\W", "_", name)
 
 
 def get_scene(wildcards):
@@ -336,18 +340,9 @@ def get_calibration_inputs(wildcards):
     return files
 
 
-def get_dem_spec(wildcards):
-    return PROJECT.dem[wildcards.dem]
-
-
 def get_dem_targets(wildcards):
     """Every output of a dem: entry (its manifest's inputs)."""
     return PROJECT.dem_targets(wildcards.dem)
-
-
-def get_dem_material_files(wildcards):
-    """The fitted or calibrated material files a dem: entry's bodies read, if they name any."""
-    return PROJECT.dem_material_files(wildcards.dem)
 
 
 def get_all_targets():

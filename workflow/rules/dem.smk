@@ -3,57 +3,30 @@
 # results/dem/<name>/MANIFEST.txt requires them all (the one target that builds an entry).
 
 
-rule dem:
-    input:
-        materials=get_dem_material_files,
-        kernels=get_dem_kernels,
-    output:
-        nc=vpaths.DEM,
-        table=vpaths.DEM_TABLE,
-        parameters=vpaths.DEM_PARAMETERS,
-    log:
-        vpaths.log(vpaths.DEM_DIR, "{dem}"),
-    benchmark:
-        vpaths.benchmark(vpaths.DEM_DIR, "{dem}")
-    wildcard_constraints:
-        dem=_names(PROJECT.dem, "no-dem"),
-    params:
-        code=CODE,
-        spec=get_dem_spec,
-        catalogue=CATALOGUE_SPEC,
-    script:
-        "../scripts/dem.py"
+# One job per entry solves its collisions, fits the laws and writes the dataset, the tables, the LAMMPS
+# deck and the Yade script (a rule per entry: the deck's name and whether there is one depend on the
+# entry); the figure and the manifest follow.
+for _dem in PROJECT.dem:
 
-
-rule dem_deck:
-    input:
-        vpaths.DEM,
-    output:
-        vpaths.DEM_DECK,
-    log:
-        vpaths.log(vpaths.DEM_DIR, "{dem}.{kind}"),
-    wildcard_constraints:
-        dem=_names(PROJECT.dem, "no-dem"),
-        kind="pair|wall",
-    params:
-        code=CODE,
-    script:
-        "../scripts/dem_deck.py"
-
-
-rule dem_yade:
-    input:
-        vpaths.DEM,
-    output:
-        vpaths.DEM_YADE,
-    log:
-        vpaths.log(vpaths.DEM_DIR, "{dem}.yade"),
-    wildcard_constraints:
-        dem=_names(PROJECT.dem, "no-dem"),
-    params:
-        code=CODE,
-    script:
-        "../scripts/dem_yade.py"
+    rule:
+        name:
+            dem_rule_name(_dem)
+        input:
+            materials=PROJECT.dem_material_files(_dem),
+            kernels=kernels_of([dem_method(_dem)]),
+        output:
+            **PROJECT.dem_files(_dem),
+        log:
+            vpaths.log(vpaths.DEM_DIR, _dem),
+        benchmark:
+            vpaths.benchmark(vpaths.DEM_DIR, _dem)
+        params:
+            code=CODE,
+            name=_dem,
+            spec=PROJECT.dem[_dem],
+            catalogue=CATALOGUE_SPEC,
+        script:
+            "../scripts/dem.py"
 
 
 rule dem_manifest:

@@ -151,21 +151,30 @@ class Project:
             out += [paths.material(self.material_dir, c)]
         return out
 
-    def dem_targets(self, name: str) -> list[str]:
-        """The outputs of a ``dem:`` entry: its dataset, COR table, parameters file, figure, the LAMMPS
-        deck when it fits a LAMMPS law and the Yade script when it fits Yade's (not its manifest, which
-        lists these)."""
+    def dem_files(self, name: str) -> dict[str, str]:
+        """The files of a ``dem:`` entry that its collisions' job writes: ``nc`` (the dataset), ``table``
+        (the COR table), ``parameters``, and ``deck`` (the LAMMPS deck, when the entry fits a LAMMPS law)
+        and ``yade`` (the Yade script, when it fits Yade's)."""
         spec = self.dem[name]
         target = spec.get("target", "rigid")
         models = spec.get("models", MODELS)
         kind = "pair" if isinstance(target, dict) and "sphere" in target else "wall"
-        out = [paths.fmt(p, dem=name) for p in (paths.DEM, paths.DEM_TABLE, paths.DEM_PARAMETERS)]
-        out += [paths.fmt(paths.DEM_FIGURE, dem=name, ext=e) for e in ("png", "pdf")]
+        out = {key: paths.fmt(p, dem=name) for key, p in
+               (("nc", paths.DEM), ("table", paths.DEM_TABLE), ("parameters", paths.DEM_PARAMETERS))}
         if any(m.startswith("lammps-") for m in models):
-            out.append(paths.fmt(paths.DEM_DECK, dem=name, kind=kind))
+            out["deck"] = paths.fmt(paths.DEM_DECK, dem=name, kind=kind)
         if "yade-mindlin" in models:
-            out.append(paths.fmt(paths.DEM_YADE, dem=name))
+            out["yade"] = paths.fmt(paths.DEM_YADE, dem=name)
         return out
+
+    def dem_targets(self, name: str) -> list[str]:
+        """The outputs of a ``dem:`` entry: its dataset, COR table, parameters file, figure, the LAMMPS
+        deck when it fits a LAMMPS law and the Yade script when it fits Yade's (not its manifest, which
+        lists these)."""
+        files = self.dem_files(name)
+        out = [files["nc"], files["table"], files["parameters"]]
+        out += [paths.fmt(paths.DEM_FIGURE, dem=name, ext=e) for e in ("png", "pdf")]
+        return out + [files[k] for k in ("deck", "yade") if k in files]
 
     def dem_materials(self, name: str) -> list[str]:
         """Names of the catalogue a ``dem:`` entry's bodies use (the sphere's, a target body's)."""
