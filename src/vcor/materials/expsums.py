@@ -113,9 +113,12 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10) -> SOE:
     t_max = number("t_max", t_max, t_min, math.inf, lo_open=True, hi_open=True, unit="s")
     tol = number("tol", tol, 1e-15, 1e-2, unit="(relative)")
     if material.is_prony:
-        e_inf, e, b = material.prony_terms()
-        return SOE(material=_materials.Prony(float(e_inf), tuple(map(float, e)), tuple(map(float, b))), t_min=t_min,
-                   t_max=t_max, bound=0.0, checked_error=0.0, exact=True)
+        if type(material) is _materials.Prony:  # already the sum (a sweep builds one per point: no copy)
+            exact = material
+        else:
+            e_inf, e, b = material.prony_terms()
+            exact = _materials.Prony(float(e_inf), tuple(map(float, e)), tuple(map(float, b)))
+        return SOE(material=exact, t_min=t_min, t_max=t_max, bound=0.0, checked_error=0.0, exact=True)
     return _soe_cached(material, math.floor(math.log2(t_min)), math.ceil(math.log2(t_max)), tol)
 
 

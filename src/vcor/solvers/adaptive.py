@@ -133,8 +133,12 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
     R[:, 1:] = np.exp(-np.multiply.outer(hl, b))
     alive = R >= DECAYED
     live = nk - np.argmax(alive[:, ::-1], axis=1)
-    # the newest step: the material's own kernel (for Prony kinds the same terms as the sum)
-    i0, m0 = mat.first_step(hl)
+    # the newest step: the material's own kernel (for Prony kinds the same terms as the sum; when the sum
+    # is the material itself, its first step is the sums of the columns just computed)
+    if pr is mat:
+        i0, m0 = e_inf * hl + ti.sum(axis=-1), tm.sum(axis=-1)
+    else:
+        i0, m0 = mat.first_step(hl)
     levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live)
     return Tables(levels=levels, e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
                   rate_moduli=np.concatenate(([0.0], b * e)), n_terms=rep.n_terms, soe_error=rep.checked_error)
