@@ -17,17 +17,41 @@ can and always to the terminal's stderr, then exits with code 1.
 from __future__ import annotations
 
 import contextlib
+import numbers
 import os
 import sys
 import time
 import traceback
 
-__all__ = ["JobLog", "count", "job_log", "process_age", "seconds"]
+__all__ = ["JobLog", "brief", "count", "job_log", "process_age", "seconds"]
 
 
 def seconds(t: float) -> str:
     """A duration for a log line: ``0.042 s``, ``1.3 s``, ``75 s`` (two significant digits below 10 s)."""
     return f"{t:.2g} s" if t < 10 else f"{t:.0f} s"
+
+
+def brief(value, digits: int = 4) -> str:
+    """A job's settings for a log line: numbers to ``digits`` significant digits (numpy scalars as plain
+    numbers), mappings and sequences item by item, everything else as ``str``.
+
+    Examples
+    --------
+    >>> from vcor.io.joblog import brief
+    >>> brief({"lam": 48.69675251658631, "n": 3, "mu": {"E_stor": 3.1622776601683795}, "notes": []})
+    '{lam: 48.7, n: 3, mu: {E_stor: 3.162}, notes: []}'
+    """
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k}: {brief(v, digits)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(brief(v, digits) for v in value) + "]"
+    if isinstance(value, bool) or value is None:
+        return str(value)
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return f"{float(value):.{digits}g}"
+    return str(value)
 
 
 def count(n: int, noun: str, plural: str | None = None) -> str:
