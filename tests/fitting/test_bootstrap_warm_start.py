@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 from synthetic_dma import SMOOTH, T_REF, synthetic, write_csv
 
-from vcor.fitting import dma, fits, resample
+from vcor.fitting import dma, fits, resample, samples
 from vcor.fitting.dma import joint as joint_module
 from vcor.fitting.dma.joint import TOL, JointStart, fit_with_shifts
 from vcor.fitting.spectrum import lm
@@ -140,9 +140,9 @@ def test_the_material_file_records_the_full_data_fit(lagged, tmp_path):
 
 @pytest.mark.parametrize("n, parts", [(2, 2), (5, 2), (7, 3), (50, 2), (4, 1)])
 def test_the_parts_hold_every_sample_once(n, parts):
-    got = np.concatenate([resample.part_indices(n, k, parts) for k in range(parts)])
+    got = np.concatenate([samples.part_indices(n, k, parts) for k in range(parts)])
     assert np.array_equal(got, np.arange(n))
-    sizes = [resample.part_indices(n, k, parts).size for k in range(parts)]
+    sizes = [samples.part_indices(n, k, parts).size for k in range(parts)]
     assert max(sizes) - min(sizes) <= 1
 
 
@@ -150,7 +150,7 @@ def test_the_parts_hold_every_sample_once(n, parts):
                                          ((3, 0, 0), "parts:")])
 def test_bad_parts_are_refused(args, words):
     with pytest.raises(ValueError, match=words):
-        resample.part_indices(*args)
+        samples.part_indices(*args)
 
 
 def test_a_sample_is_the_same_whichever_part_fits_it(lagged, tmp_path):
@@ -160,14 +160,14 @@ def test_a_sample_is_the_same_whichever_part_fits_it(lagged, tmp_path):
     path = write_csv(tmp_path / "dma.csv", data)
     spec = {"model": "prony", "data": {"file": str(path), "T_ref": T_REF, "instrument_lag": True}}
     one = resample.samples_dataset("syn", spec, 4, seed=5, full=full)
-    parts = [resample.samples_dataset("syn", spec, 4, seed=5, full=full, indices=resample.part_indices(4, k, 2))
+    parts = [resample.samples_dataset("syn", spec, 4, seed=5, full=full, indices=samples.part_indices(4, k, 2))
              for k in (1, 0)]
     assert [p["sample"].values.tolist() for p in parts] == [[2, 3], [0, 1]]
-    xr.testing.assert_identical(resample.merge_samples(parts), one)
+    xr.testing.assert_identical(samples.merge_samples(parts), one)
     with pytest.raises(ValueError, match="not each of 0..3 once"):
-        resample.merge_samples(parts[:1])
+        samples.merge_samples(parts[:1])
     with pytest.raises(ValueError, match="not each of 0..3 once"):
-        resample.merge_samples([parts[0], parts[0], parts[1]])
+        samples.merge_samples([parts[0], parts[0], parts[1]])
     other = resample.samples_dataset("syn", spec, 4, seed=6, full=full, indices=[0, 1])
     with pytest.raises(ValueError, match=r"different bootstraps .*'seed'"):
-        resample.merge_samples([parts[0], other])
+        samples.merge_samples([parts[0], other])

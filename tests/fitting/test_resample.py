@@ -9,6 +9,7 @@ import pytest
 from synthetic_dma import SMOOTH, T_REF, TEMPS, TRUE, synthetic, write_csv
 
 from vcor.fitting import dma, resample
+from vcor.fitting.samples import sample_materials
 from vcor.io.netcdf import scalar_dataset_check
 from vcor.materials.files import from_file
 from vcor.materials.shift import shift_from_file
@@ -127,7 +128,7 @@ def test_samples_dataset_layout_and_materials(samples, tmp_path):
     for i in range(3):  # padding: E = 0 and beta = NaN after the sample's own terms
         assert np.all(ds["E"].values[i, n[i]:] == 0) and np.all(np.isnan(ds["beta"].values[i, n[i]:]))
         assert np.all(np.isfinite(ds["beta"].values[i, :n[i]]))
-    pairs = resample.sample_materials(ds)
+    pairs = sample_materials(ds)
     assert len(pairs) == 3
     for (mat, shift), row in zip(pairs, ds["log_aT"].values):
         assert shift.model == "table" and shift.log_aT(float(TEMPS[0])) == pytest.approx(row[0])

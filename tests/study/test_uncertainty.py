@@ -138,7 +138,7 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
     from test_dma import _synthetic
 
     import vcor
-    from vcor.fitting.resample import sample_materials
+    from vcor.fitting.samples import sample_materials
     from vcor.materials import shift as tts
 
     cfg = {"shard_size": 100, "material_dir": "results/materials",

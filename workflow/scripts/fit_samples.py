@@ -1,7 +1,7 @@
 """One job's share of the bootstrap samples of a fit to measured data, refitted from the fit's own file
 (thin: vcor.fitting.resample)."""
 
-from vcor.fitting import resample
+from vcor.fitting import resample, samples
 from vcor.io import netcdf
 from vcor.io.joblog import count, job_log
 
@@ -9,7 +9,7 @@ smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     name, n, seed = smk.wildcards.material, int(smk.wildcards.n), int(smk.wildcards.seed)
     part, parts = int(smk.wildcards.part), int(smk.wildcards.parts)
-    indices = resample.part_indices(n, part, parts)
+    indices = samples.part_indices(n, part, parts)
     ds = resample.samples_dataset(name, smk.params.spec, n, seed=seed, base_dir=".", full=smk.input.fit,
                                   indices=indices)
     netcdf.write_dataset(ds, smk.output[0], title=f"vcor bootstrap samples of {name}", timestamp=False,

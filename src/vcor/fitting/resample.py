@@ -52,13 +52,14 @@ viscoelasticity, horizontal-only shifts, a smooth spectrum) nor a Poisson-ratio 
 
 Sample i's data are the i-th draw of the seed's one random stream (``numpy.random.default_rng(seed)``,
 drawn in sample order), whichever samples a job fits: the samples can be split over jobs
-(:func:`part_indices`) and merged (:func:`merge_samples`) into the dataset one job would write. A sample
-whose data cannot be superposed is drawn again from a stream of its own, ``default_rng([seed, i,
-attempt])``, at most :data:`MAX_REDRAWS` times.
+(:func:`vcor.fitting.samples.part_indices`) and merged (:func:`vcor.fitting.samples.merge_samples`)
+into the dataset one job would write. A sample whose data cannot be superposed is drawn again from a
+stream of its own, ``default_rng([seed, i, attempt])``, at most :data:`MAX_REDRAWS` times.
 
 :func:`samples_dataset` fits ``n`` samples (or some of them) of a measured-data fit spec into one dataset
 with a ``sample`` dimension, from the full-data fit's material file (:func:`vcor.fitting.fits.full_fit_from_file`)
-or fitting the full data itself; :func:`sample_materials` turns it back into (material, shift function) pairs.
+or fitting the full data itself; :func:`vcor.fitting.samples.sample_materials` turns it back into
+(material, shift function) pairs.
 """
 
 from __future__ import annotations
@@ -72,8 +73,6 @@ from pathlib import Path
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from ..materials.models import Prony
-from ..materials.shift import ShiftFunction
 from . import dma, fits
 from .dma.joint import fit_with_shifts
 from .dma.laws import arrhenius_fit, wlf_fit
@@ -82,16 +81,13 @@ from .spec import SHIFT_MODELS, check_fit_spec
 from .spectrum.leverage import leverage
 from .spectrum.modes import reduce_modes
 
-__all__ = ["BOOTSTRAP_ATTRS", "MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "merge_samples", "part_indices",
-           "refit", "resample", "residuals", "sample_materials", "samples_dataset", "wild_sample"]
+__all__ = ["MAX_REDRAWS", "MODES", "WEBB", "Residuals", "bootstrap", "refit", "resample", "residuals",
+           "samples_dataset", "wild_sample"]
 
 #: resampling schemes (the first is the default)
 MODES = ("wild", "bayesian", "classical")
 #: Webb's six-point distribution of the wild weights (mean 0, variance 1)
 WEBB = np.array([-math.sqrt(1.5), -1.0, -math.sqrt(0.5), math.sqrt(0.5), 1.0, math.sqrt(1.5)])
-#: attributes of a samples dataset that name its bootstrap (the same in every part of it; :func:`merge_samples`)
-BOOTSTRAP_ATTRS = ("fit_name", "spec", "n", "seed", "mode", "T_ref", "shift_model", "smoothing",
-                   "instrument_lag_full_s", "instrument_lag_std_full_s", "material", "shift")
 #: draws of one sample whose data cannot be superposed before the bootstrap gives up (a wild sample keeps the
 #: design, so its sets always overlap; a pairs sample that drops sets may not)
 MAX_REDRAWS = 20
@@ -227,17 +223,6 @@ def resample(raw, rng, *, T_ref=None, mode="bayesian", min_sets=2):
     return out
 
 
-def part_indices(n: int, part: int, parts: int) -> np.ndarray:
-    """The samples that part ``part`` (0-based) of ``parts`` jobs fits of a bootstrap of ``n``: consecutive
-    blocks of 0..n-1 whose sizes differ by at most one; together the parts hold every sample once."""
-    for key, value, low in (("n", n, 1), ("parts", parts, 1), ("part", part, 0)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-            raise ValueError(f"{key}: an integer >= {low}, got {value!r}")
-    if not part < parts <= n:
-        raise ValueError(f"part {part} of {parts} of {n} samples: need 0 <= part < parts <= n")
-    return np.array_split(np.arange(n), parts)[part]
-
-
 def _size_check(sets, reduced) -> None:
     n_points = sum(s.f.size for s in sets)
     if n_points < reduced.n_modes:
@@ -318,8 +303,8 @@ def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, lag=False, ful
     full : DMAFit, optional
         The full-data fit of ``raw`` (e.g. :func:`vcor.fitting.fits.full_fit_from_file`); default: fitted here.
     indices : array_like of int, optional
-        The samples to fit (distinct, in 0..n-1; :func:`part_indices`); default all. Sample i is the same
-        whichever others are fitted beside it.
+        The samples to fit (distinct, in 0..n-1; :func:`vcor.fitting.samples.part_indices`); default all.
+        Sample i is the same whichever others are fitted beside it.
     max_redraws : int
         Draws of a sample that cannot be superposed before the error is raised.
 
@@ -379,7 +364,8 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         The full-data fit of the spec: its material file (written by the workflow's fit rule,
         :func:`vcor.fitting.fits.full_fit_from_file`) or the fit itself; default: fitted here.
     indices : array_like of int, optional
-        The samples to fit (:func:`part_indices`); default 0..n-1. :func:`merge_samples` joins the parts.
+        The samples to fit (:func:`vcor.fitting.samples.part_indices`); default 0..n-1;
+        :func:`vcor.fitting.samples.merge_samples` joins the parts.
 
     Returns
     -------
@@ -442,34 +428,6 @@ def _check_full(full, raw, T_ref, given) -> None:
         raise ValueError("the full-data fit holds other shift factors than the shift file: fit the data again")
 
 
-def merge_samples(parts):
-    """One samples dataset of the parts of a bootstrap (:func:`samples_dataset` with ``indices``): the
-    samples in order, padded to the widest Prony series; ValueError unless the parts are of the same
-    bootstrap and hold every sample 0..n-1 exactly once. The result is the dataset one job fitting every
-    sample writes."""
-    import xarray as xr
-
-    parts = sorted(parts, key=lambda p: int(p["sample"].values[0]) if p.sizes["sample"] else -1)
-    if not parts:
-        raise ValueError("merge_samples: no parts given")
-    keep = {k: parts[0].attrs.get(k) for k in BOOTSTRAP_ATTRS}
-    for p in parts[1:]:
-        other = {k: p.attrs.get(k) for k in BOOTSTRAP_ATTRS}
-        if other != keep:
-            raise ValueError(f"merge_samples: the parts are of different bootstraps (attributes "
-                             f"{sorted(k for k in set(keep) | set(other) if keep.get(k) != other.get(k))} differ)")
-    got = np.concatenate([p["sample"].values for p in parts])
-    n = int(keep["n"])
-    if not np.array_equal(np.sort(got), np.arange(n)):
-        raise ValueError(f"merge_samples: the parts hold samples {got.tolist()}, not each of 0..{n - 1} once")
-    # variables without a sample dimension (the full-data shifts) must be equal in every part
-    ds = xr.concat(parts, dim="sample", data_vars="minimal", coords="minimal", compat="equals", join="outer",
-                   fill_value={"E": 0.0, "beta": math.nan}, combine_attrs="override")
-    ds["mode"].attrs = dict(parts[0]["mode"].attrs)
-    ds.attrs["failures"] = json.dumps([f for p in parts for f in json.loads(p.attrs["failures"])])
-    return ds
-
-
 def _bootstrap_data(spec, where, base_dir):
     """(raw table, T_ref [deg C], given shifts or None) of a measured-data fit spec a bootstrap can resample;
     ValueError naming ``where`` otherwise."""
@@ -523,24 +481,3 @@ def _samples_variables(full, samples, indices):
         coords={"sample": ("sample", np.asarray(indices), {"units": "1", "long_name": "bootstrap sample"}),
                 "mode": ("mode", np.arange(width), {"units": "1", "long_name": "Prony term index (by rate)"}),
                 "T_set": ("T_set", full.T, {"units": "degC", "long_name": "temperature of the measured set"})})
-
-
-def sample_materials(ds) -> list:
-    """(Prony material, ShiftFunction) of every sample of a :func:`samples_dataset`, in sample order;
-    the shift function is the dataset's ``shift_model`` (table: the sample's per-set log10 a_T)."""
-    T_ref, model = float(ds.attrs["T_ref"]), ds.attrs["shift_model"]
-    T = np.asarray(ds["T_set"].values, float)
-    out = []
-    for i in range(ds.sizes["sample"]):
-        k = int(ds["n_modes"].values[i])
-        mat = Prony(float(ds["E_inf"].values[i]), tuple(float(x) for x in ds["E"].values[i, :k]),
-                    tuple(float(x) for x in ds["beta"].values[i, :k]))
-        if model == "table":
-            shift = ShiftFunction.table(T_ref, T, ds["log_aT"].values[i])
-        elif model == "wlf":
-            shift = ShiftFunction(model="wlf", T_ref=T_ref, C1=float(ds["wlf_C1"].values[i]),
-                                  C2=float(ds["wlf_C2"].values[i]))
-        else:
-            shift = ShiftFunction(model="arrhenius", T_ref=T_ref, E_a=float(ds["arrhenius_E_a"].values[i]))
-        out.append((mat, shift))
-    return out

@@ -88,7 +88,7 @@ def cor_v0_temperature(sweep, opts):
 
 def _spectrum_band(ax1, ax2, samples, f, level=0.95):
     """The band of the bootstrap samples' E', E'' and tan delta at T_ref over [min f, max f] (Hz), shaded."""
-    from vcor.fitting.resample import sample_materials
+    from vcor.fitting.samples import sample_materials
 
     fd = np.geomspace(f.min(), f.max(), 200)
     e = np.array([m.complex_modulus(2 * np.pi * fd) for m, _ in sample_materials(samples)])

@@ -63,7 +63,7 @@ KEYS = ("bootstrap", "seed", "level")
 #: the most bootstrap samples a scene may ask for, and the fewest
 MAX_BOOTSTRAP = 1000
 MIN_BOOTSTRAP = 2
-#: jobs a fit's bootstrap samples are split over (vcor.fitting.resample.part_indices), run side by side: the
+#: jobs a fit's bootstrap samples are split over (vcor.fitting.samples.part_indices), run side by side: the
 #: reference machine has 2 cores, and the samples of one fit are the longest chain of a banded scene (fit,
 #: samples, sweep); at most MIN_BOOTSTRAP, so that every job has a sample
 SAMPLE_JOBS = 2
@@ -134,7 +134,7 @@ def samples_identity(catalogue, name: str, spec: dict, part: tuple[int, int] | N
 def _samples(path: str, mtime_ns: int):
     import xarray as xr
 
-    from ..fitting.resample import sample_materials
+    from ..fitting.samples import sample_materials
 
     return sample_materials(xr.load_dataset(path))
 
