@@ -85,7 +85,7 @@ def _write_csv(path: Path, material, seed: int, noise: float) -> None:
 def one_seed(material, seed: int, noise: float, n: int, folder: Path) -> dict:
     """Band and truth at TEMPS for one synthetic data set."""
     import vcor
-    from vcor.fitting import resample
+    from vcor.fitting import resample, samples
     from vcor.materials.shift import at_temperature, time_shifted, wlf_log_aT
 
     _write_csv(folder / "dma.csv", material, seed, noise)
@@ -93,7 +93,7 @@ def one_seed(material, seed: int, noise: float, n: int, folder: Path) -> dict:
     t = time.perf_counter()
     ds = resample.samples_dataset("synthetic", spec, n, seed=seed, base_dir=folder)
     fit_time = time.perf_counter() - t
-    mats = resample.sample_materials(ds)
+    mats = samples.sample_materials(ds)
     out = {"fit_time": fit_time, "covered": [], "width": [], "offset": []}
     for T in TEMPS:
         want = vcor.simulate(time_shifted(material, float(wlf_log_aT(T, WLF[2], WLF[0], WLF[1]))), V0, rigid=True).cor
