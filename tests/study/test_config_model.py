@@ -281,3 +281,10 @@ def test_the_default_config_is_one_model():
     sls = project.scenes["sls"]
     assert sls.grid.names == ["v0", "beta"] and sls.grid.axis("beta").role == "material"
     assert project.scenes["pyvisco"].grid.names == ["v0", "T", "nu", "sample"]
+
+
+def test_schema_read_with_libyaml_is_the_safe_load():
+    from vcor.study import schema
+
+    path = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+    assert schema.load_schema(path) == yaml.safe_load(path.read_text())

@@ -30,7 +30,9 @@ class SchemaError(ValueError):
 def _load(path: str) -> dict:
     import yaml
 
-    return yaml.safe_load(Path(path).read_text())
+    # libyaml's parser when PyYAML has it (the same safe loading, ~7x faster on the schema: every
+    # snakemake call reads it)
+    return yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
 
 
 def load_schema(path) -> dict:
