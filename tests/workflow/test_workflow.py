@@ -89,6 +89,8 @@ def test_missing_kernel_marks_rerun_nothing(smk, tiny_run):
     text = out.stdout + out.stderr
     assert "Nothing to be done" in text and "results/.kernels/adaptive.ready: missing" in text, text
     assert (tiny_run / "results/.kernels/adaptive.ready").exists()
+    out = smk(tiny_run, "-n", "-j1")  # the marks written back keep the project up to date
+    assert "Nothing to be done" in out.stdout + out.stderr, out.stdout + out.stderr
 
 
 def test_fit_rule_deterministic_and_used(smk, tiny_run):

@@ -77,7 +77,8 @@ for _line in varchive.heal(PROJECT, ".", apply=EXECUTES):
     print(_line, file=sys.stderr)
 # marks of compiled kernels order jobs only: a project with results missing them gets them back
 # (otherwise every finished job that solves would run again; vcor.study.kernels)
-for _line in vkernels.restore_marks(METHOD_NAMES, "."):
+_KERNELS_SCRIPT = Path(workflow.basedir) / "workflow" / "scripts" / "kernels.py"
+for _line in vkernels.restore_marks(METHOD_NAMES, ".", script=_KERNELS_SCRIPT):
     print(_line, file=sys.stderr)
 
 
@@ -146,9 +147,9 @@ def shard_plan(scene):
 
 
 def kernels_of(methods):
-    """The marks of the numba kernels of ``methods`` compiled (rule kernels), one per method; ancient:
-    a mark's time never makes a finished job run again (vcor.study.kernels)."""
-    return [ancient(vpaths.fmt(vpaths.KERNELS, method=m)) for m in sorted(set(methods))]
+    """The marks of the numba kernels of ``methods`` compiled by the kernels jobs, one per method
+    (vcor.study.kernels says why they are plain inputs)."""
+    return [vpaths.fmt(vpaths.KERNELS, method=m) for m in sorted(set(methods))]
 
 
 def get_scene_kernels(wildcards):
@@ -172,7 +173,8 @@ def dem_method(name):
 
 
 def dem_rule_name(name):
-    return "dem_entry_" + re.sub(r"\W", "_", name)
+    name = re.sub(r"\W", "_", name)
+    return f"dem_entry_{name}"
 
 
 def get_scene(wildcards):

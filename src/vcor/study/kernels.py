@@ -3,24 +3,35 @@
 The rule ``kernels`` compiles one solver method's kernels (:func:`vcor.solvers.backend.load_kernels`)
 in a job of its own and writes the method's mark, ``results/.kernels/<method>.ready``
 (:data:`vcor.study.paths.KERNELS`). Every job that solves with that method takes the mark as an
-``ancient`` input. In a fresh project the compile therefore runs first, on one core, while jobs without
-kernels (fits) run on the other, and the jobs that solve load compiled kernels instead of waiting for
-one another's compile. ``ancient``: a mark's time never makes a finished job run again.
+input. In a fresh project the compile therefore runs first, on one core, while jobs without kernels
+(fits) run on the other, and the jobs that solve load compiled kernels instead of waiting for one
+another's compile.
+
+The mark is an ordinary input, not Snakemake's ``ancient``: when the kernels job runs again (the code
+changed, or its script), every job that takes the mark runs again too. With ``ancient`` Snakemake
+(9.x) would skip the jobs downstream of the kernels job that need to run for reasons of their own
+(it marks them as following that job, then drops them because the ancient input exists), and a run
+could end with stale results.
 
 A mark missing while the project holds results (an archive restored without ``results/.kernels``)
-would make Snakemake run again every finished job that takes it as soon as any job needs it.
-:func:`restore_marks` writes such marks back before Snakemake plans; kernels then compile on first
-use, each method under its lock.
+would make every finished job that takes it run again. :func:`restore_marks` writes such marks back
+before Snakemake plans (in a dry run too: a mark is bookkeeping, not a result), dated one second
+after the kernels job's script was last changed: Snakemake re-runs a job whose output is not newer
+than its script, and a job whose input is newer than its output, so results computed since that
+script changed stay finished. Kernels then compile on first use, each method under its lock.
 """
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from . import paths
 
-__all__ = ["RESULT_PATTERNS", "mark", "restore_marks"]
+__all__ = ["AFTER_SCRIPT", "RESULT_PATTERNS", "mark", "restore_marks"]
 
+#: how much later than the kernels job's script a mark written back is dated (ns)
+AFTER_SCRIPT = 1_000_000_000
 #: outputs of the jobs that solve: a project holding any of them has run with kernels
 RESULT_PATTERNS = (paths.SHARD, paths.DATASET, paths.CONVERGENCE_CASE, paths.DEM)
 
@@ -49,19 +60,22 @@ def _has_results(base: Path) -> bool:
     return any(next(base.glob(_glob(p)), None) is not None for p in RESULT_PATTERNS)
 
 
-def restore_marks(methods, base=".") -> list[str]:
+def restore_marks(methods, base=".", *, script=None) -> list[str]:
     """Write the missing marks of ``methods`` when the project folder ``base`` already holds results
-    (module docstring); one line per mark written, saying why."""
+    (module docstring), dated :data:`AFTER_SCRIPT` after ``script`` (the kernels job's script; None:
+    1970); one line per mark written, saying why."""
     base = Path(base)
     missing = [m for m in dict.fromkeys(methods) if not mark(m, base).exists()]
     if not missing or not _has_results(base):
         return []
+    dated = 0 if script is None else Path(script).stat().st_mtime_ns + AFTER_SCRIPT
     lines = []
     for method in missing:
         path = mark(method, base)
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(f"numba kernels of method {method}: mark written again for a project with results; "
                         f"they compile on first use\n")
+        os.utime(path, ns=(dated, dated))
         lines.append(f"vcor: {path.relative_to(base)}: missing in a project with results; written again "
                      f"(finished jobs stay finished; kernels compile on first use)")
     return lines

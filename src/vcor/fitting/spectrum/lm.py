@@ -30,7 +30,7 @@ AT_BOUND = 1e-12
 #: derivative: the value Transtrum & Sethna use (arXiv:1201.5885); the difference only needs the
 #: acceleration's direction and rough size, and a step that large stays clear of rounding
 GEODESIC_H = 0.1
-#: largest ratio 2|a|/|v| of the acceleration to the velocity for which the accelerated step v + a/2 is
+#: largest ratio ``2 |a| / |v|`` of the acceleration to the velocity for which the accelerated step v + a/2 is
 #: taken (else the plain step v): the second-order correction must stay small for the expansion to hold;
 #: Transtrum & Sethna take alpha below 1 and use 0.75 (arXiv:1201.5885)
 GEODESIC_ALPHA = 0.75
@@ -85,7 +85,7 @@ def curvature_gradient(value, J, x, r, v, *, lo=None, hi=None, h=GEODESIC_H):
 
 def _step(F, g, accel):
     """The Levenberg-Marquardt velocity v of the factored damped matrix F, plus half its geodesic
-    acceleration a when ``accel`` (v -> J^T r_vv) is given and 2|a|/|v| <= :data:`GEODESIC_ALPHA`."""
+    acceleration a when ``accel`` (v -> J^T r_vv) is given and ``2 |a| / |v|`` <= :data:`GEODESIC_ALPHA`."""
     v = -cho_solve(F, g)
     if accel is None:
         return v
