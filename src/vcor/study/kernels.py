@@ -63,19 +63,18 @@ def _has_results(base: Path) -> bool:
 def restore_marks(methods, base=".", *, script=None) -> list[str]:
     """Write the missing marks of ``methods`` when the project folder ``base`` already holds results
     (module docstring), dated :data:`AFTER_SCRIPT` after ``script`` (the kernels job's script; None:
-    1970); one line per mark written, saying why."""
+    1970); one line naming them, or none."""
     base = Path(base)
     missing = [m for m in dict.fromkeys(methods) if not mark(m, base).exists()]
     if not missing or not _has_results(base):
         return []
     dated = 0 if script is None else Path(script).stat().st_mtime_ns + AFTER_SCRIPT
-    lines = []
     for method in missing:
         path = mark(method, base)
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(f"numba kernels of method {method}: mark written again for a project with results; "
                         f"they compile on first use\n")
         os.utime(path, ns=(dated, dated))
-        lines.append(f"vcor: {path.relative_to(base)}: missing in a project with results; written again "
-                     f"(finished jobs stay finished; kernels compile on first use)")
-    return lines
+    where = mark(missing[0], base).parent.relative_to(base)
+    return [f"vcor: {where}: the marks of {', '.join(missing)} were missing in a project with results; written "
+            f"again (finished jobs stay finished; kernels compile on first use)"]
