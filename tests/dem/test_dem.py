@@ -242,3 +242,11 @@ def test_every_file_the_dem_rules_write_is_a_target_of_the_entry():
     expected = set(files.values()) | figures
     targets = set(project.dem_targets("d"))
     assert expected == targets, sorted(expected ^ targets)
+
+
+def test_an_entrys_solver_method_is_its_own_or_the_default():
+    from vcor.solvers.options import DEFAULT_METHOD
+    from vcor.study.dem import solver_method
+
+    assert solver_method({"sphere": {}}) == DEFAULT_METHOD == solver_method({"solver": None})
+    assert solver_method({"solver": {"method": "direct"}}) == "direct"

@@ -14,6 +14,7 @@ import vcor.plots as vplots
 import vcor.provenance as vprovenance
 import vcor.study.archive as varchive
 import vcor.study.config as vconfig
+import vcor.study.dem as vdem
 import vcor.study.kernels as vkernels
 import vcor.study.paths as vpaths
 import vcor.study.schema as vschema
@@ -75,8 +76,8 @@ if EXECUTES:
 # outputs that are not what their writer wrote are moved aside and computed again (a dry run says so)
 for _line in varchive.heal(PROJECT, ".", apply=EXECUTES):
     print(_line, file=sys.stderr)
-# marks of compiled kernels order jobs only: a project with results missing them gets them back
-# (otherwise every finished job that solves would run again; vcor.study.kernels)
+# the marks of compiled kernels are inputs of the jobs that solve: a project with results missing them
+# gets them back (otherwise every finished job that solves would run again; vcor.study.kernels)
 _KERNELS_SCRIPT = Path(workflow.basedir) / "workflow" / "scripts" / "kernels.py"
 for _line in vkernels.restore_marks(METHOD_NAMES, ".", script=_KERNELS_SCRIPT):
     print(_line, file=sys.stderr)
@@ -165,11 +166,6 @@ def get_histories_kernels(wildcards):
 def get_all_kernels(wildcards):
     """The kernels of every method (the work-precision study runs them all)."""
     return kernels_of(METHOD_NAMES)
-
-
-def dem_method(name):
-    """The solver method of a dem: entry's collisions (its solver options', adaptive by default)."""
-    return (PROJECT.dem[name].get("solver") or {}).get("method", "adaptive")
 
 
 def dem_rule_name(name):

@@ -13,7 +13,7 @@ for _dem in PROJECT.dem:
             dem_rule_name(_dem)
         input:
             materials=PROJECT.dem_material_files(_dem),
-            kernels=kernels_of([dem_method(_dem)]),
+            kernels=kernels_of([vdem.solver_method(PROJECT.dem[_dem])]),
         output:
             **PROJECT.dem_files(_dem),
         log:

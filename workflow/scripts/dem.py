@@ -14,7 +14,7 @@ from vcor.study import dem, summary
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     name, spec, out = smk.params.name, smk.params.spec, dict(smk.output.items())
-    load_kernels([(spec.get("solver") or {}).get("method", "adaptive")])  # compiled once per machine
+    load_kernels([dem.solver_method(spec)])  # compiled once per machine
     collisions, fits, temps = dem.run_dem(name, spec, Catalogue(**smk.params.catalogue))
     ds = export.dem_dataset(name, collisions, fits, temps, config=spec)
     netcdf.write_dataset(ds, out["nc"], title=f"vcor DEM parameters, {name}", command=f"snakemake rule {smk.rule}")

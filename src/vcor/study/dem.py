@@ -28,13 +28,18 @@ from ..dem.laws import MODELS
 from ..materials.catalogue import Catalogue
 from ..materials.shift import at_temperature
 from ..materials.specs import from_spec, shift_function
-from ..solvers.options import SolverOptions
+from ..solvers.options import DEFAULT_METHOD, SolverOptions
 from .grid import axis_values
 
-__all__ = ["DEM_KEYS", "check_dem", "dem_material", "run_dem"]
+__all__ = ["DEM_KEYS", "check_dem", "dem_material", "run_dem", "solver_method"]
 
 #: keys of a dem entry
 DEM_KEYS = {"sphere", "target", "v0", "T", "models", "solver"}
+
+
+def solver_method(spec: dict) -> str:
+    """The solver method of an entry's collisions: its ``solver.method``, else the default method."""
+    return (spec.get("solver") or {}).get("method", DEFAULT_METHOD)
 
 
 def _where(name: str) -> str:
