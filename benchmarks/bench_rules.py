@@ -6,7 +6,7 @@ the time from the job's process start to its work (Python, imports), work the re
 compiling numba kernels, solving, writing). This script reads those lines from the logs of one or more
 finished projects (e.g. the runs of ``benchmarks/bench_reproduction.sh``, which calls it) and prints
 the medians over the projects per rule; the rules made one per scene or per DEM entry count as one row
-each (``figures_*``, ``dem_entry_*``).
+each (``figures_*``, ``dem_entry_*``, ``fit_family_*``).
 
 Run: python benchmarks/bench_rules.py PROJECT [PROJECT ...] [--out FILE] [--command TEXT]
 """
@@ -21,8 +21,8 @@ from pathlib import Path
 
 import timing
 
-#: prefixes of the rules the workflow makes one per scene (figures) or per DEM entry: one row each
-GROUPED = ("figures_", "dem_entry_")
+#: prefixes of the rules the workflow makes one per scene (figures), DEM entry or fit family: one row each
+GROUPED = ("figures_", "dem_entry_", "fit_family_")
 LINE = re.compile(r"^job (\S+): start-up ([\d.]+) s, work ([\d.]+) s$", re.M)
 
 

@@ -56,6 +56,20 @@ def test_a_config_of_only_fits_builds_every_fit_and_a_scene_only_the_fits_it_use
     assert "results/materials/f2.nc" in built and not any("f3" in t for t in built)
 
 
+def test_the_members_of_a_fit_family_a_project_builds_are_grouped_when_two_or_more():
+    fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}, "g": {"model": "cerf"}}
+    assert check({"fits": fits}).fit_groups() == {"f{n}": ["f1", "f2", "f3"]}
+
+    def scene(*materials):
+        return {"s": {"materials": list(materials), "grid": {"v0": [1.0]}}}
+
+    assert check({"fits": fits, "scenes": scene("f1", "f3", "g")}).fit_groups() == {"f{n}": ["f1", "f3"]}
+    assert check({"fits": fits, "scenes": scene("f2", "g")}).fit_groups() == {}  # one member: the one-fit rule
+    dem = {"d": {"sphere": {"material": "f2", "r": 0.005}, "target": "rigid", "v0": [1.0, 2.0]}}
+    assert check({"fits": fits, "scenes": scene("f1"), "dem": dem}).fit_groups() == {"f{n}": ["f1", "f2"]}
+    assert paths.family_slug("f{n}") == "fN"
+
+
 @pytest.mark.parametrize("config", [{}, {"scenes": {}}, {"materials": {"m": MY_SLS}}, {"shard_size": 10}])
 def test_a_config_that_names_nothing_to_build_is_refused_in_one_line(config):
     with pytest.raises(ValueError, match="names nothing to build") as exc:

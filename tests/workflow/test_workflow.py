@@ -240,6 +240,18 @@ def test_default_config_dry_run_and_scene_selection(make_project, smk, tmp_path)
     assert "histories" in text and "sweep_shard" not in text and "moduli" not in text
 
 
+def test_a_fit_family_is_fitted_in_one_job_and_a_lone_member_by_itself(make_project, smk, tmp_path):
+    fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}}
+    scene = {"materials": ["f1", "f3"], "grid": {"v0": [1.0]}}
+    path = make_project(tmp_path, {"fits": fits, "scenes": {"s": scene}})
+    out = smk(path, "-n", "-j1", "--quiet", "rules")
+    text = out.stdout + out.stderr
+    assert "fit_family_fN" in text and "fit_material" not in text, text
+    out = smk(path, "-n", "-j1", "results/materials/f2.nc", "--quiet", "rules")  # not used: fitted alone
+    text = out.stdout + out.stderr
+    assert "fit_material" in text and "fit_family_fN" not in text, text
+
+
 def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):
     """``--configfile my.yaml`` replaces config.yaml (it is not merged with it): only my.yaml's scenes
     are planned (docs, "Your own scenes")."""

@@ -173,6 +173,16 @@ def dem_rule_name(name):
     return f"dem_entry_{name}"
 
 
+def fit_family_rule_name(family):
+    """The rule of a fit family's grouped members (Project.fit_groups): ``fit_family_<name>``, {n} as N."""
+    return "fit_family_" + re.sub(r"\W", "_", vpaths.family_slug(family))
+
+
+# the members of fit families fitted together (one job per family; vcor.study.project.Project.fit_groups)
+FIT_GROUPS = PROJECT.fit_groups()
+GROUPED_FITS = {m for members in FIT_GROUPS.values() for m in members}
+
+
 def get_scene(wildcards):
     return SCENES[wildcards.scene].config
 
@@ -253,10 +263,14 @@ def get_samples_identity(wildcards):
     return vuncertainty.samples_identity(CATALOGUE, wildcards.material, spec, share)
 
 
+def fit_data_files(names):
+    """Measured data the fits of ``names`` read (inputs: editing them refits)."""
+    data = [CATALOGUE.fits[name].get("data") or {} for name in names]
+    return list(dict.fromkeys(d[k] for d in data for k in ("file", "shift_file") if k in d))
+
+
 def get_fit_data_files(wildcards):
-    """Measured data a fit reads (inputs: editing them refits)."""
-    d = CATALOGUE.fits[wildcards.material].get("data") or {}
-    return [d[k] for k in ("file", "shift_file") if k in d]
+    return fit_data_files([wildcards.material])
 
 
 def get_material_spec(wildcards):

@@ -29,14 +29,42 @@ rule fit_material:
         vpaths.log(MATERIAL_DIR, "{material}"),
     benchmark:
         vpaths.benchmark(MATERIAL_DIR, "{material}")
+    wildcard_constraints:
+        material=_names(set(CATALOGUE.fits) - GROUPED_FITS, "no-fitted-material"),
     # long chains first (a fit feeds a shard; cases feed the study): a shorter -j2 schedule
     priority: 10
     params:
         code=CODE,
-        spec=get_fit_spec,
-        identity=get_material_identity,
+        names=lambda wildcards: [wildcards.material],
+        specs=lambda wildcards: [get_fit_spec(wildcards)],
+        identities=lambda wildcards: [get_material_identity(wildcards)],
     script:
         "../scripts/fit_material.py"
+
+
+# The members of a fit family that the project builds, fitted in one job (Project.fit_groups says when).
+for _family, _members in FIT_GROUPS.items():
+
+    rule:
+        name:
+            fit_family_rule_name(_family)
+        input:
+            fit_data_files(_members),
+        output:
+            nc=[vpaths.material(MATERIAL_DIR, m) for m in _members],
+            table=[vpaths.material_table(MATERIAL_DIR, m) for m in _members],
+        log:
+            vpaths.log(MATERIAL_DIR, vpaths.family_slug(_family)),
+        benchmark:
+            vpaths.benchmark(MATERIAL_DIR, vpaths.family_slug(_family))
+        priority: 10
+        params:
+            code=CODE,
+            names=_members,
+            specs=[CATALOGUE.fits[m] for m in _members],
+            identities=[CATALOGUE.identity(m) for m in _members],
+        script:
+            "../scripts/fit_material.py"
 
 
 rule fit_samples:

@@ -1,4 +1,5 @@
-"""Fit one material to its data and write <name>.nc and a text table (thin; deterministic bytes)."""
+"""Fit materials to their data and write each one's <name>.nc and text table (thin; deterministic bytes).
+One material (rule fit_material) or the members of a fit family (rules fit_family_*)."""
 
 from vcor.fitting import fits
 from vcor.io import netcdf, receipts
@@ -6,13 +7,15 @@ from vcor.io.joblog import brief, job_log, seconds
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
-    name, spec = smk.wildcards.material, smk.params.spec
-    result, data, attrs = fits.run_fit(spec)
-    log.note(f"fitted {name} in {seconds(result.fit_time)}: {brief(result.settings)}", timed=False)
-    ds = fits.result_dataset(result, data, spec)
-    ds.attrs.update(attrs, material_name=name)
-    netcdf.write_dataset(ds, smk.output.nc, title=f"vcor fitted material {name}", timestamp=False,
-                         command="vcor.fitting.fits (deterministic: no time stamp)", identity=smk.params.identity)
-    table = f"# {name}: {result.material.to_dict()}\n" + fits.metrics_table([(name, result.material, result.metrics)])
-    receipts.atomic_text(smk.output.table, table)
-    log.note(f"wrote {smk.output.nc}, {smk.output.table}")
+    params = smk.params
+    for name, spec, identity, nc, table_file in zip(params.names, params.specs, params.identities, smk.output.nc,
+                                                    smk.output.table, strict=True):
+        result, data, attrs = fits.run_fit(spec)
+        log.note(f"fitted {name} in {seconds(result.fit_time)}: {brief(result.settings)}", timed=False)
+        ds = fits.result_dataset(result, data, spec)
+        ds.attrs.update(attrs, material_name=name)
+        netcdf.write_dataset(ds, nc, title=f"vcor fitted material {name}", timestamp=False,
+                             command="vcor.fitting.fits (deterministic: no time stamp)", identity=identity)
+        table = f"# {name}: {result.material.to_dict()}\n" + fits.metrics_table([(name, result.material, result.metrics)])
+        receipts.atomic_text(table_file, table)
+        log.note(f"wrote {nc}, {table_file}")

@@ -17,7 +17,7 @@ from ..materials.catalogue import FIT_SCALARS
 from .dma.laws import SHIFT_LAWS
 
 __all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "REMOVED_METHODS", "SHIFT_MODELS", "check_fit_spec",
-           "check_measured", "check_method", "expand_fits"]
+           "check_measured", "check_method", "expand_fits", "fit_families"]
 
 #: shift functions a measured-data fit may store (:mod:`vcor.fitting.dma.laws`); the first is the default
 SHIFT_MODELS = SHIFT_LAWS
@@ -46,6 +46,20 @@ def expand_fits(fits: dict, where: str = "fits") -> dict:
                 raise ValueError(f"{where}.{name}: a list n_terms needs {{n}} in the name")
             out[name] = dict(spec)
     return out
+
+
+def fit_families(fits: dict) -> dict[str, list[str]]:
+    """{family name: member names} of the config's fit families (a name containing ``{n}``, one fit
+    per N of its list ``n_terms``; :func:`expand_fits` names the members the same way).
+
+    Examples
+    --------
+    >>> from vcor.fitting.spec import fit_families
+    >>> fit_families({"butyl-prony-n{n}": {"model": "prony", "n_terms": [2, 3]}, "one": {"model": "cerf"}})
+    {'butyl-prony-n{n}': ['butyl-prony-n2', 'butyl-prony-n3']}
+    """
+    return {name: [name.replace("{n}", str(int(n))) for n in spec["n_terms"]]
+            for name, spec in (fits or {}).items() if "{n}" in name and isinstance(spec.get("n_terms"), list)}
 
 
 #: the models a fit may have (the scalar parameters of each: vcor.materials.catalogue.FIT_SCALARS)

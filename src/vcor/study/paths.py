@@ -113,6 +113,11 @@ def samples_parts(material_dir: str, parts: int, name: str = "{material}", n="{n
     return [samples_part(material_dir, name, n, seed, k, parts) for k in range(parts)]
 
 
+def family_slug(family: str) -> str:
+    """A fit family's name (``butyl-prony-n{n}``) as a file name: ``{n}`` written ``N`` (``butyl-prony-nN``)."""
+    return family.replace("{n}", "N")
+
+
 def log(folder: str, name: str) -> str:
     """A job's log, ``<folder>/logs/<name>.log`` (folder: ``results/{scene}``, a material dir, ...)."""
     return f"{folder}/logs/{name}.log"

@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..dem.laws import MODELS
+from ..fitting.spec import fit_families
 from ..materials.catalogue import Catalogue
 from ..plots import needs
 from . import paths
@@ -141,6 +142,27 @@ class Project:
         """Every fit's material file and parameter table."""
         return [p for m in self.catalogue.fits
                 for p in (paths.material(self.material_dir, m), paths.material_table(self.material_dir, m))]
+
+    def built_fits(self) -> list[str]:
+        """The fits the project builds (module docstring): those a scene, DEM entry or calibration uses,
+        or every fit when the config builds nothing else."""
+        fits = self.catalogue.fits
+        if not (self.scenes or self.dem or self.catalogue.calibrations):
+            return list(fits)
+        used = {m for sc in self.scenes.values() for m in sc.used_materials()}
+        used |= {m for name in self.dem for m in self.dem_materials(name)}
+        used |= {spec.get("material") for spec in self.catalogue.calibrations.values()}
+        return [m for m in fits if m in used]
+
+    def fit_groups(self) -> dict[str, list[str]]:
+        """{family name: members}: the members of a fit family (a name with ``{n}``) that the project
+        builds, when there are two or more, are fitted in one job (one process start and one read of
+        their data for all of them; each fit takes about a second). A member built alone is fitted by
+        the one-fit rule."""
+        built = set(self.built_fits())
+        groups = {family: [m for m in members if m in built]
+                  for family, members in fit_families(self.config.get("fits")).items()}
+        return {family: members for family, members in groups.items() if len(members) >= 2}
 
     def calibration_targets(self) -> list[str]:
         """Every calibration's record, figure and material file."""
