@@ -36,7 +36,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import erfc
 
 from ..checks import number
 from . import models as _materials
@@ -64,6 +63,14 @@ class SOE:
     @property
     def n_terms(self) -> int:
         return len(self.material.E)
+
+
+def erfc(x: float) -> float:
+    """:func:`scipy.special.erfc` (scipy.special loads on first use: a sweep of Prony materials never
+    needs it, and its import costs a job's start a sixth of a second)."""
+    from scipy.special import erfc as f
+
+    return f(x)
 
 
 def _cosh_sum(h: float) -> float:

@@ -14,7 +14,6 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ._fixed_kernels import march_prony
 from ._records import Body, Internal, Stop
@@ -145,6 +144,8 @@ def _solve(system, y0, span, settings, events=None):
     """``solve_ivp`` of the system over ``span`` with dense output; ``settings`` = (method, rtol, atol,
     max_step). scipy's finite-difference Jacobian (Radau/BDF) probes far enough on very stiff cases to
     overflow in a product it then discards; the solution is checked for finiteness by the caller."""
+    from scipy.integrate import solve_ivp  # on use: only method "ive" needs it (a job's start-up)
+
     method, rtol, atol, max_step = settings
     with np.errstate(over="ignore", invalid="ignore"):
         return solve_ivp(system.rhs, span, y0, method=method, rtol=rtol, atol=atol, events=events,
