@@ -24,6 +24,7 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..io.fileversion import version
 from ..provenance import code_fingerprint
 from .files import from_file
 from .models import REGISTRY, Material, from_dict
@@ -107,10 +108,11 @@ class Catalogue:
             mat = _config_material(json.dumps(self.specs[name], sort_keys=True), name, str(self.base_dir))
         else:
             path = self.file_of(name)
-            if not path.is_file():
+            key = version(path)
+            if key is None:
                 raise ValueError(f"material {name!r} ({source}) has no file {path} yet: it is computed by the "
                                  f"workflow's {'fit' if source == 'fit' else 'calibrate'} rule")
-            mat = _file_material(str(path.resolve()), path.stat().st_mtime_ns)
+            mat = _file_material(*key)
         return with_parameters(mat, overrides, name) if overrides else mat
 
     def scalar_parameters(self, name: str) -> list[str]:

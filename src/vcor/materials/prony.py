@@ -27,6 +27,13 @@ SERIES_SWITCH = 0.05
 MOMENT_SERIES = np.array([k / (2.0 * math.factorial(k) * (k + 1) * (k + 2)) for k in range(1, 16)])
 
 
+def _rows(first, x, n):
+    """Per step i = 0..n-1 (first axis): ``first`` e^{-i x}; the first step is ``first`` itself."""
+    if n == 1:
+        return first[None]
+    return first * np.exp(-np.multiply.outer(np.arange(n, dtype=float), x))
+
+
 def _term(name, value, unit):
     """One Prony modulus or rate: a finite number >= 0 (a negative modulus would make E(t) increase)."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool) and value < 0:
@@ -160,26 +167,29 @@ class Prony(Material, kind="prony"):
 
     def term_step_integrals(self, dt: float, n: int) -> np.ndarray:
         """Per term k (last axis): int_{i dt}^{(i+1) dt} E_k e^{-beta_k t} dt, i = 0..n-1, Pa s."""
-        i = np.arange(n, dtype=float)
         e, b = self._arrays()
         bdt = b * dt
         frac = np.where(b > 0, -np.expm1(-bdt) / np.where(b > 0, b, 1.0), dt)
-        return e * frac * np.exp(-np.multiply.outer(i, bdt))
+        return _rows(e * frac, bdt, n)
 
     def term_step_moments(self, dt: float, n: int) -> np.ndarray:
         """Per term k (last axis): int_{step i} E_k e^{-beta_k t} (t - (i + 1/2) dt) dt, Pa s^2; with
         int_0^dt e^{-b x} (x - dt/2) dx in closed form or (small b dt) its series."""
-        i = np.arange(n, dtype=float)
         e, b = self._arrays()
         x = b * dt
         safe = np.where(x > SERIES_SWITCH, x, 1.0)
-        closed = dt**2 * ((-np.expm1(-safe)) / safe**2 - np.exp(-safe) / safe - 0.5 * (-np.expm1(-safe)) / safe)
-        small = np.where(x > SERIES_SWITCH, 0.0, x)  # the series is used (and evaluated) only there
-        series = np.zeros_like(x)
-        for coef in MOMENT_SERIES[::-1]:  # Horner in -x
-            series = (series + coef) * -small
-        phi = np.where(x > SERIES_SWITCH, closed, dt**2 * series)
-        return e * phi * np.exp(-np.multiply.outer(i, x))
+        dt2 = dt**2 * np.ones_like(x)  # the shape of x (dt may be a column of steps)
+        decayed = -np.expm1(-safe)
+        phi = dt2 * (decayed / safe**2 - np.exp(-safe) / safe - 0.5 * decayed / safe)
+        small = ~(x > SERIES_SWITCH)  # the series there (NaN included: it stays NaN)
+        if small.any():
+            minus_x = -x[small]
+            series = np.zeros_like(minus_x)
+            for coef in MOMENT_SERIES[::-1]:  # Horner in -x
+                series += coef
+                series *= minus_x
+            phi[small] = dt2[small] * series
+        return _rows(e * phi, x, n)
 
     def prony_terms(self):
         """(E_inf, E[], beta[]) as float and arrays (for the internal-variable solver)."""

@@ -31,11 +31,11 @@ import functools
 import json
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from ..checks import number, positive
+from ..io.fileversion import version
 from .models import Material
 
 __all__ = ["GAS_CONSTANT", "SHIFT_MODELS", "TABLE_TOLERANCE", "ZERO_CELSIUS", "ShiftFunction", "at_temperature",
@@ -202,8 +202,10 @@ def at_temperature(material: Material, shift: ShiftFunction | None, T: float, na
 def shift_from_file(path) -> ShiftFunction | None:
     """The ShiftFunction stored with a material file (attribute ``shift``), or None. Read once per
     file version (cached on path and modification time: a sweep asks for it at every point)."""
-    path = Path(path)
-    return _shift_cached(str(path.resolve()), path.stat().st_mtime_ns)
+    key = version(path)
+    if key is None:
+        raise FileNotFoundError(f"no material file {path}")
+    return _shift_cached(*key)
 
 
 @functools.lru_cache(maxsize=64)

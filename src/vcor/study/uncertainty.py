@@ -35,10 +35,10 @@ the band there: the ones the data support.
 from __future__ import annotations
 
 import functools
-from pathlib import Path
 
 import numpy as np
 
+from ..io.fileversion import version
 from ..materials.catalogue import content_hash, with_parameters
 from ..materials.shift import at_temperature
 from .paths import samples
@@ -142,12 +142,12 @@ def _samples(path: str, mtime_ns: int):
 def sample_material(path, k: int, overrides: dict | None, T: float | None, name: str):
     """Sample ``k`` of the samples file ``path``: its material with ``overrides`` (grid parameters), at
     temperature ``T`` (deg C) through its own shift factors when given."""
-    path = Path(path)
-    if not path.is_file():
+    key = version(path)
+    if key is None:
         raise ValueError(f"material {name!r} has no bootstrap samples file {path} yet: it is computed by the "
                          f"workflow's fit_samples rule")
     frozen = tuple(sorted((overrides or {}).items()))
-    return _sample_at(str(path.resolve()), path.stat().st_mtime_ns, int(k), frozen, T, name)
+    return _sample_at(*key, int(k), frozen, T, name)
 
 
 #: materials built per job: a sweep visits each (sample, temperature) once per speed and geometry, and
