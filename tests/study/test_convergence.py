@@ -6,7 +6,7 @@ import numpy as np
 
 from vcor import status
 from vcor.solvers.options import SolverOptions
-from vcor.study import convergence
+from vcor.study import convergence, summary
 
 
 def test_study_records_options_statuses_and_order_two():
@@ -30,6 +30,9 @@ def test_study_records_options_statuses_and_order_two():
     assert all("ladder" in str(m) for m in ds["message"].values[off])
     on = ~off
     assert np.all(ds["status"].values[on] == status.code("ok"))
+    # a job's log counts the runs, not the cells past a shorter ladder
+    runs = summary.outcome_of(convergence.ladder_runs(ds))
+    assert (runs.points, runs.failed) == (int(on.sum()), 0) and int(off.sum()) > 0
     for name in ("direct-a", "direct-b", "ive-numba", "soe", "adaptive-plain"):
         order = convergence.observed_order(ds, name)
         print(f"\nsls v0 = 10, {name}: observed order {order:.3f}")

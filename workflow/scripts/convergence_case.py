@@ -18,7 +18,7 @@ with job_log(smk) as log:
     ds = xr.concat([c.expand_dims(v0=[v]) for c, v in zip(cases, v0s)], dim="v0")
     netcdf.write_dataset(ds, smk.output[0], title="vcor work-precision case", extra_attrs={"material": name},
                          command="snakemake rule convergence_case")
-    done = summary.outcome_of(ds)
+    done = summary.outcome_of(convergence.ladder_runs(ds))
     speeds = ", ".join(f"{v:g}" for v in v0s)
     log.note(f"work-precision ladder of {name} at v0 = {speeds} m/s: {count(done.points, 'run')}: {done.text()}; "
              f"{smk.output[0]}")

@@ -21,7 +21,8 @@ from ..solvers.common import richardson
 from ..solvers.options import solver_options
 from ..solvers.simulate import simulate
 
-__all__ = ["LADDER", "RICHARDSON_STEP_TOLS", "RTOLS", "STEP_TOLS", "methods_for", "observed_order", "study"]
+__all__ = ["LADDER", "RICHARDSON_STEP_TOLS", "RTOLS", "STEP_TOLS", "ladder_runs", "methods_for", "observed_order",
+           "study"]
 
 LADDER = (250, 500, 1000, 2000, 4000, 8000)
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
@@ -120,6 +121,15 @@ def study(name, v0, *, catalogue: Catalogue | None = None, repeat=3):
         },
     )
     return ds
+
+
+def ladder_runs(ds):
+    """The ``status`` of the cells of a work-precision dataset that are runs, as a dataset (what a job's
+    log counts): the cells past the end of a shorter ladder (no ladder value, status invalid-input) are
+    not runs."""
+    dims = ds["status"].dims
+    on_ladder = np.isfinite(ds["param"].transpose(*dims).values).ravel()
+    return ds["status"].stack(cell=dims).isel(cell=on_ladder).to_dataset()
 
 
 def observed_order(ds, solver):
