@@ -250,6 +250,11 @@ def test_a_fit_family_is_fitted_in_one_job_and_a_lone_member_by_itself(make_proj
     out = smk(path, "-n", "-j1", "results/materials/f2.nc", "--quiet", "rules")  # not used: fitted alone
     text = out.stdout + out.stderr
     assert "fit_material" in text and "fit_family_fN" not in text, text
+    smk(path, "-j1", "results/materials/f1.nc", "results/materials/f2.nc")
+    for n in (1, 2, 3):
+        assert len(vcor.materials.from_file(path / f"results/materials/f{n}.nc").E) == n
+    log = (path / "results/materials/logs/fN.log").read_text()
+    assert "fitted f1" in log and "fitted f3" in log and "fitted f2" not in log, log
 
 
 def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):

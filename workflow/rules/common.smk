@@ -174,8 +174,9 @@ def dem_rule_name(name):
 
 
 def fit_family_rule_name(family):
-    """The rule of a fit family's grouped members (Project.fit_groups): ``fit_family_<name>``, {n} as N."""
-    return "fit_family_" + re.sub(r"\W", "_", vpaths.family_slug(family))
+    """``fit_family_<name>`` ({n} written N), the name of the job fitting a family's grouped members."""
+    slug = re.sub(r"\W", "_", vpaths.family_slug(family))
+    return f"fit_family_{slug}"
 
 
 # the members of fit families fitted together (one job per family; vcor.study.project.Project.fit_groups)
@@ -266,7 +267,9 @@ def get_samples_identity(wildcards):
 def fit_data_files(names):
     """Measured data the fits of ``names`` read (inputs: editing them refits)."""
     data = [CATALOGUE.fits[name].get("data") or {} for name in names]
-    return list(dict.fromkeys(d[k] for d in data for k in ("file", "shift_file") if k in d))
+    return list(
+        dict.fromkeys(d[k] for d in data for k in ("file", "shift_file") if k in d)
+    )
 
 
 def get_fit_data_files(wildcards):

@@ -8,8 +8,9 @@ from vcor.io.joblog import brief, job_log, seconds
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     params = smk.params
-    for name, spec, identity, nc, table_file in zip(params.names, params.specs, params.identities, smk.output.nc,
-                                                    smk.output.table, strict=True):
+    ncs, tables = ([f] if isinstance(f, str) else list(f) for f in (smk.output.nc, smk.output.table))
+    for name, spec, identity, nc, table_file in zip(params.names, params.specs, params.identities, ncs, tables,
+                                                    strict=True):
         result, data, attrs = fits.run_fit(spec)
         log.note(f"fitted {name} in {seconds(result.fit_time)}: {brief(result.settings)}", timed=False)
         ds = fits.result_dataset(result, data, spec)
