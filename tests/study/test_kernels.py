@@ -1,5 +1,9 @@
 """Marks of compiled kernels (vcor.study.kernels): written back only in a project with results."""
 
+import os
+import subprocess
+import sys
+
 from vcor.study import kernels, paths
 
 
@@ -22,3 +26,18 @@ def test_missing_marks_written_back_when_results_exist(tmp_path):
     assert after == kernels.AFTER_SCRIPT  # newer than the script: the kernels job stays finished
     assert kernels.mark("direct", tmp_path).read_text() == "compiled\n"  # an existing mark is left alone
     assert kernels.restore_marks(["adaptive", "direct"], tmp_path) == []
+
+
+def test_methods_without_numba_kernels_have_no_kernels_job(tmp_path):
+    """``ive`` (scipy's solve_ivp) compiles nothing: it is not a compiled method (no job, no mark); a fresh
+    process with an empty numba cache solves with it without a single numba signature."""
+    from vcor.solvers.options import COMPILED_METHODS, METHOD_NAMES
+
+    others = sorted(set(METHOD_NAMES) - set(COMPILED_METHODS))
+    assert others == ["ive"]
+    code = ("import gc; from numba.core.registry import CPUDispatcher; from vcor.solvers.backend import load_kernels; "
+            "load_kernels(['ive']); print(sum(len(o.signatures) for o in gc.get_objects() "
+            "if isinstance(o, CPUDispatcher)))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)})
+    assert out.stdout.strip() == "0", out

@@ -20,7 +20,7 @@ import vcor.study.paths as vpaths
 import vcor.study.schema as vschema
 import vcor.study.shards as vshards
 import vcor.study.uncertainty as vuncertainty
-from vcor.solvers.options import METHOD_NAMES
+from vcor.solvers.options import COMPILED_METHODS
 
 SCHEMA = Path(workflow.basedir) / "workflow" / "schemas" / "config.schema.yaml"
 try:
@@ -79,7 +79,7 @@ for _line in varchive.heal(PROJECT, ".", apply=EXECUTES):
 # the marks of compiled kernels are inputs of the jobs that solve: a project with results missing them
 # gets them back (otherwise every finished job that solves would run again; vcor.study.kernels)
 _KERNELS_SCRIPT = Path(workflow.basedir) / "workflow" / "scripts" / "kernels.py"
-for _line in vkernels.restore_marks(METHOD_NAMES, ".", script=_KERNELS_SCRIPT):
+for _line in vkernels.restore_marks(COMPILED_METHODS, ".", script=_KERNELS_SCRIPT):
     print(_line, file=sys.stderr)
 
 
@@ -148,9 +148,13 @@ def shard_plan(scene):
 
 
 def kernels_of(methods):
-    """The marks of the numba kernels of ``methods`` compiled by the kernels jobs, one per method
-    (vcor.study.kernels says why they are plain inputs)."""
-    return [vpaths.fmt(vpaths.KERNELS, method=m) for m in sorted(set(methods))]
+    """The marks of the numba kernels of ``methods`` compiled by the kernels jobs, one per compiled
+    method (vcor.study.kernels says why they are plain inputs)."""
+    return [
+        vpaths.fmt(vpaths.KERNELS, method=m)
+        for m in sorted(set(methods))
+        if m in COMPILED_METHODS
+    ]
 
 
 def get_scene_kernels(wildcards):
@@ -165,7 +169,7 @@ def get_histories_kernels(wildcards):
 
 def get_all_kernels(wildcards):
     """The kernels of every method (the work-precision study runs them all)."""
-    return kernels_of(METHOD_NAMES)
+    return kernels_of(COMPILED_METHODS)
 
 
 def dem_rule_name(name):

@@ -9,7 +9,7 @@ rule kernels:
     log:
         vpaths.log(vpaths.RESULTS, "kernels/{method}"),
     wildcard_constraints:
-        method="|".join(re.escape(m) for m in METHOD_NAMES),
+        method="|".join(re.escape(m) for m in COMPILED_METHODS),
     priority: 20
     params:
         code=CODE,

@@ -33,6 +33,9 @@ METHOD_NAMES = ("adaptive", "direct", "ive", "ive-numba", "paper", "soe")
 DEFAULT_METHOD = "adaptive"
 #: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
 FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
+#: methods whose solver is compiled by numba (the workflow compiles their kernels first, one job per
+#: method; vcor.study.kernels); ``ive`` is scipy's solve_ivp and compiles nothing
+COMPILED_METHODS = ("adaptive", "direct", "ive-numba", "paper", "soe")
 #: options that take true or false
 BOOLEAN_OPTIONS = ("volterra", "richardson")
 IVE_METHODS = ("Radau", "BDF", "LSODA", "RK45", "DOP853")
