@@ -56,7 +56,7 @@ def test_a_config_of_only_fits_builds_every_fit_and_a_scene_only_the_fits_it_use
     assert "results/materials/f2.nc" in built and not any("f3" in t for t in built)
 
 
-def test_the_members_of_a_fit_family_a_project_builds_are_grouped_when_two_or_more():
+def test_the_members_of_a_fit_family_a_project_builds_are_grouped_when_two_or_more(tmp_path):
     fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}, "g": {"model": "cerf"}}
     assert check({"fits": fits}).fit_groups() == {"f{n}": ["f1", "f2", "f3"]}
 
@@ -68,6 +68,9 @@ def test_the_members_of_a_fit_family_a_project_builds_are_grouped_when_two_or_mo
     dem = {"d": {"sphere": {"material": "f2", "r": 0.005}, "target": "rigid", "v0": [1.0, 2.0]}}
     assert check({"fits": fits, "scenes": scene("f1"), "dem": dem}).fit_groups() == {"f{n}": ["f1", "f2"]}
     assert paths.family_slug("f{n}") == "fN"
+    (tmp_path / "cor.csv").write_text("v0,cor\n1,0.8\n3,0.7\n")
+    inline = {"data": "cor.csv", "material": MY_SLS, "free": {"beta": [100, 1e4]}}  # a calibration's inline start
+    assert check({"fits": fits, "calibrations": {"c": inline}}, tmp_path).fit_groups() == {}
 
 
 @pytest.mark.parametrize("config", [{}, {"scenes": {}}, {"materials": {"m": MY_SLS}}, {"shard_size": 10}])

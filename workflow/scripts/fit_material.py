@@ -17,6 +17,7 @@ with job_log(smk) as log:
         ds.attrs.update(attrs, material_name=name)
         netcdf.write_dataset(ds, nc, title=f"vcor fitted material {name}", timestamp=False,
                              command="vcor.fitting.fits (deterministic: no time stamp)", identity=identity)
-        table = f"# {name}: {result.material.to_dict()}\n" + fits.metrics_table([(name, result.material, result.metrics)])
+        metrics = fits.metrics_table([(name, result.material, result.metrics)])
+        table = f"# {name}: {result.material.to_dict()}\n" + metrics
         receipts.atomic_text(table_file, table)
         log.note(f"wrote {nc}, {table_file}")

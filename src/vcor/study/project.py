@@ -151,14 +151,15 @@ class Project:
             return list(fits)
         used = {m for sc in self.scenes.values() for m in sc.used_materials()}
         used |= {m for name in self.dem for m in self.dem_materials(name)}
-        used |= {spec.get("material") for spec in self.catalogue.calibrations.values()}
+        used |= {spec.get("material") for spec in self.catalogue.calibrations.values()
+                 if isinstance(spec.get("material"), str)}  # a name, or an inline spec
         return [m for m in fits if m in used]
 
     def fit_groups(self) -> dict[str, list[str]]:
         """{family name: members}: the members of a fit family (a name with ``{n}``) that the project
-        builds, when there are two or more, are fitted in one job (one process start and one read of
-        their data for all of them; each fit takes about a second). A member built alone is fitted by
-        the one-fit rule."""
+        builds, when there are two or more, are fitted in one job (one process start, about half a
+        second, and one read of their data for all of them; a fit of the Bagley-Torvik data takes a
+        fraction of a second). A member built alone is fitted by the one-fit rule."""
         built = set(self.built_fits())
         groups = {family: [m for m in members if m in built]
                   for family, members in fit_families(self.config.get("fits")).items()}
