@@ -56,21 +56,27 @@ def test_a_config_of_only_fits_builds_every_fit_and_a_scene_only_the_fits_it_use
     assert "results/materials/f2.nc" in built and not any("f3" in t for t in built)
 
 
-def test_the_members_of_a_fit_family_a_project_builds_are_grouped_when_two_or_more(tmp_path):
-    fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}, "g": {"model": "cerf"}}
-    assert check({"fits": fits}).fit_groups() == {"f{n}": ["f1", "f2", "f3"]}
+def test_a_fit_family_is_fitted_whole_when_the_project_builds_any_of_its_members(tmp_path):
+    fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}, "g": {"model": "cerf"},
+            "one{n}": {"model": "prony", "n_terms": [4]}}
+    whole = {"f{n}": ["f1", "f2", "f3"]}
+    assert check({"fits": fits}).fit_groups() == whole  # a family of one member is an ordinary fit
 
     def scene(*materials):
         return {"s": {"materials": list(materials), "grid": {"v0": [1.0]}}}
 
-    assert check({"fits": fits, "scenes": scene("f1", "f3", "g")}).fit_groups() == {"f{n}": ["f1", "f3"]}
-    assert check({"fits": fits, "scenes": scene("f2", "g")}).fit_groups() == {}  # one member: the one-fit rule
+    # the same job whichever members are used: a scene that starts using f2 changes nothing already built
+    assert check({"fits": fits, "scenes": scene("f1", "g")}).fit_groups() == whole
+    assert check({"fits": fits, "scenes": scene("f2", "f3")}).fit_groups() == whole
+    assert check({"fits": fits, "scenes": scene("g")}).fit_groups() == {}  # no member built: no job
     dem = {"d": {"sphere": {"material": "f2", "r": 0.005}, "target": "rigid", "v0": [1.0, 2.0]}}
-    assert check({"fits": fits, "scenes": scene("f1"), "dem": dem}).fit_groups() == {"f{n}": ["f1", "f2"]}
-    assert paths.family_slug("f{n}") == "fN"
+    assert check({"fits": fits, "dem": dem}).fit_groups() == whole
     (tmp_path / "cor.csv").write_text("v0,cor\n1,0.8\n3,0.7\n")
     inline = {"data": "cor.csv", "material": MY_SLS, "free": {"beta": [100, 1e4]}}  # a calibration's inline start
     assert check({"fits": fits, "calibrations": {"c": inline}}, tmp_path).fit_groups() == {}
+    with pytest.raises(ValueError, match="n_terms"):  # the same N twice would be the same fit twice
+        check({"fits": {"f{n}": {"model": "prony", "n_terms": [2, 2, 3]}}})
+    assert paths.family_slug("f{n}") == "fN"
 
 
 @pytest.mark.parametrize("config", [{}, {"scenes": {}}, {"materials": {"m": MY_SLS}}, {"shard_size": 10}])

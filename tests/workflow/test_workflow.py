@@ -242,21 +242,29 @@ def test_default_config_dry_run_and_scene_selection(make_project, smk, tmp_path)
     assert "histories" in text and "sweep_shard" not in text and "moduli" not in text
 
 
-def test_a_fit_family_is_fitted_in_one_job_and_a_lone_member_by_itself(make_project, smk, tmp_path):
-    fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}}
-    scene = {"materials": ["f1", "f3"], "grid": {"v0": [1.0]}}
-    path = make_project(tmp_path, {"fits": fits, "scenes": {"s": scene}})
+def test_a_fit_family_is_fitted_whole_in_one_job_and_a_new_use_reruns_nothing(make_project, smk, tmp_path):
+    fits = {"f{n}": {"model": "prony", "n_terms": [1, 2, 3]}, "g{n}": {"model": "prony", "n_terms": [1, 2]},
+            "f-{n}": {"model": "prony", "n_terms": [1, 2]}, "f_{n}": {"model": "prony", "n_terms": [1, 2]}}
+    scenes = {"s": {"materials": ["f1"], "grid": {"v0": [1.0]}}}
+    path = make_project(tmp_path, {"fits": fits, "scenes": scenes})
     out = smk(path, "-n", "-j1", "--quiet", "rules")
     text = out.stdout + out.stderr
-    assert "fit_family_fN" in text and "fit_material" not in text, text
-    out = smk(path, "-n", "-j1", "results/materials/f2.nc", "--quiet", "rules")  # not used: fitted alone
-    text = out.stdout + out.stderr
-    assert "fit_material" in text and "fit_family_fN" not in text, text
-    smk(path, "-j1", "results/materials/f1.nc", "results/materials/f2.nc")
+    assert "fit_family_fN" in text and "fit_material" not in text and "fit_family_gN" not in text, text
+    smk(path, "-j1")
     for n in (1, 2, 3):
         assert len(vcor.materials.from_file(path / f"results/materials/f{n}.nc").E) == n
-    log = (path / "results/materials/logs/fN.log").read_text()
-    assert "fitted f1" in log and "fitted f3" in log and "fitted f2" not in log, log
+    log = (path / "results/materials/logs/families/fN.log").read_text()
+    assert all(f"fitted f{n}" in log for n in (1, 2, 3)), log
+    # a scene that starts using f2 (and families whose job names would coincide) re-runs nothing of scene s
+    scenes["t"] = {"materials": ["f2", "f-1", "f_1"], "grid": {"v0": [1.0]}}
+    (path / "config.yaml").write_text(yaml.safe_dump({"fits": fits, "scenes": scenes}, sort_keys=False))
+    out = smk(path, "-n", "-j1")
+    planned = [line for line in (out.stdout + out.stderr).splitlines() if line.strip().startswith("output:")]
+    assert any("results/t/sweep.nc" in line for line in planned), planned
+    assert not any(f in line for line in planned for f in ("results/s/", "materials/f1", "materials/f2")), planned
+    out = smk(path, "-n", "-j1", "--quiet", "rules")
+    text = out.stdout + out.stderr
+    assert "fit_family_fN" not in text and "fit_family_f_N" in text and "fit_family_f_N_2" in text, text
 
 
 def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):

@@ -177,14 +177,25 @@ def dem_rule_name(name):
     return f"dem_entry_{name}"
 
 
-def fit_family_rule_name(family):
-    """``fit_family_<name>`` ({n} written N), the name of the job fitting a family's grouped members."""
-    slug = re.sub(r"\W", "_", vpaths.family_slug(family))
-    return f"fit_family_{slug}"
+def fit_family_rule_names(families):
+    """{family: ``fit_family_<name>``}, the name of the job fitting each family: {n} written N, other
+    characters that are not letters, digits or _ written _, and _2, _3, ... after a name already taken.
+    """
+    names = {}
+    for family in families:
+        slug = re.sub(r"\W", "_", vpaths.family_slug(family))
+        base = f"fit_family_{slug}"
+        name, k = base, 1
+        while name in names.values():
+            k += 1
+            name = f"{base}_{k}"
+        names[family] = name
+    return names
 
 
-# the members of fit families fitted together (one job per family; vcor.study.project.Project.fit_groups)
+# the fit families fitted whole, one job each (vcor.study.project.Project.fit_groups)
 FIT_GROUPS = PROJECT.fit_groups()
+FIT_FAMILY_RULES = fit_family_rule_names(FIT_GROUPS)
 GROUPED_FITS = {m for members in FIT_GROUPS.values() for m in members}
 
 

@@ -42,21 +42,25 @@ rule fit_material:
         "../scripts/fit_material.py"
 
 
-# The members of a fit family that the project builds, fitted in one job (Project.fit_groups says when).
+# A fit family of which the project builds a member, fitted whole in one job (Project.fit_groups says why).
 for _family, _members in FIT_GROUPS.items():
 
     rule:
         name:
-            fit_family_rule_name(_family)
+            FIT_FAMILY_RULES[_family]
         input:
             fit_data_files(_members),
         output:
             nc=[vpaths.material(MATERIAL_DIR, m) for m in _members],
             table=[vpaths.material_table(MATERIAL_DIR, m) for m in _members],
         log:
-            vpaths.log(MATERIAL_DIR, vpaths.family_slug(_family)),
+            vpaths.log(
+                MATERIAL_DIR, f"{vpaths.FAMILY_LOGS}{vpaths.family_slug(_family)}"
+            ),
         benchmark:
-            vpaths.benchmark(MATERIAL_DIR, vpaths.family_slug(_family))
+            vpaths.benchmark(
+                MATERIAL_DIR, f"{vpaths.FAMILY_LOGS}{vpaths.family_slug(_family)}"
+            )
         priority: 10
         params:
             code=CODE,

@@ -58,7 +58,7 @@ def fit_families(fits: dict) -> dict[str, list[str]]:
     >>> fit_families({"butyl-prony-n{n}": {"model": "prony", "n_terms": [2, 3]}, "one": {"model": "cerf"}})
     {'butyl-prony-n{n}': ['butyl-prony-n2', 'butyl-prony-n3']}
     """
-    return {name: [name.replace("{n}", str(int(n))) for n in spec["n_terms"]]
+    return {name: list(dict.fromkeys(name.replace("{n}", str(int(n))) for n in spec["n_terms"]))
             for name, spec in (fits or {}).items() if "{n}" in name and isinstance(spec.get("n_terms"), list)}
 
 

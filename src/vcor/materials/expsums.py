@@ -65,12 +65,12 @@ class SOE:
         return len(self.material.E)
 
 
-def erfc(x: float) -> float:
-    """:func:`scipy.special.erfc` (scipy.special loads on first use: a sweep of Prony materials never
-    needs it, and its import costs a job's start a sixth of a second)."""
-    from scipy.special import erfc as f
+def _erfc(x: float) -> float:
+    """:func:`scipy.special.erfc` as a float (scipy.special loads on first use: a sweep of Prony materials
+    never needs it, and its import costs a job's start a sixth of a second)."""
+    from scipy.special import erfc
 
-    return f(x)
+    return erfc(x)
 
 
 def _cosh_sum(h: float) -> float:
@@ -82,7 +82,7 @@ def fractional_bound(h: float, s_min: float, s_max: float, t_min: float, t_max: 
     (see the module docstring)."""
     q = math.exp(-1.5 * h)
     slow = (s_min * t_max) ** 1.5 * h * q / ((1 - q) * math.sqrt(math.pi))
-    fast = float(erfc(math.sqrt(s_max * t_min * math.exp(-h))))
+    fast = float(_erfc(math.sqrt(s_max * t_min * math.exp(-h))))
     return _cosh_sum(h) + fast + slow
 
 
@@ -92,7 +92,7 @@ def _choose(tol: float, t_min: float, t_max: float):
     while _cosh_sum(h) > tol / 3:
         h *= 0.97
     s_max = 1.0 / t_min
-    while erfc(math.sqrt(s_max * t_min * math.exp(-h))) > tol / 3:
+    while _erfc(math.sqrt(s_max * t_min * math.exp(-h))) > tol / 3:
         s_max *= 1.25
     q = math.exp(-1.5 * h)
     s_min = (tol / 3 * (1 - q) * math.sqrt(math.pi) / (h * q)) ** (2.0 / 3.0) / t_max

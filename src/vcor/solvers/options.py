@@ -21,8 +21,8 @@ from dataclasses import dataclass
 
 from ..checks import interned, shown
 
-__all__ = ["BOOLEAN_OPTIONS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES", "OPTION_HELP", "OPTION_UNITS",
-           "SolverOptions", "solver_options"]
+__all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES",
+           "OPTION_HELP", "OPTION_UNITS", "SolverOptions", "solver_options"]
 
 #: solver methods (``vcor.solvers.simulate.METHODS`` maps each to its runner); ``paper`` is the
 #: explicit baseline of the work-precision study

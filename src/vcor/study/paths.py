@@ -10,23 +10,24 @@ from __future__ import annotations
 
 __all__ = [
     "CALIBRATION",
+    "CALIBRATIONS_DIR",
     "CALIBRATION_FIGURE",
     "CONVERGENCE_CASE",
     "DATASET",
     "DEM",
     "DEM_DECK",
+    "DEM_DIR",
     "DEM_FIGURE",
     "DEM_MANIFEST",
     "DEM_PARAMETERS",
     "DEM_TABLE",
     "DEM_YADE",
+    "FAMILY_LOGS",
     "FIGURE",
     "FIT_METRICS",
     "KERNELS",
     "MANIFEST",
     "ORDERS",
-    "CALIBRATIONS_DIR",
-    "DEM_DIR",
     "RESULTS",
     "SCENE_DIR",
     "SHARD",
@@ -34,6 +35,7 @@ __all__ = [
     "SHARD_INDEX",
     "SWEEP",
     "benchmark",
+    "family_slug",
     "fmt",
     "log",
     "material",
@@ -114,8 +116,14 @@ def samples_parts(material_dir: str, parts: int, name: str = "{material}", n="{n
 
 
 def family_slug(family: str) -> str:
-    """A fit family's name (``butyl-prony-n{n}``) as a file name: ``{n}`` written ``N`` (``butyl-prony-nN``)."""
+    """A fit family's name (``butyl-prony-n{n}``) as a file name: ``{n}`` written ``N`` (``butyl-prony-nN``);
+    its job's log is ``log(material_dir, FAMILY_LOGS + slug)`` (a folder of its own: no fit's name
+    contains a slash, so a family's log never meets a fit's)."""
     return family.replace("{n}", "N")
+
+
+#: the folder (inside a material dir's logs and benchmarks) of the fit families' jobs
+FAMILY_LOGS = "families/"
 
 
 def log(folder: str, name: str) -> str:

@@ -11,8 +11,8 @@ What a config builds (the workflow's default target):
 * every scene's datasets, figures, tables and manifest, and the files of the materials it uses;
 * every calibration (its record, figure and material file);
 * a fit when a scene, a DEM entry or a calibration uses it (nothing is computed that no output
-  needs), and every fit of a config that has no scenes, DEM entries or calibrations (a config of fits
-  asks for them);
+  needs, except that a fit family is fitted whole: :meth:`Project.fit_groups`), and every fit of a
+  config that has no scenes, DEM entries or calibrations (a config of fits asks for them);
 * every DEM entry's dataset, COR table, parameters file, LAMMPS deck, Yade script, figure and manifest.
 
 The ``materials:`` block defines materials for the others to use; it builds nothing by itself.
@@ -156,14 +156,16 @@ class Project:
         return [m for m in fits if m in used]
 
     def fit_groups(self) -> dict[str, list[str]]:
-        """{family name: members}: the members of a fit family (a name with ``{n}``) that the project
-        builds, when there are two or more, are fitted in one job (one process start, about half a
-        second, and one read of their data for all of them; a fit of the Bagley-Torvik data takes a
-        fraction of a second). A member built alone is fitted by the one-fit rule."""
+        """{family name: members}: every member of a fit family (a name with ``{n}``, two or more
+        members) of which the project builds at least one, fitted in one job. The family is one config
+        entry and is fitted as a whole, whichever members the scenes use: the job and its outputs do
+        not change when a scene starts or stops using a member, so finished work that reads the other
+        members stays finished. It costs one process start (about half a second) for the family; a
+        family fits synthetic data only (measured data take ``n_terms: auto``), a fraction of a second
+        per member."""
         built = set(self.built_fits())
-        groups = {family: [m for m in members if m in built]
-                  for family, members in fit_families(self.config.get("fits")).items()}
-        return {family: members for family, members in groups.items() if len(members) >= 2}
+        return {family: members for family, members in fit_families(self.config.get("fits")).items()
+                if len(members) >= 2 and built & set(members)}
 
     def calibration_targets(self) -> list[str]:
         """Every calibration's record, figure and material file."""
