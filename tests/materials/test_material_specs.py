@@ -213,3 +213,18 @@ def test_a_changed_shift_function_changes_the_identity():
     assert from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": WLF}, name="f").kind == "fractional"
     with pytest.raises(ValueError, match="materials.f.shift.C2"):
         from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": {**WLF, "C2": -1.0}}, name="f")
+
+
+def test_a_catalogue_subset_holds_the_named_materials_and_what_they_are_built_from(tmp_path):
+    from vcor.materials import Catalogue
+
+    (tmp_path / "x.csv").write_text("v0,cor\n1,0.8\n")
+    cat = Catalogue(specs={"z-mat": {"model": "sls", "E_glassy": 1e7, "alpha": 300.0, "beta": 1200.0}, "other": {}},
+                    fits={"f": {"model": "cerf"}, "g": {"model": "cerf"}},
+                    calibrations={"cal": {"material": "f", "data": "x.csv"}, "cal2": {"material": {"model": "sls"}}},
+                    material_dir="m", base_dir=str(tmp_path))
+    sub = cat.subset(["sls", "cal", "z-mat", {"model": "sls"}])  # a preset and an inline spec need no entry
+    assert (sub.specs, list(sub.fits), list(sub.calibrations)) == ({"z-mat": cat.specs["z-mat"]}, ["f"], ["cal"])
+    assert (sub.material_dir, sub.base_dir) == ("m", str(tmp_path))
+    assert sub.identity("cal") == cat.identity("cal")  # what the jobs record is what planning computed
+    assert list(cat.subset(["g", "f"]).fits) == ["f", "g"]  # name order, whatever the config's

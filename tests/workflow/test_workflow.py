@@ -267,6 +267,20 @@ def test_a_fit_family_is_fitted_whole_in_one_job_and_a_new_use_reruns_nothing(ma
     assert "fit_family_fN" not in text and "fit_family_f_N" in text and "fit_family_f_N_2" in text, text
 
 
+def test_other_materials_added_or_reordered_rerun_nothing(make_project, smk, tmp_path):
+    """A job is given the catalogue entries of the materials it uses only (Catalogue.subset): a new fit
+    or config material, or the fits block reordered, leaves every finished job finished."""
+    fits = {"a-fit": {"model": "prony", "n_terms": 2}, "b-fit": {"model": "cerf"}}
+    config = {"fits": fits, "scenes": {"s": {"materials": ["sls", "a-fit"], "grid": {"v0": [1.0, 3.0]}}}}
+    path = make_project(tmp_path, config)
+    smk(path, "-j1")
+    config["fits"] = {"c-fit": {"model": "prony", "n_terms": 3}, "b-fit": fits["b-fit"], "a-fit": fits["a-fit"]}
+    config["materials"] = {"my-sls": {"model": "sls", "E_glassy": 15.0e6, "alpha": 300.0, "beta": 1200.0}}
+    (path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
+    out = smk(path, "-n", "-j1")
+    assert "Nothing to be done" in out.stdout + out.stderr, out.stdout[-3000:]
+
+
 def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):
     """``--configfile my.yaml`` replaces config.yaml (it is not merged with it): only my.yaml's scenes
     are planned (docs, "Your own scenes")."""

@@ -17,7 +17,7 @@ rule calibrate:
         code=CODE,
         spec=get_calibration_spec,
         identity=get_material_identity,
-        catalogue=CATALOGUE_SPEC,
+        catalogue=lambda wildcards: catalogue_spec([wildcards.cal]),
     script:
         "../scripts/calibrate.py"
 

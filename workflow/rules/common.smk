@@ -100,8 +100,22 @@ def _invalid_shard(path, reason):
 SCENES = PROJECT.scenes
 CATALOGUE = PROJECT.catalogue
 MATERIAL_DIR = CATALOGUE.material_dir
-# the catalogue as a plain mapping, passed to jobs as a param; they rebuild it with Catalogue(**spec)
-CATALOGUE_SPEC = dataclasses.asdict(CATALOGUE)
+
+
+def catalogue_spec(names):
+    """The catalogue of the materials ``names`` as a plain mapping, a param of the jobs that use them
+    (they rebuild it with Catalogue(**spec)): only their entries, so that editing other materials of the
+    config re-runs none of these jobs (vcor.materials.Catalogue.subset)."""
+    return dataclasses.asdict(CATALOGUE.subset(names))
+
+
+def get_scene_catalogue(wildcards):
+    """The catalogue of the materials a scene's jobs use (its sweep, tables, histories, bodies)."""
+    sc = SCENES[wildcards.scene]
+    runs = (sc.config.get("histories") or {}).get("runs", [])
+    return catalogue_spec(sc.used_materials() + [run[0] for run in runs])
+
+
 # fingerprints of the code that computes (every computing rule takes it as a param, so changed code
 # re-runs those jobs; shard names contain it) and of the figure code (the figures_<scene> rules)
 CODE = vprovenance.code_fingerprint()

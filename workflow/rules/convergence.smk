@@ -17,7 +17,7 @@ rule convergence_case:
         code=CODE,
         material="{material_case}",
         v0=get_convergence_v0s,
-        catalogue=CATALOGUE_SPEC,
+        catalogue=lambda wildcards: catalogue_spec([wildcards.material_case]),
     script:
         "../scripts/convergence_case.py"
 

@@ -24,7 +24,7 @@ for _dem in PROJECT.dem:
             code=CODE,
             name=_dem,
             spec=PROJECT.dem[_dem],
-            catalogue=CATALOGUE_SPEC,
+            catalogue=catalogue_spec(PROJECT.dem_materials(_dem)),
         script:
             "../scripts/dem.py"
 

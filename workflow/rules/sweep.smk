@@ -18,7 +18,7 @@ rule sweep_shard:
     params:
         points=get_shard_points,
         settings=get_settings,
-        catalogue=CATALOGUE_SPEC,
+        catalogue=get_scene_catalogue,
     script:
         "../scripts/sweep_shard.py"
 
@@ -39,7 +39,7 @@ rule aggregate:
         grid=get_grid,
         code=CODE,
         scene=get_scene,
-        catalogue=CATALOGUE_SPEC,
+        catalogue=get_scene_catalogue,
     script:
         "../scripts/aggregate.py"
 
@@ -56,7 +56,7 @@ rule moduli:
     params:
         code=CODE,
         materials=get_moduli_materials,
-        catalogue=CATALOGUE_SPEC,
+        catalogue=get_scene_catalogue,
     script:
         "../scripts/moduli.py"
 
@@ -77,6 +77,6 @@ rule histories:
         code=CODE,
         histories=get_histories_spec,
         settings=get_settings,
-        catalogue=CATALOGUE_SPEC,
+        catalogue=get_scene_catalogue,
     script:
         "../scripts/histories.py"

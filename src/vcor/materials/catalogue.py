@@ -82,6 +82,26 @@ class Catalogue:
                                    (("config materials", self.specs), ("fits", self.fits),
                                     ("calibrations", self.calibrations)) if block))
 
+    def subset(self, names) -> Catalogue:
+        """The catalogue of ``names`` alone, with what they are built from (a calibration's start
+        material), each block in name order: what a job that uses only these materials is given, so
+        that adding, removing or reordering other materials of the config changes nothing it sees.
+        Names that are not in a block (presets) need no entry."""
+        keep, todo = set(), [n for n in names if isinstance(n, str)]
+        while todo:
+            name = todo.pop()
+            if name not in keep:
+                keep.add(name)
+                start = (self.calibrations.get(name) or {}).get("material")
+                if isinstance(start, str):
+                    todo.append(start)
+
+        def pick(block):
+            return {k: block[k] for k in sorted(block) if k in keep}
+
+        return Catalogue(specs=pick(self.specs), fits=pick(self.fits), calibrations=pick(self.calibrations),
+                         material_dir=self.material_dir, base_dir=self.base_dir)
+
     def check(self, name: str, where: str) -> None:
         """ValueError naming ``where`` unless ``name`` is known."""
         try:
