@@ -286,3 +286,18 @@ def test_cached_geometries_and_options_keep_the_type_of_a_value():
     assert vcor.simulate("sls", 10.0, method="direct", volterra=True).ok
     with pytest.raises(ValueError, match="volterra must be true or false"):
         vcor.simulate("sls", 10.0, method="direct", volterra=1)
+
+
+def test_a_number_read_as_text_says_why():
+    """PyYAML reads ``3.0e7`` (an exponent without its sign) as text: the refusal says how to write it."""
+    from vcor.checks import number
+    from vcor.materials.specs import from_spec
+
+    spec = yaml.safe_load("{model: sls, E_glassy: 3.0e7, alpha: 300.0, beta: 1200.0}")
+    with pytest.raises(ValueError, match=r"E_glassy .*got '3.0e7': text, not a number .*write 3.0e\+7"):
+        from_spec(spec, name="stiff")
+    with pytest.raises(ValueError, match="write it without quotes"):
+        number("x", "12")
+    with pytest.raises(ValueError) as exc:
+        number("x", "abc")
+    assert "text, not a number" not in str(exc.value)

@@ -23,7 +23,8 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
     """``value`` as a float if it is a real number (not a bool) in the interval, else ValueError
     naming ``name`` and the interval (with ``unit``)."""
     if type(value) is not float and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
-        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {shown(value)}")
+        raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {shown(value)}"
+                         + _text_hint(value))
     try:
         v = float(value)
     except (OverflowError, ValueError):  # an int beyond the float range, an exotic Real
@@ -33,6 +34,22 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
     if not (math.isfinite(v) and inside):
         raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)}, got {shown(value)}")
     return v
+
+
+def _text_hint(value) -> str:
+    """For a number that arrived as text, why: PyYAML (YAML 1.1) reads an exponent without its sign,
+    ``3.0e7``, as text (``3.0e+7`` is a number); else a quoted number. Nothing for other values."""
+    if not isinstance(value, str):
+        return ""
+    try:
+        float(value)
+    except ValueError:
+        return ""
+    text = value.lower()
+    if "e" in text and "e+" not in text and "e-" not in text:
+        fixed = text.replace("e", "e+")
+        return f": text, not a number (YAML reads an exponent without its sign as text: write {fixed})"
+    return ": text, not a number (write it without quotes)"
 
 
 def shown(value) -> str:
