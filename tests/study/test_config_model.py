@@ -74,7 +74,7 @@ def test_a_fit_family_is_fitted_whole_when_the_project_builds_any_of_its_members
     (tmp_path / "cor.csv").write_text("v0,cor\n1,0.8\n3,0.7\n")
     inline = {"data": "cor.csv", "material": MY_SLS, "free": {"beta": [100, 1e4]}}  # a calibration's inline start
     assert check({"fits": fits, "calibrations": {"c": inline}}, tmp_path).fit_groups() == {}
-    with pytest.raises(ValueError, match="n_terms"):  # the same N twice would be the same fit twice
+    with pytest.raises(ValueError, match="n_terms: each value at most once"):  # the same N twice: the same fit
         check({"fits": {"f{n}": {"model": "prony", "n_terms": [2, 2, 3]}}})
     assert paths.family_slug("f{n}") == "fN"
 

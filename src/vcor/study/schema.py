@@ -177,4 +177,6 @@ def explain(error, schema: dict) -> str:
         what = "item" if "Items" in rule else "entry"
         bound = "at least" if rule.startswith("min") else "at most"
         return f"{where}: {bound} {error.validator_value} {what}(s), got {_short(given)}"
+    if rule == "uniqueItems":
+        return f"{where}: each value at most once, got {_short(given)}"
     return f"{where}: {_short(given)} does not satisfy {rule} {_short(error.validator_value)}"
