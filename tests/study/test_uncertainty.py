@@ -135,7 +135,7 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
     every sample's COR is vcor.simulate of that sample's material at its own shift), the band and the
     lag in the figure's title, and extending the grid solves only the new points."""
     import yaml
-    from test_dma import _synthetic
+    from synthetic_dma import synthetic, write_csv
 
     import vcor
     from vcor.fitting.samples import sample_materials
@@ -149,7 +149,7 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
                                "figures": {"cor_temperature": {}, "master_curve": {"materials": ["measured"]}}}}}
     path = make_project(tmp_path, cfg)
     (path / "data").mkdir(exist_ok=True)
-    _synthetic(path / "data/dma.csv", 1)
+    write_csv(path / "data/dma.csv", synthetic(1))
     smk(path, "-j2")
     samples = xr.open_dataset(path / "results/materials/samples/measured-b4-s2.nc")
     # fitted by SAMPLE_JOBS jobs side by side, each from the full-data fit's file, then merged

@@ -20,10 +20,10 @@ from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS, richardson
 from ..solvers.simulate import simulate
-from .grid import Axis
+from .grid import Axis, axis_role
 from .scene import build_point
 
-__all__ = ["ERRORS", "SCALARS", "run_points", "solve_point"]
+__all__ = ["ERRORS", "SCALARS", "run_points", "solve_point", "solving_order"]
 
 #: scalar outputs stored per point
 SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",
@@ -67,10 +67,12 @@ def _error_estimate(res, material, v0, opts, geometry) -> dict:
 
 def run_points(points, settings, catalogue: Catalogue | None = None):
     """Solve each point (materials named in ``catalogue``, default: presets); a failure is stored with
-    its status and message, never raised."""
+    its status and message, never raised. Points are solved in :func:`solving_order` (the dataset
+    keeps the order of ``points``)."""
     catalogue = catalogue or Catalogue()
-    rows = []
-    for p in points:
+    rows = [None] * len(points)
+    for i in solving_order(points):
+        p = points[i]
         t = time.perf_counter()
         row, name, message = _status.guarded(solve_point, p, settings, catalogue)
         if row is None:
@@ -79,8 +81,27 @@ def run_points(points, settings, catalogue: Catalogue | None = None):
         if settings.get("error_estimate"):
             row.setdefault("error_status", row["status"])
             row.setdefault("error_message", "no estimate: the point itself is not ok")
-        rows.append(row)
+        rows[i] = row
     return _rows_to_dataset(points, rows, settings)
+
+
+def solving_order(points) -> list[int]:
+    """Indices of ``points``, those that differ only in speed together (in their order of first
+    appearance): a material's tables and kernels (vcor.solvers.adaptive.level_tables and the materials'
+    caches, each bounded) are built once per material rather than once per point when the speed is an
+    outer grid axis. The results do not depend on the order: every cached value is a pure function of
+    its arguments.
+
+    Examples
+    --------
+    >>> solving_order([{"v0": 1, "beta": 10}, {"v0": 1, "beta": 20}, {"v0": 2, "beta": 10}])
+    [0, 2, 1]
+    """
+    groups: dict[tuple, list[int]] = {}
+    for i, p in enumerate(points):
+        key = tuple((k, v) for k, v in p.items() if k != "index" and axis_role(k) != "speed")
+        groups.setdefault(key, []).append(i)
+    return [i for members in groups.values() for i in members]
 
 
 def _rows_to_dataset(points, rows, settings):

@@ -1,4 +1,5 @@
-"""Synthetic DMA data shared by the fitting tests: a known Prony material shifted by WLF (C1 = 8.86,
+"""Synthetic DMA data shared by the tests (importable from every test folder: pytest puts the folder of
+tests/conftest.py on sys.path): a known Prony material shifted by WLF (C1 = 8.86,
 C2 = 101.6 K, T_ref = 20 deg C), five sets at -10..50 deg C, ten frequencies 0.1..100 Hz, multiplicative
 normal noise on E' and E''. Two materials: ``SPARSE`` (5 terms, rates over six decades; its tan delta
 ripples between the terms, which a smooth-spectrum fit does not follow) and ``SMOOTH`` (17 terms, two per
