@@ -235,23 +235,34 @@ class Impact:
         return np.where(t > 0, out, 0.0)
 
     def mobility(self, t: float) -> tuple[float, float]:
-        """(alpha(t), alpha'(t)) at one time, as floats; a fast scalar path for Prony plates (the
-        internal-variable solver calls this in every right-hand-side evaluation)."""
+        """(alpha(t), alpha'(t)) at one time, as floats (:meth:`mobility_function` at ``t``)."""
+        return self.mobility_function()(t)
+
+    def mobility_function(self):
+        """t -> (alpha(t), alpha'(t)) as floats, in m/(N s) and m/(N s^2); for a Prony plate a fast
+        scalar path with the plate's constants computed once (the internal-variable solver calls it in
+        every right-hand-side evaluation)."""
         g = self.geometry
         if g.rigid:
-            return 0.0, 0.0
+            return lambda t: (0.0, 0.0)
         if g.case == 4:
-            return float(self.alpha(t)), 0.0
+            return lambda t: (float(self.alpha(t)), 0.0)
         mat = self.material
         if not mat.is_prony or g.plate_material is not None:
-            return float(self.alpha(t)), float(self.alpha_rate(t))
+            return lambda t: (float(self.alpha(t)), float(self.alpha_rate(t)))
         e_inf, e, b = mat.prony_terms()
         c = 1.0 / (1.0 - g.nu**2)
-        ex = e * np.exp(-b * t) if e.size else e
-        eb = c * (e_inf + float(ex.sum()))
-        deb = -c * float((ex * b).sum())
-        a = self.mobility_scale / math.sqrt(eb)
-        return a, (-0.5 * a * deb / eb if t > 0 else 0.0)
+        scale = self.mobility_scale
+        modes = bool(e.size)
+
+        def prony_plate(t):
+            ex = e * np.exp(-b * t) if modes else e
+            eb = c * (e_inf + float(ex.sum()))
+            deb = -c * float((ex * b).sum())
+            a = scale / math.sqrt(eb)
+            return a, (-0.5 * a * deb / eb if t > 0 else 0.0)
+
+        return prony_plate
 
     def contact_time_estimate(self) -> float:
         """Hertz contact time on a rigid target, t_c = 2.9432 s_max / v0, s_max = (5 m v0^2 / (4 k))^(2/5),

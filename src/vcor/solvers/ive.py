@@ -90,7 +90,7 @@ class _System:
         kap = impact.kappa
         G = kap * e
         return cls(G_inf=kap * g_inf, G=G, inv_G=np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0), b=b,
-                   eta=kap * impact.material.viscosity, m=impact.m, v0=impact.v0, mobility=impact.mobility,
+                   eta=kap * impact.material.viscosity, m=impact.m, v0=impact.v0, mobility=impact.mobility_function(),
                    rule=rule, c2=c2 if volterra else None)
 
     @property

@@ -40,7 +40,9 @@ class Design:
 
     def __init__(self, wt, phase=None, t=None, tau=None):
         n = wt.shape[0]
-        ks, kl = wt**2 / (1 + wt**2), wt / (1 + wt**2)
+        w2 = wt**2
+        d = 1 + w2
+        ks, kl = w2 / d, wt / d
         # the model as measured: E* rotated by the instrument's phase error, E*_m = E* e^{i phase}
         cp, sp = (np.ones(n), np.zeros(n)) if phase is None else (np.cos(phase), np.sin(phase))
         self.wt, self.cp, self.sp = wt, cp, sp
