@@ -31,18 +31,23 @@ rule all:
         get_all_targets(),
 
 
-# at the end of a run, successful or not: what each scene's sweep holds and where (vcor.study.summary)
+# at the end of a run, successful or not: what each scene's sweep holds and where (vcor.study.summary);
+# then the process ends at once (vcor.study.run_end)
 onsuccess:
     from snakemake.logging import logger
+    import vcor.study.run_end as vrun_end
     import vcor.study.summary as vsummary
 
     for _line in vsummary.run_summary(PROJECT):
         logger.info(_line)
+    vrun_end.cancel_rescheduling_timers()
 
 
 onerror:
     from snakemake.logging import logger
+    import vcor.study.run_end as vrun_end
     import vcor.study.summary as vsummary
 
     for _line in vsummary.run_summary(PROJECT):
         logger.info(_line)
+    vrun_end.cancel_rescheduling_timers()

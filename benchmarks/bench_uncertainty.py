@@ -224,25 +224,50 @@ def reversals(sweep_path: Path) -> list[list[str]]:
     return rows
 
 
+def sweep_work(path: Path) -> tuple[int, float, float]:
+    """(sweep jobs, their estimated work by vcor.study.cost, their measured work from the job logs; s) of
+    the finished ``pyvisco`` scene in the project at ``path``."""
+    import json
+    import re
+
+    from vcor.study.config import load_project
+    from vcor.study.cost import point_seconds
+
+    data = load_project(yaml.safe_load((path / "config.yaml").read_text()), path).fitted_to_data
+    shards = sorted((path / "results/pyvisco/shards").glob("*.json"))
+    estimate = 0.0
+    for index in shards:
+        spec = json.loads(index.read_text())
+        estimate += sum(point_seconds(p, spec["settings"], data) for p in spec["points"])
+    logs = (path / "results/pyvisco/logs/shards").glob("*.log")
+    work = sum(float(m.group(1)) for log in logs for m in re.finditer(r"job sweep_shard: .*, work ([\d.]+) s",
+                                                                        log.read_text()))
+    return len(shards), estimate, work
+
+
 def cost(args) -> list[str]:
     bootstrap = 4 if args.quick else args.bootstrap
     cmd = [sys.executable, "-m", "snakemake", "-j2", "results/pyvisco/sweep.nc"]
-    rows, turns = {}, []
+    rows, turns, works = {}, [], {}
     for label, unc in (("without uncertainty", None), (f"bootstrap {bootstrap}", {"bootstrap": bootstrap})):
-        walls = []
+        walls, work = [], []
         for _ in range(args.runs):
             with tempfile.TemporaryDirectory() as d:
                 path = _project(Path(d), unc, args.quick)
                 walls.append(timing.run_fresh(cmd, cwd=path).wall)
+                work.append(sweep_work(path))
                 if unc:
                     turns = reversals(path / "results/pyvisco/sweep.nc")
-        rows[label] = walls
+        rows[label], works[label] = walls, work
     base = timing.median(rows["without uncertainty"])
-    lines = [[label, timing.cell(w, fmt=".1f"), f"{timing.median(w) / base:.1f}"] for label, w in rows.items()]
+    lines = [[label, timing.cell(w, fmt=".1f"), f"{timing.median(w) / base:.1f}", str(works[label][0][0]),
+              f"{works[label][0][1]:.1f}", timing.cell([x[2] for x in works[label]], fmt=".1f")]
+             for label, w in rows.items()]
     return [f"Cost: the default config's `pyvisco` scene{' (quick: a 2 x 2 x 1 grid)' if args.quick else ''}, "
             "`snakemake -j2 results/pyvisco/sweep.nc` in a fresh copy of the project (fits, samples, "
             "shards, aggregate), empty numba cache.",
-            timing.table(["scene", "wall time [s], median (min-max)", "ratio"], lines),
+            timing.table(["scene", "wall time [s], median (min-max)", "ratio", "sweep jobs",
+                          "estimated sweep work (vcor.study.cost) [s]", "sweep jobs' measured work [s]"], lines),
             (f"Turns of COR(T) in that scene's sweep (bootstrap {bootstrap}, the last run) larger than the band's "
              "half-width on both sides (vcor.study.uncertainty.significant_reversals; ok points only); the "
              "acceptance is at most one, the minimum."),

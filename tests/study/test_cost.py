@@ -58,8 +58,8 @@ IDS = {"sls": "id-sls"}
 
 def test_a_small_scene_is_one_job_and_a_large_one_spreads(tmp_path):
     assert len(shards.plan_shards(SCENE, tmp_path, None, IDS, job_seconds=15.0)) == 1
-    # 400 points x 3e-4 s = 0.12 s: at 0.05 s per job, three jobs of about equal work
-    plan = shards.plan_shards(SCENE, tmp_path, None, IDS, job_seconds=0.05)
+    # 400 points x 1.5e-4 s = 0.06 s: at 0.025 s per job, three jobs of about equal work
+    plan = shards.plan_shards(SCENE, tmp_path, None, IDS, job_seconds=0.025)
     assert len(plan) == 3 and {len(s.points) for s in plan.values()} <= {133, 134}
 
 
@@ -69,7 +69,7 @@ def test_planning_is_deterministic(tmp_path):
     assert list(a) == list(b)
 
 
-def test_the_default_config_plans_two_pyvisco_jobs_and_one_per_other_scene(root, tmp_path):
+def test_the_default_config_plans_one_job_per_scene(root, tmp_path):
     """The numbers the docs quote (Scenes, "Jobs")."""
     import yaml
 
@@ -84,7 +84,7 @@ def test_the_default_config_plans_two_pyvisco_jobs_and_one_per_other_scene(root,
         jobs[name] = len(shards.plan_shards(sc.config, tmp_path, sc.shard_size, ids, grid=sc.grid,
                                             settings=sc.settings, job_seconds=sc.job_seconds,
                                             from_data=project.fitted_to_data))
-    assert jobs.pop("pyvisco") == 2 and project.scenes["pyvisco"].grid.size == 31_000
+    assert project.scenes["pyvisco"].grid.size == 31_000
     assert set(jobs.values()) == {1}
 
 

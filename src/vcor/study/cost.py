@@ -37,9 +37,11 @@ __all__ = [
 #: minute of work still splits into four jobs for the cores
 JOB_SECONDS = 15.0
 #: estimated seconds per point by method for a preset material, runner included (measured with
-#: ``vcor.simulate`` and ``vcor.study.runner.run_points`` on the reference machine, rounded up)
+#: ``vcor.simulate`` and ``vcor.study.runner.run_points`` on the reference machine, rounded up; for
+#: ``adaptive``: 0.08-0.15 ms per point over the presets, ``benchmarks/bench_scaling.py`` prints the
+#: estimate beside the measured SLS cost)
 POINT_SECONDS = {
-    "adaptive": 3e-4,
+    "adaptive": 1.5e-4,
     "direct": 1.5e-3,
     "paper": 1.5e-3,
     "soe": 8e-4,
@@ -47,11 +49,14 @@ POINT_SECONDS = {
     "ive": 0.25,
 }
 #: a material fitted to measured data has tens of Prony modes: the fixed-step and ``ive-numba``
-#: methods' cost grows with them (about 5x at 64 modes); the adaptive method's hardly (1.5x)
-DATA_FIT_FACTOR = {"adaptive": 1.5}
+#: methods' cost grows with them (about 5x at 64 modes); the adaptive method's about 2x (the pyvisco
+#: fit: 0.15-0.28 ms per point)
+DATA_FIT_FACTOR = {"adaptive": 2.0}
 DATA_FIT_FACTOR_OTHERS = 5.0
-#: building a bootstrap sample's material at the point's temperature (s per point)
-SAMPLE_SECONDS = 4e-4
+#: building a bootstrap sample's material at the point's temperature (s per point; a sweep's points of
+#: one sample and temperature share it: ``benchmarks/bench_uncertainty.py cost`` prints the estimated
+#: work of the pyvisco scene beside its sweep jobs' measured work)
+SAMPLE_SECONDS = 1e-4
 #: the error estimate solves every point again, finer (dt/2, rtol/100 or step_tol/16)
 ERROR_ESTIMATE_FACTOR = 3.0
 
