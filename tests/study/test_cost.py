@@ -96,3 +96,23 @@ def test_all_points_at_once_equal_one_by_one():
     grid = Grid.from_scene({"materials": ["sls", "butyl-fc"], "grid": {"v0": [1, 2, 3], "T": [0, 20], "h": [0.01]}},
                            samples=4)
     assert [list(p.items()) for p in grid.points()] == [list(grid.point(i).items()) for i in range(grid.size)]
+
+
+def test_point_cost_is_point_seconds_per_point():
+    data = {"fitted"}
+    settings = {**SETTINGS, "error_estimate": True}
+    fn = cost.point_cost(settings, data)
+    for p in ({"material": "sls", "v0": 1.0}, {"material": "fitted", "v0": 2.0},
+              {"material": "fitted", "v0": 2.0, "sample": 3.0}, {"material": "sls", "v0": 5.0, "sample": 0.0}):
+        assert fn(p) == cost.point_seconds(p, settings, data)
+
+
+def test_a_shard_index_reads_back_as_written(tmp_path):
+    import json
+
+    points = [{"index": i, "material": "sls", "v0": 1.0 + i / 3, "beta": 1e3} for i in range(5)]
+    settings = {"solver": {"method": "adaptive"}, "tie": {}}
+    text = shards.index_text(points, settings)
+    assert json.loads(text) == {"points": points, "settings": settings}
+    assert len(text.splitlines()) >= len(points)  # one point per line
+    assert json.loads(shards.index_text([], settings)) == {"points": [], "settings": settings}

@@ -1,12 +1,10 @@
 """Solve one shard of grid points (thin: vcor.study.runner does the work)."""
 
-import json
-
 from vcor.io import netcdf, receipts
 from vcor.io.joblog import count, job_log, seconds
 from vcor.materials import Catalogue
 from vcor.solvers.backend import load_kernels
-from vcor.study import runner, scene, summary
+from vcor.study import runner, scene, shards, summary
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
@@ -21,4 +19,4 @@ with job_log(smk) as log:
     netcdf.write_dataset(ds, smk.output.nc, title="vcor sweep shard", extra_attrs=attrs,
                          command="snakemake rule sweep_shard", identity=smk.wildcards.shard)
     log.note(f"solved {count(len(points), 'point')} of scene {smk.wildcards.scene}: {summary.outcome_of(ds).text()}")
-    receipts.atomic_text(smk.output.index, json.dumps({"points": points, "settings": settings}, indent=1))
+    receipts.atomic_text(smk.output.index, shards.index_text(points, settings))

@@ -29,6 +29,7 @@ __all__ = [
     "JOB_SECONDS",
     "POINT_SECONDS",
     "SAMPLE_SECONDS",
+    "point_cost",
     "point_seconds",
     "split_by_work",
 ]
@@ -73,6 +74,20 @@ def point_seconds(point: dict, settings: dict, from_data: frozenset | set = froz
     if "sample" in point:
         seconds += SAMPLE_SECONDS
     return seconds
+
+
+def point_cost(settings: dict, from_data: frozenset | set = frozenset()) -> Callable[[dict], float]:
+    """:func:`point_seconds` as a function of the point alone, computed once per material and
+    presence of a bootstrap sample (all it depends on; a plan of 2e5 points calls it for each)."""
+    known: dict[tuple, float] = {}
+
+    def cost(point: dict) -> float:
+        key = (point.get("material"), "sample" in point)
+        if key not in known:
+            known[key] = point_seconds(point, settings, from_data)
+        return known[key]
+
+    return cost
 
 
 def split_by_work(points: Sequence, cost: Callable[[dict], float], job_seconds: float | None,

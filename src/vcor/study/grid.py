@@ -336,4 +336,8 @@ def point_key(point: dict) -> str:
     >>> point_key({"index": 7, "v0": 1.0, "material": "sls"})
     '{"material": "sls", "v0": 1.0}'
     """
-    return json.dumps({k: v for k, v in point.items() if k != "index"}, sort_keys=True)
+    return _SORTED_JSON({k: v for k, v in point.items() if k != "index"})
+
+
+#: ``json.dumps(obj, sort_keys=True)`` without building an encoder per call (the same text)
+_SORTED_JSON = json.JSONEncoder(sort_keys=True).encode

@@ -25,13 +25,12 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from functools import partial
 from pathlib import Path
 
 from ..io import receipts
 from ..materials.catalogue import content_hash
 from ..provenance import code_fingerprint
-from .cost import point_seconds, split_by_work
+from .cost import point_cost, split_by_work
 from .grid import Grid, point_key
 from .scene import grid_of, settings_of
 
@@ -39,6 +38,7 @@ __all__ = [
     "SHARD_PATTERN",
     "Shard",
     "identified_points",
+    "index_text",
     "plan_shards",
     "point_key",
     "settings_hash",
@@ -111,6 +111,15 @@ def _in_order(point: dict, order: list) -> dict:
     return {k: point[k] for k in order if k in point} | {k: point[k] for k in sorted(point) if k not in order}
 
 
+def index_text(points, settings) -> str:
+    """The text of a shard's index file (``{"points": [...], "settings": {...}}``, read back by
+    :func:`plan_shards`): JSON with one point per line, each by json's C encoder (an indented dump
+    goes through json's Python encoder: 0.4 s for 1e5 points, against 0.2 s)."""
+    encode = json.JSONEncoder().encode
+    return ('{"points": [\n' + ",\n".join(map(encode, points)) + '\n],\n"settings": '
+            + json.dumps(settings, indent=1) + "}\n")
+
+
 def _read_index(idx: Path, order: list) -> list[dict]:
     """The points of a shard's index file, keys in the grid's order (so that Snakemake sees unchanged
     params); ValueError when it cannot be read or was written before shards carried their index."""
@@ -161,7 +170,7 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
         plan[idx.stem] = Shard(id=idx.stem, points=pts, rows=rows)
         matcher.todo.difference_update(rows)
     todo = {i: wanted[i] for i in sorted(matcher.todo)}
-    cost = partial(point_seconds, settings=settings, from_data=from_data)
+    cost = point_cost(settings, from_data)
     for chunk in split_by_work(list(todo.values()), cost, job_seconds, shard_size):
         sid = f"{h}-{content_hash([point_key(p) for p in chunk])}"
         plan[sid] = Shard(id=sid, points=chunk, rows=[p["index"] for p in chunk])
