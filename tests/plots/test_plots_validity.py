@@ -201,3 +201,18 @@ def test_the_dem_figure_marks_flagged_speeds_of_vcors_curve():
     opened, _ = _flagged_artists(fig)
     assert opened
     assert any("outside the model's range" in t for t in _legend_texts(fig))
+
+
+def test_v0_figures_name_the_values_they_hold_other_axes_at():
+    """fig8 and fig9 draw COR (and the scalars) along v0: on a grid with another axis they draw its first
+    value, and their titles say so; on a v0-only grid the title names nothing more."""
+    sweep = _sweep([0, 0, 0], extra=("h", [0.005, 0.02]))
+    sweep["h"].attrs["units"] = "m"
+    fig8 = plots.draw("fig8", {"sweep": sweep}, {})
+    assert "(h = 0.005 m)" in fig8.axes[0].get_title()
+    fig9 = plots.draw("fig9", {"sweep": sweep}, {"material": "sls"})
+    assert "(h = 0.005 m)" in fig9.get_suptitle()
+    plain = plots.draw("fig8", {"sweep": _sweep([0, 0, 0])}, {})
+    assert "=" not in plain.axes[0].get_title()
+    for fig in (fig8, fig9, plain):
+        common.plt.close(fig)

@@ -10,6 +10,7 @@ import numpy as np
 from .common import (
     Drawn,
     cor_line,
+    fixed_axes,
     flag_legend,
     flag_reasons,
     json_materials,
@@ -230,7 +231,8 @@ def fig8(sweep, opts):
     fig, ax = plt.subplots(figsize=(6, 4.5), layout="constrained")
     mats = [str(m) for m in sweep["material"].values]
     drawn = Drawn.total(cor_line(ax, v0_line(sweep, m), m) for m in mats)
-    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + drawn.note(True), fontsize=10)
+    held = fixed_axes(sweep, {}, ("material", "v0"))[1]  # the values v0_line holds the other axes at
+    ax.set_title("Fig. 8: COR against impact speed, " + ", ".join(mats) + held + drawn.note(True), fontsize=10)
     flag_legend(ax, drawn.flags)
     ax.legend(fontsize=8)
     return fig
@@ -251,7 +253,8 @@ def fig9(sweep, opts):
     if drawn.flags or drawn.not_ok:
         flag_legend(axes[0], drawn.flags)
         fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", fontsize=8, frameon=False)
-    fig.suptitle(f"Fig. 9: effect of the impact speed, {mat}" + drawn.note())
+    held = fixed_axes(sweep, {}, ("material", "v0"))[1]  # the values v0_line holds the other axes at
+    fig.suptitle(f"Fig. 9: effect of the impact speed, {mat}" + held + drawn.note())
     return fig
 
 
