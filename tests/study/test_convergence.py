@@ -42,3 +42,10 @@ def test_study_records_options_statuses_and_order_two():
     print(f"\nsls v0 = 10, adaptive (Richardson): observed order {order:.3f}")
     assert order > 2.4
     assert convergence.observed_order(ds, "paper-explicit") < 1.0  # README: 0.89-0.93
+    # the reference (Richardson on direct) against an independent solver: Radau on the internal variables
+    gap = convergence.reference_gap(ds)
+    print(f"sls v0 = 10: |reference - ive rtol 1e-12| = {gap:.2e}")
+    assert gap < 1e-9  # docs/validation.md: 7e-12
+    table = convergence.orders_table(convergence.combine({("sls", 0): ds}, ["sls"], [10.0]))
+    header, row = table.splitlines()[2:4]
+    assert header.split()[-1] == "1e-12|" and float(row.split()[-1]) == float(f"{gap:.1e}")

@@ -22,7 +22,7 @@ from ..solvers.options import solver_options
 from ..solvers.simulate import simulate
 
 __all__ = ["LADDER", "RICHARDSON_STEP_TOLS", "RTOLS", "STEP_TOLS", "ladder_runs", "methods_for", "observed_order",
-           "study"]
+           "reference_gap", "study"]
 
 LADDER = (250, 500, 1000, 2000, 4000, 8000)
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
@@ -144,6 +144,12 @@ def observed_order(ds, solver):
     return float(np.polyfit(np.log(1.0 / p[ok]), np.log(e[ok]), 1)[0])
 
 
+def reference_gap(ds) -> float:
+    """``|cor_ref - cor_ive_1e12|`` of one case: the Richardson reference against an independent solver
+    (Radau on the internal variables, rtol 1e-12); NaN for kernels that are not Prony sums."""
+    return float(abs(ds["cor_ref"] - ds["cor_ive_1e12"]))
+
+
 def combine(cases, materials, v0s):
     """Stack per-case datasets into dims (material, v0, solver, level); solvers that do not apply to
     a material (e.g. ive for the fractional law) are NaN with status invalid-input and a message."""
@@ -173,10 +179,12 @@ def combine(cases, materials, v0s):
 
 
 def orders_table(ds) -> str:
-    """Observed orders (slope of log COR error vs log dt) for the fixed-step solvers, and the
-    errors reached by solve_ivp at each rtol."""
+    """Observed orders (slope of log COR error vs log dt) for the fixed-step solvers and, last, the
+    cross-check of the reference: ``|cor_ref - cor_ive_1e12|`` (Prony kernels; '-' for the others)."""
     lines = ["# observed order of the COR error in dt (fixed-step solvers); '-' where not applicable",
-             f"{'material':14s} {'v0 [m/s]':>8s} " + " ".join(f"{s:>18s}" for s in ds["solver"].values)]
+             "# last column: |reference COR - ive Radau at rtol 1e-12| (Prony kernels): the reference's error scale",
+             f"{'material':14s} {'v0 [m/s]':>8s} " + " ".join(f"{s:>18s}" for s in ds["solver"].values)
+             + f" {'|ref - ive 1e-12|':>18s}"]
     for m in ds["material"].values:
         for v in ds["v0"].values:
             d = ds.sel(material=m, v0=v)
@@ -187,5 +195,7 @@ def orders_table(ds) -> str:
                 else:
                     o = observed_order(d, str(s))
                     vals.append("-" if not math.isfinite(o) else f"{o:.2f}")
+            gap = reference_gap(d)
+            vals.append("-" if not math.isfinite(gap) else f"{gap:.1e}")
             lines.append(f"{m!s:14s} {v:8g} " + " ".join(f"{x:>18s}" for x in vals))
     return "\n".join(lines) + "\n"
