@@ -1,8 +1,15 @@
 """A job's log lines (vcor.io.joblog)."""
 
-import numpy as np
+import ast
+import subprocess
+import sys
+import types
+from pathlib import Path
 
-from vcor.io.joblog import brief
+import numpy as np
+import pytest
+
+from vcor.io.joblog import brief, is_workflow_job, job_log
 
 
 def test_brief_rounds_numbers_and_keeps_the_structure():
@@ -11,3 +18,60 @@ def test_brief_rounds_numbers_and_keeps_the_structure():
     assert brief(settings) == ("{model: prony, lam: 48.7, n: 3, ok: True, start: None, "
                                "smoothing: {mu: {E_stor: 3.162}}, components: [1, 0.25]}")
     assert brief(1.23456789e-7, digits=3) == "1.23e-07"
+
+
+ROOT = Path(__file__).resolve().parents[2]
+
+JOB = """
+import atexit, sys, types
+from vcor.io.joblog import job_log
+atexit.register(lambda: open({teardown!r}, "w").write("teardown ran"))
+sys.stdout.write("printed by the job")  # no newline: still in the buffer when the block ends
+with job_log(types.SimpleNamespace(log=[{log!r}], rule="demo"), end=True) as job:
+    job.note("did the work")
+    {body}
+open({after!r}, "w").write("after the block")
+"""
+
+
+def _job(tmp_path, body="pass"):
+    paths = {name: str(tmp_path / name) for name in ("log", "teardown", "after")}
+    code = JOB.format(body=body, **paths)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False)
+    return out, {name: Path(p) for name, p in paths.items()}
+
+
+def test_a_workflow_job_ends_when_its_block_succeeds(tmp_path):
+    out, paths = _job(tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout == "printed by the job"  # flushed before the process ended
+    log = paths["log"].read_text()
+    assert "did the work" in log and "job demo: start-up" in log
+    assert not paths["teardown"].exists()  # Python's teardown skipped
+    assert not paths["after"].exists()  # nothing after the block runs
+
+
+def test_a_failing_job_still_exits_1_with_its_error_in_the_log(tmp_path):
+    out, paths = _job(tmp_path, body='raise ValueError("bad input")')
+    assert out.returncode == 1
+    assert "vcor: job failed: ValueError: bad input" in paths["log"].read_text()
+    assert "ValueError: bad input" in out.stderr
+
+
+def test_only_snakemakes_script_object_ends_the_process():
+    from snakemake.iocontainers import Snakemake
+
+    assert is_workflow_job(Snakemake.__new__(Snakemake))
+    assert not is_workflow_job(types.SimpleNamespace(log=[], rule="demo"))
+    # in-process use (a test, a notebook) keeps the process
+    with job_log(types.SimpleNamespace(log=[], rule="demo")) as job:
+        job.note("in-process")
+
+
+@pytest.mark.parametrize("script", sorted((ROOT / "workflow" / "scripts").glob("*.py")), ids=lambda p: p.name)
+def test_every_workflow_script_ends_with_its_job_log_block(script):
+    """The process ends when the block succeeds (vcor.io.joblog): a statement after it would never run."""
+    last = ast.parse(script.read_text()).body[-1]
+    assert isinstance(last, ast.With), f"{script.name}: the last statement is not the `with job_log(...)` block"
+    call = last.items[0].context_expr
+    assert isinstance(call, ast.Call) and getattr(call.func, "id", None) == "job_log", script.name

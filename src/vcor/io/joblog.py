@@ -12,18 +12,26 @@ the block itself (loading kernels, solving, writing).
 A job's error must never be lost: on a full disk the log cannot be written (and Python's exit would
 fail to flush it, exit code 120, an empty log). :func:`job_log` writes the error to the log where it
 can and always to the terminal's stderr, then exits with code 1.
+
+The block is the job: in a workflow job (``snakemake`` is Snakemake's script object) the process ends
+as soon as the block has succeeded, with exit code 0, after every stream is flushed and without
+Python's teardown of numba, xarray and matplotlib, a fixed cost of every job that does nothing for it
+(CHANGELOG: what it saved). Every workflow script ends with its ``with job_log(...)`` block
+(tests/test_architecture.py); nothing after it would run. Outputs are closed by the functions that
+write them (:mod:`vcor.io.netcdf`, :mod:`vcor.io.receipts`, :func:`vcor.plots.save`).
 """
 
 from __future__ import annotations
 
 import contextlib
+import logging
 import numbers
 import os
 import sys
 import time
 import traceback
 
-__all__ = ["JobLog", "brief", "count", "job_log", "process_age", "seconds"]
+__all__ = ["JobLog", "brief", "count", "end_process", "is_workflow_job", "job_log", "process_age", "seconds"]
 
 
 def seconds(t: float) -> str:
@@ -95,10 +103,33 @@ def _write(stream, text) -> None:
         stream.flush()
 
 
+def is_workflow_job(smk) -> bool:
+    """Whether ``smk`` is the ``snakemake`` object Snakemake gives a script job (not a stand-in of a test)."""
+    kind = type(smk)  # snakemake.iocontainers.Snakemake (Snakemake 9), snakemake.script.Snakemake before
+    return kind.__name__ == "Snakemake" and kind.__module__.startswith("snakemake.")
+
+
+def end_process() -> None:
+    """End this process now with exit code 0: flush Python's and the C library's output streams and the
+    logging handlers, then ``os._exit(0)``, skipping the interpreter's teardown (atexit handlers, module
+    finalisation). For the end of a successful workflow job only (module docstring)."""
+    logging.shutdown()
+    for stream in (sys.stdout, sys.stderr, sys.__stdout__, sys.__stderr__):
+        with contextlib.suppress(AttributeError, OSError, ValueError):
+            stream.flush()
+    with contextlib.suppress(OSError, AttributeError):
+        import ctypes
+
+        ctypes.CDLL(None).fflush(None)  # output that C libraries (HDF5, netCDF) buffered
+    os._exit(0)
+
+
 @contextlib.contextmanager
-def job_log(smk):
+def job_log(smk, *, end: bool | None = None):
     """``with job_log(snakemake) as log: ...``: stderr to ``snakemake.log[0]`` for the block, ``log`` a
-    :class:`JobLog` (module docstring)."""
+    :class:`JobLog` (module docstring). ``end``: after a successful block, end the process
+    (:func:`end_process`); default: in a workflow job (:func:`is_workflow_job`), never in-process."""
+    end = is_workflow_job(smk) if end is None else end
     terminal = sys.stderr
     path = smk.log[0] if smk.log else None
     log = None
@@ -128,3 +159,5 @@ def job_log(smk):
         if log is not None:
             with contextlib.suppress(OSError, ValueError):
                 log.close()
+    if end:
+        end_process()
