@@ -40,6 +40,24 @@ def test_outcome_counts_ok_flagged_and_failed_by_name():
     assert outcome_of(ds[["status"]]).text() == "3 ok, 0 flagged, 3 failed (no-separation 1, failed 1, step-budget 1)"
 
 
+def test_a_file_is_counted_like_the_dataset_it_holds(tmp_path):
+    """read_outcome reads status and validity with netCDF4 alone; the counts and names are those of the
+    dataset, string variables (a message per point) and all; a file with no status is refused."""
+    from vcor.io import netcdf
+    from vcor.study.summary import read_outcome
+
+    codes = np.array([vstatus.code(s) for s in ("ok", "ok", "step-budget", "ok")], np.int8)
+    flags = np.array([0, FLAGS["large_indentation"], 0, FLAGS["fast_impact"]], np.int8)
+    ds = xr.Dataset({"status": ("p", codes, vstatus.cf_attrs()), "validity": ("p", flags, vvalidity.cf_attrs()),
+                     "message": ("p", np.array(["", "", "step budget reached", ""], dtype=object))})
+    path = netcdf.write_dataset(ds, tmp_path / "sweep.nc", title="test")
+    assert read_outcome(path) == outcome_of(ds)
+    assert read_outcome(path).text() == "1 ok, 2 flagged (large_indentation 1, fast_impact 1), 1 failed (step-budget 1)"
+    path = netcdf.write_dataset(ds[["message"]], tmp_path / "other.nc", title="test")
+    with pytest.raises(ValueError, match="no variable 'status'"):
+        read_outcome(path)
+
+
 def _expected_line(path, scene: str) -> str:
     """The summary line of ``scene`` as counted here from its sweep dataset's status and validity."""
     with xr.open_dataset(path / f"results/{scene}/sweep.nc") as ds:

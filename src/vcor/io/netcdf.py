@@ -51,7 +51,7 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
             encoding[name] = {"zlib": True, "complevel": 1, "dtype": "float64"}
         elif var.dtype.kind in "iu":
             encoding[name] = {"zlib": True, "complevel": 1}
-        elif var.dtype.kind in "OU":
+        elif var.dtype.kind == "O":  # text held as Python objects: as fixed-width text (a U array already is)
             ds[name] = var.astype(str)
     with atomic(path) as tmp:
         ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)

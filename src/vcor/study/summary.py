@@ -8,10 +8,12 @@ per DEM entry whose dataset exists (its collisions, counted alike) and one per c
 record exists (its path). The workflow prints these lines when a run ends, successful or not (the
 Snakefile's ``onsuccess`` / ``onerror`` handlers); a run with nothing to do ends before them.
 
-Only the ``status`` and ``validity`` variables (small integers) are read, so the summary of a whole
-project costs about one dataset opening per scene. The names of codes and flags come from the
-dataset's own CF attributes (``flag_values`` / ``flag_masks`` with ``flag_meanings``), so an archived
-dataset is read with the vocabulary it was written with; a dataset without them is read with vcor's.
+Only the ``status`` and ``validity`` variables (small integers) are read, with netCDF4 itself (xarray
+would decode every string variable of the file, one string per point, before anything is read), so the
+summary of a whole project costs about one file opening per scene and imports no xarray. The names
+of codes and flags come from the dataset's own CF attributes (``flag_values`` / ``flag_masks`` with
+``flag_meanings``), so an archived dataset is read with the vocabulary it was written with; a dataset
+without them is read with vcor's.
 """
 
 from __future__ import annotations
@@ -20,7 +22,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 
 from .. import status as _status
 from ..solvers import validity as _validity
@@ -85,13 +86,29 @@ def outcome_of(ds) -> Outcome:
                    reasons=reasons, statuses=statuses)
 
 
+@dataclass(frozen=True)
+class _Stored:
+    """A variable as stored: its values and attributes (what :func:`outcome_of` reads of it)."""
+
+    values: np.ndarray
+    attrs: dict
+
+    def __array__(self, dtype=None, copy=None):
+        return np.asarray(self.values, dtype=dtype)
+
+
 def read_outcome(path) -> Outcome:
-    """The :class:`Outcome` of a dataset file, reading only its ``status`` and ``validity``."""
-    with xr.open_dataset(path, decode_times=False, mask_and_scale=False, cache=False) as ds:
-        keep = [v for v in ("status", "validity") if v in ds]
-        if "status" not in keep:
+    """The :class:`Outcome` of a dataset file, reading only its ``status`` and ``validity`` (module
+    docstring)."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        if "status" not in nc.variables:
             raise ValueError(f"{path}: no variable 'status'; a sweep dataset has one")
-        return outcome_of(ds[keep].load())
+        nc.set_auto_maskandscale(False)
+        stored = {name: _Stored(np.asarray(nc[name][...]), {a: nc[name].getncattr(a) for a in nc[name].ncattrs()})
+                  for name in ("status", "validity") if name in nc.variables}
+    return outcome_of(stored)
 
 
 def _line(kind: str, name: str, path: Path, shown: str) -> str:
