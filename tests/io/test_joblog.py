@@ -1,6 +1,7 @@
 """A job's log lines (vcor.io.joblog)."""
 
 import ast
+import os
 import subprocess
 import sys
 import types
@@ -34,10 +35,12 @@ open({after!r}, "w").write("after the block")
 """
 
 
-def _job(tmp_path, body="pass"):
+def _job(tmp_path, body="pass", stdout=subprocess.PIPE):
     paths = {name: str(tmp_path / name) for name in ("log", "teardown", "after")}
     code = JOB.format(body=body, **paths)
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False)
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}  # stdout buffered, as by default
+    out = subprocess.run([sys.executable, "-c", code], stdout=stdout, stderr=subprocess.PIPE, text=True, timeout=120,
+                         check=False, env=env)
     return out, {name: Path(p) for name, p in paths.items()}
 
 
@@ -49,6 +52,14 @@ def test_a_workflow_job_ends_when_its_block_succeeds(tmp_path):
     assert "did the work" in log and "job demo: start-up" in log
     assert not paths["teardown"].exists()  # Python's teardown skipped
     assert not paths["after"].exists()  # nothing after the block runs
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="no /dev/full (a device on which every write fails)")
+def test_output_that_cannot_be_flushed_is_an_exit_code_as_with_pythons_own_exit(tmp_path):
+    with open("/dev/full", "w") as full:
+        out, paths = _job(tmp_path, stdout=full)
+    assert out.returncode == 120  # Python's exit code when it cannot flush standard output
+    assert "job demo: start-up" in paths["log"].read_text()
 
 
 def test_a_failing_job_still_exits_1_with_its_error_in_the_log(tmp_path):

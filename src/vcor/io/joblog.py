@@ -17,8 +17,10 @@ The block is the job: in a workflow job (``snakemake`` is Snakemake's script obj
 as soon as the block has succeeded, with exit code 0, after every stream is flushed and without
 Python's teardown of numba, xarray and matplotlib, a fixed cost of every job that does nothing for it
 (CHANGELOG: what it saved). Every workflow script ends with its ``with job_log(...)`` block
-(tests/test_architecture.py); nothing after it would run. Outputs are closed by the functions that
-write them (:mod:`vcor.io.netcdf`, :mod:`vcor.io.receipts`, :func:`vcor.plots.save`).
+(tests/io/test_joblog.py); nothing after it would run. Outputs are closed by the functions that
+write them (:mod:`vcor.io.netcdf`, :mod:`vcor.io.receipts`, :func:`vcor.plots.save`); a file a block
+opens itself must be closed in the block (``with open(...)``): an unclosed file loses what is still
+buffered.
 """
 
 from __future__ import annotations
@@ -110,18 +112,25 @@ def is_workflow_job(smk) -> bool:
 
 
 def end_process() -> None:
-    """End this process now with exit code 0: flush Python's and the C library's output streams and the
-    logging handlers, then ``os._exit(0)``, skipping the interpreter's teardown (atexit handlers, module
-    finalisation). For the end of a successful workflow job only (module docstring)."""
+    """End this process now with exit code 0 (120 when standard output cannot be flushed, as Python's
+    own exit): flush the logging handlers and Python's and the C library's output streams, then
+    ``os._exit``, skipping the interpreter's teardown (atexit handlers, module finalisation). For the
+    end of a successful workflow job only (module docstring)."""
     logging.shutdown()
-    for stream in (sys.stdout, sys.stderr, sys.__stdout__, sys.__stderr__):
-        with contextlib.suppress(AttributeError, OSError, ValueError):
+    code = 0
+    for stream in (sys.stdout, sys.__stdout__, sys.stderr, sys.__stderr__):
+        try:
             stream.flush()
+        except OSError:
+            if stream in (sys.stdout, sys.__stdout__):
+                code = 120
+        except (AttributeError, ValueError):  # no stream, or one the job closed
+            pass
     with contextlib.suppress(OSError, AttributeError):
         import ctypes
 
         ctypes.CDLL(None).fflush(None)  # output that C libraries (HDF5, netCDF) buffered
-    os._exit(0)
+    os._exit(code)
 
 
 @contextlib.contextmanager

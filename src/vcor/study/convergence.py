@@ -180,9 +180,10 @@ def combine(cases, materials, v0s):
 
 def orders_table(ds) -> str:
     """Observed orders (slope of log COR error vs log dt) for the fixed-step solvers and, last, the
-    cross-check of the reference: ``|cor_ref - cor_ive_1e12|`` (Prony kernels; '-' for the others)."""
+    cross-check of the reference: ``|cor_ref - cor_ive_1e12|`` ('-' where there is none: a kernel that is
+    not a Prony sum, or a reference or ive run that did not finish)."""
     lines = ["# observed order of the COR error in dt (fixed-step solvers); '-' where not applicable",
-             "# last column: |reference COR - ive Radau at rtol 1e-12| (Prony kernels): the reference's error scale",
+             "# last column: |reference COR - ive Radau at rtol 1e-12|, the reference's error scale; '-' without one",
              f"{'material':14s} {'v0 [m/s]':>8s} " + " ".join(f"{s:>18s}" for s in ds["solver"].values)
              + f" {'|ref - ive 1e-12|':>18s}"]
     for m in ds["material"].values:
