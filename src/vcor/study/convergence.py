@@ -146,7 +146,8 @@ def observed_order(ds, solver):
 
 def reference_gap(ds) -> float:
     """``|cor_ref - cor_ive_1e12|`` of one case: the Richardson reference against an independent solver
-    (Radau on the internal variables, rtol 1e-12); NaN for kernels that are not Prony sums."""
+    (Radau on the internal variables, rtol 1e-12); NaN where either is missing (a kernel that is not a
+    Prony sum has no ive run; a run that did not finish has no COR)."""
     return float(abs(ds["cor_ref"] - ds["cor_ive_1e12"]))
 
 
