@@ -49,3 +49,19 @@ def test_study_records_options_statuses_and_order_two():
     table = convergence.orders_table(convergence.combine({("sls", 0): ds}, ["sls"], [10.0]))
     header, row = table.splitlines()[2:4]
     assert header.split()[-1] == "1e-12|" and float(row.split()[-1]) == float(f"{gap:.1e}")
+
+
+def test_a_kelvin_voigt_material_gets_the_methods_that_take_it():
+    """The paper's explicit scheme has no Dirac term: a Kelvin-Voigt material's study leaves it out (the
+    combined table marks it as not applying) instead of failing the job."""
+    ds = convergence.study("kelvin-voigt", 3.0, repeat=1)
+    assert "paper-explicit" not in set(ds["solver"].values)
+    assert np.all(ds["status"].values[np.isfinite(ds["param"].values)] == status.code("ok"))
+    both = convergence.combine({("butyl-fc", 0): convergence.study("butyl-fc", 3.0, repeat=1), ("kelvin-voigt", 0): ds},
+                               ["butyl-fc", "kelvin-voigt"], [3.0])
+    row = both.sel(material="kelvin-voigt", v0=3.0, solver="paper-explicit")
+    assert np.all(row["status"].values == status.code("invalid-input"))
+    assert all("does not apply" in str(m) for m in row["message"].values)
+    # the cross-check exists (ive applies) and says how far the reference is from it
+    print(f"\nkelvin-voigt 3 m/s: |reference - ive rtol 1e-12| = {convergence.reference_gap(ds):.1e}")
+    assert np.isfinite(convergence.reference_gap(ds))

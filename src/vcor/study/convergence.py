@@ -45,7 +45,8 @@ def methods_for(material) -> list[tuple[str, dict, tuple]]:
     out.append(("soe", {"method": "soe"}, LADDER))
     out.append(("adaptive", {"method": "adaptive"}, RICHARDSON_STEP_TOLS))
     out.append(("adaptive-plain", {"method": "adaptive", "richardson": False}, STEP_TOLS))
-    out.append(("paper-explicit", {"method": "paper"}, LADDER))
+    if material.viscosity == 0:  # the paper's explicit scheme has no Dirac (Kelvin-Voigt) term
+        out.append(("paper-explicit", {"method": "paper"}, LADDER))
     return out
 
 
