@@ -58,6 +58,29 @@ def test_a_file_is_counted_like_the_dataset_it_holds(tmp_path):
         read_outcome(path)
 
 
+def test_a_work_precision_scene_is_summed_up_by_its_runs(tmp_path):
+    """A work-precision dataset counts its runs: the cells of the method x ladder table with a ladder
+    value; cells past a shorter ladder or of a method that does not apply are not runs."""
+    import types
+
+    from vcor.io import netcdf
+    from vcor.study.summary import run_summary
+
+    nan, ok, budget = np.nan, vstatus.code("ok"), vstatus.code("step-budget")
+    off = vstatus.code("invalid-input")
+    param = np.array([[250.0, 500.0, 1000.0], [1e-4, 1e-6, nan], [nan, nan, nan]])
+    codes = np.array([[ok, ok, budget], [ok, ok, off], [off, off, off]], np.int8)
+    ds = xr.Dataset({"status": (("solver", "level"), codes, vstatus.cf_attrs()),
+                     "param": (("solver", "level"), param, {"units": "1", "long_name": "ladder value"})})
+    netcdf.write_dataset(ds, tmp_path / "results/acc/convergence.nc", title="test")
+    project = types.SimpleNamespace(scenes={"acc": None}, dem={},
+                                    catalogue=types.SimpleNamespace(calibrations={}))
+    lines = run_summary(project, tmp_path)
+    assert lines[0].startswith(HEADER)
+    assert lines[1:] == ["  scene acc (work-precision): 5 runs, 4 ok, 0 flagged, 1 failed (step-budget 1): "
+                         "results/acc/convergence.nc"]
+
+
 def _expected_line(path, scene: str) -> str:
     """The summary line of ``scene`` as counted here from its sweep dataset's status and validity."""
     with xr.open_dataset(path / f"results/{scene}/sweep.nc") as ds:

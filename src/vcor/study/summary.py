@@ -4,8 +4,9 @@ For each scene whose sweep dataset exists, one line: its points, how many are ``
 model's stated range, how many are ``ok`` but flagged (by validity reason, :mod:`vcor.solvers.validity`;
 a point can carry several reasons, so the reasons' counts may add up to more than the flagged points),
 how many did not finish ``ok`` (by status, :mod:`vcor.status`), and the dataset's path. Then one line
-per DEM entry whose dataset exists (its collisions, counted alike) and one per calibration whose
-record exists (its path). The workflow prints these lines when a run ends, successful or not (the
+per scene whose work-precision dataset exists (its runs, counted alike: the cells of the
+method x ladder table that were run), one per DEM entry whose dataset exists (its collisions) and one
+per calibration whose record exists (its path). The workflow prints these lines when a run ends, successful or not (the
 Snakefile's ``onsuccess`` / ``onerror`` handlers); a run with nothing to do ends before them.
 
 Only the ``status`` and ``validity`` variables (small integers) are read, with netCDF4 itself (xarray
@@ -97,32 +98,35 @@ class _Stored:
         return np.asarray(self.values, dtype=dtype)
 
 
-def read_outcome(path) -> Outcome:
+def read_outcome(path, *, runs_only: bool = False) -> Outcome:
     """The :class:`Outcome` of a dataset file, reading only its ``status`` and ``validity`` (module
-    docstring)."""
+    docstring). ``runs_only``: a work-precision dataset's cells with a ladder value (``param`` finite);
+    the others are past a shorter ladder or of a method that does not apply, not runs."""
     import netCDF4
 
     with netCDF4.Dataset(path) as nc:
         if "status" not in nc.variables:
             raise ValueError(f"{path}: no variable 'status'; a sweep dataset has one")
         nc.set_auto_maskandscale(False)
-        stored = {name: _Stored(np.asarray(nc[name][...]), {a: nc[name].getncattr(a) for a in nc[name].ncattrs()})
+        keep = np.isfinite(np.asarray(nc["param"][...], dtype=float)).ravel() if runs_only else slice(None)
+        stored = {name: _Stored(np.asarray(nc[name][...]).ravel()[keep],
+                                {a: nc[name].getncattr(a) for a in nc[name].ncattrs()})
                   for name in ("status", "validity") if name in nc.variables}
     return outcome_of(stored)
 
 
-def _line(kind: str, name: str, path: Path, shown: str) -> str:
+def _line(kind: str, name: str, path: Path, shown: str, *, runs: bool = False) -> str:
     """One summary line; a dataset that cannot be read says so (the end of a run must not fail on it)."""
     try:
-        out = read_outcome(path)
+        out = read_outcome(path, runs_only=runs)
     except Exception as exc:  # noqa: BLE001 - reported on the line, see the docstring
         return f"  {kind} {name}: cannot read {shown}: {type(exc).__name__}: {exc}"
-    return f"  {kind} {name}: {out.points} points, {out.text()}: {shown}"
+    return f"  {kind} {name}: {out.points} {'runs' if runs else 'points'}, {out.text()}: {shown}"
 
 
 def run_summary(project, base_dir=".") -> list[str]:
     """Lines saying what the project's results hold (module docstring); ``[]`` when no scene has a
-    sweep dataset and no DEM entry or calibration has a dataset. ``project`` is a
+    sweep or work-precision dataset and no DEM entry or calibration has a dataset. ``project`` is a
     :class:`vcor.study.project.Project`; paths are shown relative to ``base_dir``."""
     base = Path(base_dir)
     lines = []
@@ -130,6 +134,9 @@ def run_summary(project, base_dir=".") -> list[str]:
         shown = paths.fmt(paths.SWEEP, scene=name)
         if (base / shown).is_file():
             lines.append(_line("scene", name, base / shown, shown))
+        shown = paths.fmt(paths.DATASET, scene=name, dataset="convergence")
+        if (base / shown).is_file():
+            lines.append(_line("scene", f"{name} (work-precision)", base / shown, shown, runs=True))
     for name in project.dem:
         shown = paths.fmt(paths.DEM, dem=name)
         if (base / shown).is_file():
