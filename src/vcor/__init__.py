@@ -1,7 +1,9 @@
 """vcor: the viscoelastic coefficient of restitution (Green 2026; Ramirez et al. 1999).
 
 The public surface: :func:`simulate` (one impact, method ``adaptive`` by default), :class:`Result`,
-:class:`SolverOptions`, and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
+:class:`SolverOptions`; the study functions, one per capability of the workflow (:mod:`vcor.study.api`):
+:func:`sweep` (a scene's grid, in parallel, the dataset the workflow archives), :func:`fit`,
+:func:`calibrate` and :func:`dem_export`; and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
 :mod:`~vcor.solvers`, :mod:`~vcor.fitting`, :mod:`~vcor.study`, :mod:`~vcor.io`, :mod:`~vcor.plots`
 and the modules :mod:`~vcor.spheres` and :mod:`~vcor.status`.
 
@@ -13,10 +15,11 @@ from importlib import import_module
 
 from .version import __version__
 
-__all__ = ["Result", "SolverOptions", "__version__", "materials", "simulate"]
+__all__ = ["Result", "SolverOptions", "__version__", "calibrate", "dem_export", "fit", "materials", "simulate", "sweep"]
 
-_NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options"}
-_SUBMODULES = ("checks", "cli", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers", "spheres",
+_NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options",
+          **dict.fromkeys(("sweep", "fit", "calibrate", "dem_export"), "vcor.study.api")}
+_SUBMODULES = ("checks", "cli", "cli_study", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers", "spheres",
                "status", "study")
 
 

@@ -23,7 +23,7 @@ from ..solvers.simulate import simulate
 from .grid import Axis, axis_role
 from .scene import build_point
 
-__all__ = ["ERRORS", "SCALARS", "run_points", "solve_point", "solving_order"]
+__all__ = ["ERRORS", "SCALARS", "rows_dataset", "run_points", "solve_point", "solve_rows", "solving_order"]
 
 #: scalar outputs stored per point
 SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",
@@ -65,12 +65,12 @@ def _error_estimate(res, material, v0, opts, geometry) -> dict:
     return {**out, "error_status": fine.status, "error_message": fine.message if not fine.ok else ""}
 
 
-def run_points(points, settings, catalogue: Catalogue | None = None):
-    """Solve each point (materials named in ``catalogue``, default: presets); a failure is stored with
-    its status and message, never raised. Points are solved in :func:`solving_order` (the dataset
-    keeps the order of ``points``)."""
+def solve_rows(points, settings, catalogue: Catalogue | None = None) -> list[dict]:
+    """One row per point (in the order of ``points``): its scalars, status and message, and its error
+    estimate with ``error_estimate``; materials named in ``catalogue`` (default: presets). A failure is
+    stored with its status and message, never raised. Points are solved in :func:`solving_order`."""
     catalogue = catalogue or Catalogue()
-    rows = [None] * len(points)
+    rows: list = [None] * len(points)
     for i in solving_order(points):
         p = points[i]
         t = time.perf_counter()
@@ -82,7 +82,13 @@ def run_points(points, settings, catalogue: Catalogue | None = None):
             row.setdefault("error_status", row["status"])
             row.setdefault("error_message", "no estimate: the point itself is not ok")
         rows[i] = row
-    return _rows_to_dataset(points, rows, settings)
+    return rows
+
+
+def run_points(points, settings, catalogue: Catalogue | None = None):
+    """The dataset of ``points`` solved (:func:`solve_rows`, :func:`rows_dataset`): one shard, in one
+    process; the dataset keeps the order of ``points``."""
+    return rows_dataset(points, solve_rows(points, settings, catalogue), settings)
 
 
 def solving_order(points) -> list[int]:
@@ -104,7 +110,9 @@ def solving_order(points) -> list[int]:
     return [i for members in groups.values() for i in members]
 
 
-def _rows_to_dataset(points, rows, settings):
+def rows_dataset(points, rows, settings):
+    """The shard dataset of ``points`` and their rows (:func:`solve_rows`): dimension ``point``, every
+    variable with its units and long name, status and validity as CF flags."""
     import xarray as xr
 
     n = len(points)
