@@ -8,7 +8,7 @@ from vcor.study import summary
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
-    name, out = smk.params.name, dict(smk.output.items())
+    name = smk.params.name
     export = vcor.dem_export(smk.params.spec, name=name, config=Catalogue(**smk.params.catalogue))
     written = export.write(".", command=f"snakemake rule {smk.rule}")
     done = summary.outcome_of(export.dataset)

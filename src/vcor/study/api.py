@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from ..fitting.prony import FitResult
     from ..materials.models import Material
 
-__all__ = ["Calibrated", "DemExport", "Fitted", "calibrate", "dem_export", "fit", "sweep"]
+__all__ = ["Calibrated", "DemExport", "Fitted", "calibrate", "dem_export", "fit", "sweep", "sweep_archive"]
 
 
 def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
@@ -95,6 +95,13 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
     >>> [round(float(c), 3) for c in ds["cor"].sel(material="sls")], ds["cor"].attrs["units"]
     ([0.727, 0.432], '1')
     """
+    return sweep_archive(scene, config=config, workers=workers, progress=progress).loaded(command="vcor.sweep")
+
+
+def sweep_archive(scene: dict | str, *, config: Any = None, workers: int | None = None,
+                  progress: bool | None = None) -> Archive:
+    """:func:`sweep`'s dataset before it is archived (:class:`vcor.io.archived.Archive`): what ``vcor sweep``
+    writes to its ``--out`` file."""
     processes = check_workers(workers)
     show = wanted(progress)
     study = resolve_scene(scene, config)
@@ -104,8 +111,7 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
         points = identified_points(sc.config, {m: catalogue.identity(m) for m in sc.materials}, sc.grid)
         shard = solve_points(points, sc.settings, catalogue, workers=processes, progress=show,
                              from_data=project.fitted_to_data)
-        archive = combine(study.name, sc.config, sc.grid, [shard], [[p["index"] for p in points]], catalogue)
-        return archive.loaded(command="vcor.sweep")
+        return combine(study.name, sc.config, sc.grid, [shard], [[p["index"] for p in points]], catalogue)
 
 
 @dataclass(frozen=True, kw_only=True)
