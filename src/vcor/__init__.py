@@ -12,15 +12,22 @@ material does not import the numba solvers (workflow jobs start faster).
 """
 
 from importlib import import_module
+from typing import TYPE_CHECKING
 
 from .version import __version__
+
+if TYPE_CHECKING:  # what the lazy names are, for type checkers (loaded on first use otherwise)
+    from .solvers.common import Result
+    from .solvers.options import SolverOptions
+    from .solvers.simulate import simulate
+    from .study.api import calibrate, dem_export, fit, sweep
 
 __all__ = ["Result", "SolverOptions", "__version__", "calibrate", "dem_export", "fit", "materials", "simulate", "sweep"]
 
 _NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options",
           **dict.fromkeys(("sweep", "fit", "calibrate", "dem_export"), "vcor.study.api")}
-_SUBMODULES = ("checks", "cli", "cli_study", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers", "spheres",
-               "status", "study")
+_SUBMODULES = ("checks", "cli", "cli_study", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers",
+               "spheres", "status", "study")
 
 
 def __getattr__(name):

@@ -13,8 +13,12 @@ from __future__ import annotations
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .netcdf import write_dataset
+
+if TYPE_CHECKING:
+    import xarray
 
 __all__ = ["Archive"]
 
@@ -24,7 +28,7 @@ class Archive:
     """``dataset`` to be written with ``title``, the global attributes ``extra_attrs`` (dicts become JSON)
     and, unless ``timestamp`` is False, the time in its history attribute."""
 
-    dataset: object
+    dataset: xarray.Dataset
     title: str
     extra_attrs: dict = field(default_factory=dict)
     timestamp: bool = True
@@ -34,7 +38,7 @@ class Archive:
         return write_dataset(self.dataset, path, title=self.title, extra_attrs=self.extra_attrs, command=command,
                              timestamp=self.timestamp, identity=identity)
 
-    def loaded(self, *, command: str):
+    def loaded(self, *, command: str) -> xarray.Dataset:
         """The dataset as :meth:`write` archives it, read back into memory (an ``xarray.Dataset``)."""
         import xarray as xr
 

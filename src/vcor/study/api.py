@@ -93,7 +93,7 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
     >>> import vcor
     >>> ds = vcor.sweep({"materials": ["sls"], "grid": {"v0": [1, 10]}}, workers=1, progress=False)
     >>> [round(float(c), 3) for c in ds["cor"].sel(material="sls")], ds["cor"].attrs["units"]
-    ([0.727, 0.432], '1')
+    ([0.388, 0.432], '1')
     """
     return sweep_archive(scene, config=config, workers=workers, progress=progress).loaded(command="vcor.sweep")
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import shutil
 from dataclasses import replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..io import receipts
 from ..io.archived import Archive
@@ -24,13 +25,17 @@ from ..materials.catalogue import Catalogue
 from . import paths
 from .uncertainty import SAMPLE_JOBS, samples_file, samples_identity
 
+if TYPE_CHECKING:
+    from ..fitting.calibrate import Calibration
+    from ..fitting.prony import FitResult
+
 __all__ = ["DETERMINISTIC", "calibration_archive", "fit_archive", "needed", "ready_catalogue", "samples_archive"]
 
 #: the history of a computed material's file: no time stamp, so that the same inputs give the same bytes
 DETERMINISTIC = "(deterministic: no time stamp)"
 
 
-def fit_archive(name: str, spec: dict, base_dir=".") -> tuple[Archive, object, str]:
+def fit_archive(name: str, spec: dict, base_dir=".") -> tuple[Archive, FitResult, str]:
     """(archive of the fit's dataset, fitted material, its text table) of the fit ``spec`` named ``name``
     (:func:`vcor.fitting.fits.run_fit`; data files relative to ``base_dir``)."""
     from ..fitting import fits
@@ -42,7 +47,7 @@ def fit_archive(name: str, spec: dict, base_dir=".") -> tuple[Archive, object, s
     return Archive(dataset=ds, title=f"vcor fitted material {name}", timestamp=False), result, table
 
 
-def calibration_archive(name: str, spec: dict, catalogue: Catalogue) -> tuple[Archive, object]:
+def calibration_archive(name: str, spec: dict, catalogue: Catalogue) -> tuple[Archive, Calibration]:
     """(archive of the calibration's record, :class:`vcor.fitting.calibrate.Calibration`) of the
     calibration ``spec`` named ``name``; its start material by name from ``catalogue``."""
     from ..fitting import calibrate
@@ -93,6 +98,21 @@ def _compute(name: str, catalogue: Catalogue, path: Path, base: Path) -> None:
     archive.write(path, command=command, identity=catalogue.identity(name))
 
 
+def _samples_into(name: str, catalogue: Catalogue, uncertainty: dict, own: Path, folder: Path) -> None:
+    """The bootstrap samples file of fit ``name`` in ``folder`` (the catalogue's): copied from ``own`` where
+    it matches its identity, else computed from the fit's file in ``folder``."""
+    source = Path(samples_file(str(own), name, uncertainty))
+    target = Path(samples_file(str(folder), name, uncertainty))
+    identity = samples_identity(catalogue, name, uncertainty)
+    if receipts.problem(source, identity) is None:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(source, target)
+        return
+    archive = samples_archive(name, catalogue.fits[name], uncertainty, paths.material(str(folder), name),
+                              catalogue.base_dir)
+    archive.write(target, command=f"vcor.fitting.resample {DETERMINISTIC}", identity=identity)
+
+
 def ready_catalogue(catalogue: Catalogue, names, uncertainty: dict | None, folder: Path) -> Catalogue:
     """``catalogue`` with a material folder holding the file of every computed material of ``names`` (and
     their bootstrap samples for ``uncertainty``): the project's folder when its files all match their
@@ -115,14 +135,7 @@ def ready_catalogue(catalogue: Catalogue, names, uncertainty: dict | None, folde
             shutil.copyfile(source, target)
         else:
             _compute(name, here, target, base)
-    for name in (n for n in names if uncertainty is not None and n in catalogue.fits):
-        source = Path(samples_file(str(own), name, uncertainty))
-        target = Path(samples_file(str(folder), name, uncertainty))
-        identity = samples_identity(here, name, uncertainty)
-        if receipts.problem(source, identity) is None:
-            target.parent.mkdir(parents=True, exist_ok=True)
-            shutil.copyfile(source, target)
-        else:
-            samples_archive(name, catalogue.fits[name], uncertainty, paths.material(str(folder), name),
-                            base).write(target, command=f"vcor.fitting.resample {DETERMINISTIC}", identity=identity)
+    if uncertainty is not None:
+        for name in (n for n in names if n in catalogue.fits):
+            _samples_into(name, here, uncertainty, own, folder)
     return here

@@ -68,7 +68,9 @@ def chunks_of(points: Sequence[dict], settings: dict, workers: int,
     order.sort(key=lambda i: -costs[i])  # stable: the solving order's groups stay together
     total = math.fsum(costs.values())
     n = max(1, min(len(order), max(workers * CHUNKS_PER_WORKER, math.ceil(total / CHUNK_SECONDS))))
-    chunks, current, done = [], [], 0.0
+    chunks: list[list[int]] = []
+    current: list[int] = []
+    done = 0.0
     for i in order:
         if current and done + costs[i] / 2 > total * (len(chunks) + 1) / n:
             chunks.append(current)
