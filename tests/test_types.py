@@ -36,7 +36,7 @@ def _mypy(tmp_path, *files):
     return subprocess.run([sys.executable, "-m", "mypy", "--follow-imports=silent", "--ignore-missing-imports",
                            "--cache-dir", str(tmp_path / "cache"), *map(str, files)],
                           capture_output=True, text=True, cwd=ROOT, check=False,
-                          env={"PYTHONPATH": str(ROOT / "src"), "PATH": "/usr/bin:/bin"})
+                          env={"MYPYPATH": str(ROOT / "src"), "PATH": "/usr/bin:/bin"})
 
 
 def test_the_public_functions_type_check(tmp_path):
