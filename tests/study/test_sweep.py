@@ -121,9 +121,9 @@ def test_ctrl_c_stops_the_sweep_and_its_processes_within_a_second():
         try:
             assert proc.stdout.readline().startswith("ready")
             deadline = time.monotonic() + 60
-            while len(children := _children(proc.pid)) < 2 and time.monotonic() < deadline:
+            while not (children := _children(proc.pid)) and time.monotonic() < deadline:
                 time.sleep(0.05)
-            assert len(children) >= 2, "the worker processes did not start"
+            assert children, "the worker process did not start"  # workers=2: this process and one worker
             time.sleep(0.5)
             assert proc.poll() is None
             start = time.monotonic()

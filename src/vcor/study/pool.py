@@ -8,16 +8,19 @@ job solves its shard with one worker; Snakemake runs the jobs side by side).
   differ only in speed together, so that a material's tables are built once), then sorted by their
   estimated work (:func:`vcor.study.cost.point_cost`), largest first, and cut into chunks of about
   equal estimated work: the largest chunks start first and the last ones, small, fill the cores' gaps.
-* **Processes.** ``workers`` processes (``fork`` where the platform has it): each is a copy of the
-  calling process, with the numba kernels it has loaded (:func:`vcor.solvers.backend.load_kernels`
-  runs once, before the processes start), so no kernel is compiled or loaded again; where only
-  ``spawn`` exists each process loads them from numba's cache once. Each chunk goes to the next free
-  process; its rows come back and are put in their points' places.
+* **Processes.** ``workers`` processes: the calling one and ``workers - 1`` workers (``fork`` where the
+  platform has it), each worker a copy of the calling process with the numba kernels it has loaded
+  (:func:`vcor.solvers.backend.load_kernels` runs once, before the workers start), so no kernel is
+  compiled or loaded again; where only ``spawn`` exists a worker loads them from numba's cache once.
+  Every process takes the next chunk from a shared counter until none is left; the workers' rows come
+  back through a queue and are put in their points' places. The calling process solving too spares a
+  process start and its own idle waiting, which a sweep of a few seconds would feel.
 * **The same numbers.** A point's result is a pure function of the point, the settings and the
   material (the solvers keep no state between points that could change a number), so the rows equal
   those of one process, whatever the number of processes or the order (``tests/study/test_sweep.py``).
-* **Ctrl-C.** The worker processes ignore SIGINT; the calling process receives it, terminates them
-  (SIGTERM, then it waits for them: none is left behind) and raises KeyboardInterrupt, within a second.
+* **Ctrl-C.** The worker processes ignore SIGINT; the calling process receives it (between two points
+  of its own chunk, or while it waits), terminates them (SIGTERM, then it waits for them: none is left
+  behind) and raises KeyboardInterrupt, within a second.
 """
 
 from __future__ import annotations
@@ -81,25 +84,35 @@ def chunks_of(points: Sequence[dict], settings: dict, workers: int,
 
 
 # -- the worker processes ------------------------------------------------------------------------------
-_JOB: tuple = ()
+class _Board:
+    """What the processes of one solve share: the next chunk to take (a counter under a lock) and the
+    queue of solved chunks ``(k, rows)``; every process takes chunks until none is left."""
+
+    def __init__(self, ctx, chunks: list[list[int]]):
+        self.chunks = chunks
+        self.next = ctx.Value("l", 0)
+        self.done = ctx.Queue()
+
+    def take(self) -> int | None:
+        with self.next.get_lock():
+            k = self.next.value
+            self.next.value = k + 1
+        return k if k < len(self.chunks) else None
 
 
-def _start(points, settings, catalogue, method, spawned) -> None:
-    """A worker's start: ignore SIGINT (the caller stops the workers), keep the job, and where the
-    process was spawned (not forked) load the kernels from numba's cache, once."""
-    global _JOB
+def _work(board: _Board, job: tuple, method: str, spawned: bool) -> None:
+    """A worker process: ignore SIGINT (the caller stops the workers), where it was spawned (not forked)
+    load the kernels from numba's cache, then solve chunks until none is left."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
-    _JOB = (points, settings, catalogue)
     if spawned:  # pragma: no cover - fork is used where it exists
         from ..solvers.backend import load_kernels
 
         load_kernels([method])
-
-
-def _solve_chunk(task):
-    k, chunk = task
-    points, settings, catalogue = _JOB
-    return k, solve_rows([points[i] for i in chunk], settings, catalogue)
+    points, settings, catalogue = job
+    while (k := board.take()) is not None:
+        board.done.put((k, solve_rows([points[i] for i in board.chunks[k]], settings, catalogue)))
+    board.done.close()
+    board.done.join_thread()
 
 
 def _context():
@@ -107,10 +120,51 @@ def _context():
     return multiprocessing.get_context("fork" if "fork" in methods else "spawn")
 
 
+def _in_processes(points, settings, catalogue, chunks, processes, put) -> None:
+    """Solve ``chunks`` in this process and ``processes - 1`` workers side by side; ``put(k, rows)`` for each
+    solved chunk, in this process. On any exception (KeyboardInterrupt too) the workers are terminated and
+    waited for before it propagates."""
+    ctx = _context()
+    board = _Board(ctx, chunks)
+    method = settings["solver"]["method"]
+    workers = [ctx.Process(target=_work, args=(board, (points, settings, catalogue), method,
+                                               ctx.get_start_method() != "fork"), daemon=True)
+               for _ in range(processes - 1)]
+    received = 0
+    try:
+        for w in workers:
+            w.start()
+        while (k := board.take()) is not None:  # this process takes its share too
+            put(k, solve_rows([points[i] for i in chunks[k]], settings, catalogue))
+            received += 1
+            while not board.done.empty() and received < len(chunks):
+                put(*board.done.get())
+                received += 1
+        while received < len(chunks):
+            put(*board.done.get(timeout=_wait_for(workers)))
+            received += 1
+    except BaseException:
+        for w in workers:
+            w.terminate()
+        raise
+    finally:
+        for w in workers:
+            w.join()
+        board.done.close()
+
+
+def _wait_for(workers) -> float:
+    """Seconds to wait for a solved chunk: long, unless a worker has died (then its chunk never comes)."""
+    if any(w.exitcode not in (None, 0) for w in workers):
+        raise RuntimeError(f"a worker process ended with exit code {[w.exitcode for w in workers]}")
+    return 3600.0
+
+
 def solve(points: Sequence[dict], settings: dict, catalogue: Catalogue | None = None, *, workers: int = 1,
           on_rows: Callable[[list[dict]], None] | None = None, from_data: frozenset | set = frozenset()) -> list[dict]:
     """The rows of ``points`` (:func:`vcor.study.runner.solve_rows`, in the order of ``points``), solved in
-    ``workers`` processes (module docstring); ``on_rows(rows)`` after each chunk (a progress bar)."""
+    ``workers`` processes, this one among them (module docstring); ``on_rows(rows)`` after each chunk (a
+    progress bar)."""
     from ..solvers.backend import load_kernels
 
     catalogue = catalogue or Catalogue()
@@ -118,28 +172,17 @@ def solve(points: Sequence[dict], settings: dict, catalogue: Catalogue | None = 
     chunks = chunks_of(points, settings, workers, from_data)
     rows: list = [None] * len(points)
     report = on_rows or (lambda done: None)
-    method = settings["solver"]["method"]
-    load_kernels([method])  # here, once: forked workers inherit them
+
+    def put(k, solved):
+        for i, row in zip(chunks[k], solved):
+            rows[i] = row
+        report(solved)
+
+    load_kernels([settings["solver"]["method"]])  # here, once: forked workers inherit them
     processes = min(workers, len(chunks))
     if processes <= 1:
-        for chunk in chunks:
-            solved = solve_rows([points[i] for i in chunk], settings, catalogue)
-            for i, row in zip(chunk, solved):
-                rows[i] = row
-            report(solved)
-        return rows
-    ctx = _context()
-    spawned = ctx.get_start_method() != "fork"
-    pool = ctx.Pool(processes, _start, (points, settings, catalogue, method, spawned))
-    try:
-        for k, solved in pool.imap_unordered(_solve_chunk, enumerate(chunks)):
-            for i, row in zip(chunks[k], solved):
-                rows[i] = row
-            report(solved)
-        pool.close()
-    except BaseException:
-        pool.terminate()
-        raise
-    finally:
-        pool.join()
+        for k, chunk in enumerate(chunks):
+            put(k, solve_rows([points[i] for i in chunk], settings, catalogue))
+    else:
+        _in_processes(points, settings, catalogue, chunks, processes, put)
     return rows

@@ -10,6 +10,7 @@ never overwrites the point's status.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -19,6 +20,7 @@ from .. import status as _status
 from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS, richardson
+from ..solvers.options import SolverOptions
 from ..solvers.simulate import simulate
 from .grid import Axis, axis_role
 from .scene import build_point
@@ -31,17 +33,24 @@ SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega
 ERRORS = ("cor_err", "t0_err")
 
 
-def solve_point(point, settings, catalogue: Catalogue) -> dict:
-    """Scalars, status and message of one point (and the error estimates with ``error_estimate``)."""
-    material, v0, geometry = build_point(point, settings, catalogue)
+def solve_point(point, settings, catalogue: Catalogue, memo: dict | None = None) -> dict:
+    """Scalars, status and message of one point (and the error estimates with ``error_estimate``);
+    ``memo``: :func:`vcor.study.scene.build_point`'s."""
+    material, v0, geometry = build_point(point, settings, catalogue, memo)
     opts = settings["solver"]
-    res = simulate(material, v0, options=opts, **geometry)
+    res = simulate(material, v0, options=_solver_options(tuple(opts.items())), **geometry)
     out = {k: getattr(res, k) for k in SCALARS}
     out["status"], out["message"] = res.status, res.message
     out["validity"], out["validity_message"] = res.validity, res.validity_message
     if settings.get("error_estimate"):
         out.update(_error_estimate(res, material, v0, opts, geometry))
     return out
+
+
+@functools.lru_cache(maxsize=16)
+def _solver_options(items: tuple) -> SolverOptions:
+    """The options of a scene's settings, validated once per process (not once per point)."""
+    return SolverOptions(**dict(items))
 
 
 def _error_estimate(res, material, v0, opts, geometry) -> dict:
@@ -71,10 +80,11 @@ def solve_rows(points, settings, catalogue: Catalogue | None = None) -> list[dic
     stored with its status and message, never raised. Points are solved in :func:`solving_order`."""
     catalogue = catalogue or Catalogue()
     rows: list = [None] * len(points)
+    memo: dict = {}
     for i in solving_order(points):
         p = points[i]
         t = time.perf_counter()
-        row, name, message = _status.guarded(solve_point, p, settings, catalogue)
+        row, name, message = _status.guarded(solve_point, p, settings, catalogue, memo)
         if row is None:
             row = {"status": name, "message": message}
         row.setdefault("wall_time", time.perf_counter() - t)
