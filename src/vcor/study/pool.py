@@ -110,7 +110,7 @@ def _work(board: _Board, job: tuple, method: str, spawned: bool) -> None:
         load_kernels([method])
     points, settings, catalogue = job
     while (k := board.take()) is not None:
-        board.done.put((k, solve_rows([points[i] for i in board.chunks[k]], settings, catalogue)))
+        board.done.put((k, solve_rows([points[i] for i in board.chunks[k]], settings, catalogue, ordered=True)))
     board.done.close()
     board.done.join_thread()
 
@@ -135,7 +135,7 @@ def _in_processes(points, settings, catalogue, chunks, processes, put) -> None:
         for w in workers:
             w.start()
         while (k := board.take()) is not None:  # this process takes its share too
-            put(k, solve_rows([points[i] for i in chunks[k]], settings, catalogue))
+            put(k, solve_rows([points[i] for i in chunks[k]], settings, catalogue, ordered=True))
             received += 1
             while not board.done.empty() and received < len(chunks):
                 put(*board.done.get())
@@ -182,7 +182,7 @@ def solve(points: Sequence[dict], settings: dict, catalogue: Catalogue | None = 
     processes = min(workers, len(chunks))
     if processes <= 1:
         for k, chunk in enumerate(chunks):
-            put(k, solve_rows([points[i] for i in chunk], settings, catalogue))
+            put(k, solve_rows([points[i] for i in chunk], settings, catalogue, ordered=True))
     else:
         _in_processes(points, settings, catalogue, chunks, processes, put)
     return rows

@@ -74,14 +74,15 @@ def _error_estimate(res, material, v0, opts, geometry) -> dict:
     return {**out, "error_status": fine.status, "error_message": fine.message if not fine.ok else ""}
 
 
-def solve_rows(points, settings, catalogue: Catalogue | None = None) -> list[dict]:
+def solve_rows(points, settings, catalogue: Catalogue | None = None, *, ordered: bool = False) -> list[dict]:
     """One row per point (in the order of ``points``): its scalars, status and message, and its error
     estimate with ``error_estimate``; materials named in ``catalogue`` (default: presets). A failure is
-    stored with its status and message, never raised. Points are solved in :func:`solving_order`."""
+    stored with its status and message, never raised. Points are solved in :func:`solving_order`
+    (``ordered``: the caller has put them in it already)."""
     catalogue = catalogue or Catalogue()
     rows: list = [None] * len(points)
     memo: dict = {}
-    for i in solving_order(points):
+    for i in range(len(points)) if ordered else solving_order(points):
         p = points[i]
         t = time.perf_counter()
         row, name, message = _status.guarded(solve_point, p, settings, catalogue, memo)
