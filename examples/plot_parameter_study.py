@@ -2,51 +2,27 @@
 A parameter study and its ``sweep.nc``
 ======================================
 
-A study is a **scene** in ``config.yaml``. Snakemake plans the scene's grid into jobs, solves them
-and aggregates the results into ``results/<scene>/sweep.nc``, a NetCDF dataset with units on every
-variable. This example writes a project with one small scene into a temporary folder, runs the
-workflow on it, and reads the dataset with xarray. It needs the workflow extra
-(``pip install -e '.[workflow]'``) and a clone of the repository (for ``Snakefile`` and ``workflow/``).
+A study is a **scene**: materials, a grid of speeds and parameters, ties between them, solver options.
+:func:`vcor.sweep <vcor.study.api.sweep>` solves a scene's grid on the machine's cores and returns the
+dataset the workflow archives as ``results/<scene>/sweep.nc`` (units on every variable, status and
+validity flags, the scene's config), here for the scene ``my-first`` of the getting-started page, as
+it would stand under ``scenes:`` in ``config.yaml``. ``snakemake -j2`` builds the same file from the
+config; ``vcor sweep --config config.yaml --scene my-first --out sweep.nc`` writes it without Snakemake.
 """
-
-import shutil
-import subprocess
-import tempfile
-from pathlib import Path
 
 import matplotlib.pyplot as plt
-import xarray as xr
 
+import vcor
 from vcor import plots
 
-CONFIG = """\
-scenes:
-  my-first:
-    description: "SLS plate: COR against v0 at three relaxation rates"
-    materials: [sls]
-    grid:
-      v0: [1, 3, 10, 30]          # m/s
-      beta: [600, 1200, 2400]     # SLS relaxation rate, 1/s
-    tie:
-      alpha: {to: beta, ratio: 0.25}   # rubbery / glassy modulus = 1/4 at every beta
-    figures:
-      fig4: {material: sls}
-"""
-
-# the repository (Snakefile, workflow/, profiles/), whether this runs as a script or in the manual's build
-here = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
-repo = next(p for p in (here, *here.parents) if (p / "Snakefile").is_file())
-workdir = tempfile.TemporaryDirectory(prefix="vcor-example-")  # removed when the example ends
-project = Path(workdir.name)
-for part in ("Snakefile", "workflow", "profiles"):
-    (shutil.copytree if (repo / part).is_dir() else shutil.copy)(repo / part, project / part)
-(project / "config.yaml").write_text(CONFIG)
-
-run = subprocess.run(["snakemake", "-j2", "results/my-first/sweep.nc"], cwd=project, capture_output=True,
-                     text=True, check=False)
-print("snakemake -j2 results/my-first/sweep.nc: exit code", run.returncode)
-print("\n".join(run.stderr.strip().splitlines()[-6:]))
-run.check_returncode()
+scene = {
+    "description": "SLS plate: COR against v0 at three relaxation rates",
+    "materials": ["sls"],
+    "grid": {"v0": [1, 3, 10, 30], "beta": [600, 1200, 2400]},  # m/s, 1/s
+    "tie": {"alpha": {"to": "beta", "ratio": 0.25}},  # rubbery / glassy modulus = 1/4 at every beta
+    "figures": {"fig4": {"material": "sls"}},
+}
+ds = vcor.sweep(scene, progress=False)
 
 # %%
 # Reading the dataset
@@ -54,7 +30,6 @@ run.check_returncode()
 # One variable per result field, each with its ``units`` and ``long_name``; the grid axes are
 # dimensions; ``status`` and ``validity`` are CF flag variables.
 
-ds = xr.load_dataset(project / "results" / "my-first" / "sweep.nc")
 print(ds)
 print()
 print("cor:", ds["cor"].attrs["long_name"], f"[{ds['cor'].attrs['units']}]")
@@ -85,8 +60,8 @@ fig.tight_layout()
 # The workflow's own figure
 # -------------------------
 # The scene asks for ``fig4``; ``snakemake -j2 results/my-first/MANIFEST.txt`` would draw it into
-# ``results/my-first/figures/``. Here it is drawn from the same dataset by the same function
-# (``vcor.plots.FIGURES``).
+# ``results/my-first/figures/``. Here it is drawn from the dataset ``vcor.sweep`` returned by the same
+# function (``vcor.plots.FIGURES``).
 
 draw, needs = plots.FIGURES["fig4"]
 fig = draw(ds, {"material": "sls"})

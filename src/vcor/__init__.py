@@ -1,7 +1,9 @@
 """vcor: the viscoelastic coefficient of restitution (Green 2026; Ramirez et al. 1999).
 
 The public surface: :func:`simulate` (one impact, method ``adaptive`` by default), :class:`Result`,
-:class:`SolverOptions`, and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
+:class:`SolverOptions`; the study functions, one per capability of the workflow (:mod:`vcor.study.api`):
+:func:`sweep` (a scene's grid, in parallel, the dataset the workflow archives), :func:`fit`,
+:func:`calibrate` and :func:`dem_export`; and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
 :mod:`~vcor.solvers`, :mod:`~vcor.fitting`, :mod:`~vcor.study`, :mod:`~vcor.io`, :mod:`~vcor.plots`
 and the modules :mod:`~vcor.spheres` and :mod:`~vcor.status`.
 
@@ -10,14 +12,22 @@ material does not import the numba solvers (workflow jobs start faster).
 """
 
 from importlib import import_module
+from typing import TYPE_CHECKING
 
 from .version import __version__
 
-__all__ = ["Result", "SolverOptions", "__version__", "materials", "simulate"]
+if TYPE_CHECKING:  # what the lazy names are, for type checkers (loaded on first use otherwise)
+    from .solvers.common import Result
+    from .solvers.options import SolverOptions
+    from .solvers.simulate import simulate
+    from .study.api import calibrate, dem_export, fit, sweep
 
-_NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options"}
-_SUBMODULES = ("checks", "cli", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers", "spheres",
-               "status", "study")
+__all__ = ["Result", "SolverOptions", "__version__", "calibrate", "dem_export", "fit", "materials", "simulate", "sweep"]
+
+_NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options",
+          **dict.fromkeys(("sweep", "fit", "calibrate", "dem_export"), "vcor.study.api")}
+_SUBMODULES = ("checks", "cli", "cli_study", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers",
+               "spheres", "status", "study")
 
 
 def __getattr__(name):

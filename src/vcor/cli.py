@@ -6,6 +6,7 @@ dataset as a table.
     vcor impact --material sls --v0 10 [--json]         one impact (method adaptive unless --method)
     vcor materials [--config config.yaml] [--json]      presets and a config's materials, with units
     vcor export results/sls/sweep.nc [--csv FILE]       a dataset as a tidy table (one row per point)
+    vcor sweep | fit | calibrate | dem --config ...       the study functions (vcor.cli_study)
     vcor --version
 
 ``vcor impact`` prints each number with its unit, to 5 significant digits (2 for the energy residual
@@ -34,6 +35,8 @@ import sys
 from pathlib import Path
 
 from .checks import number
+from .cli_study import COMMANDS as STUDY_COMMANDS
+from .cli_study import add_commands as add_study_commands
 from .contact.impact import GEOMETRY_DEFAULTS, RANGE_UNITS, RANGES, Geometry
 from .materials import REGISTRY
 from .solvers.options import BOOLEAN_OPTIONS, OPTION_HELP, OPTION_UNITS, SolverOptions
@@ -220,7 +223,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="vcor", description="vcor: the viscoelastic coefficient of restitution. "
                                 "SI units throughout.")
     p.add_argument("--version", action="version", version=f"vcor {__version__}")
-    sub = p.add_subparsers(dest="command", required=True, metavar="{impact,materials,export}")
+    sub = p.add_subparsers(dest="command", required=True,
+                           metavar="{impact,materials,export," + ",".join(STUDY_COMMANDS) + "}")
     _add_impact(sub)
     mats = sub.add_parser("materials", help="list the presets and a config's materials: model, formula, "
                           "parameters with units, and where the numbers come from",
@@ -233,6 +237,7 @@ def build_parser() -> argparse.ArgumentParser:
                                      "as CSV, each column headed 'name [unit]', statuses by name.")
     exp.add_argument("dataset", help="a NetCDF dataset written by vcor (e.g. results/sls/sweep.nc)")
     exp.add_argument("--csv", default=None, help="output file [no unit; default: standard output]")
+    add_study_commands(sub)
     return p
 
 
@@ -449,7 +454,7 @@ def _export(args) -> int:
 def main(argv=None) -> int:
     """Run the command line; returns the exit code (module docstring)."""
     args = build_parser().parse_args(argv)
-    run = {"impact": _impact, "materials": _materials, "export": _export}[args.command]
+    run = {"impact": _impact, "materials": _materials, "export": _export, **STUDY_COMMANDS}[args.command]
     try:
         return run(args)
     except ValueError as exc:

@@ -2,7 +2,8 @@
 
 ``code_fingerprint()`` is a short hash of everything in the installed package that can change a
 number in a dataset: the vcor version, the source of every module except the drawing and
-command-line ones (the ``plots`` subpackage, ``cli.py``), and the versions of numpy, scipy and numba. It enters
+command-line ones (the ``plots`` subpackage, ``cli.py``, ``cli_study.py``), and the versions of numpy,
+scipy and numba. It enters
 the identity of every sweep shard and the parameters of every computing workflow rule, so a
 change of code recomputes what it may have changed (and ``snakemake -n`` lists it), and an
 aggregate never combines results of different code. ``plots_fingerprint()`` does the same for the
@@ -22,7 +23,7 @@ __all__ = ["code_fingerprint", "git_commit", "plots_fingerprint", "source"]
 _PACKAGE = Path(__file__).resolve().parent
 #: modules that draw or parse arguments but compute no stored number
 _PLOTS = _PACKAGE / "plots"
-_CLI = _PACKAGE / "cli.py"
+_CLI = (_PACKAGE / "cli.py", _PACKAGE / "cli_study.py")
 
 
 def _hash_files(paths) -> hashlib._Hash:
@@ -41,7 +42,7 @@ def code_fingerprint() -> str:
 
     from .version import __version__
 
-    files = [p for p in _PACKAGE.rglob("*.py") if p != _CLI and _PLOTS not in p.parents]
+    files = [p for p in _PACKAGE.rglob("*.py") if p not in _CLI and _PLOTS not in p.parents]
     h = _hash_files(files)
     h.update(f"vcor {__version__}; numpy {version('numpy')}; scipy {version('scipy')}; "
              f"numba {version('numba')}".encode())

@@ -10,6 +10,7 @@ never overwrites the point's status.
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 
@@ -19,11 +20,12 @@ from .. import status as _status
 from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS, richardson
+from ..solvers.options import SolverOptions
 from ..solvers.simulate import simulate
 from .grid import Axis, axis_role
 from .scene import build_point
 
-__all__ = ["ERRORS", "SCALARS", "run_points", "solve_point", "solving_order"]
+__all__ = ["ERRORS", "SCALARS", "rows_dataset", "run_points", "solve_point", "solve_rows", "solving_order"]
 
 #: scalar outputs stored per point
 SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",
@@ -31,17 +33,24 @@ SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega
 ERRORS = ("cor_err", "t0_err")
 
 
-def solve_point(point, settings, catalogue: Catalogue) -> dict:
-    """Scalars, status and message of one point (and the error estimates with ``error_estimate``)."""
-    material, v0, geometry = build_point(point, settings, catalogue)
+def solve_point(point, settings, catalogue: Catalogue, memo: dict | None = None) -> dict:
+    """Scalars, status and message of one point (and the error estimates with ``error_estimate``);
+    ``memo``: :func:`vcor.study.scene.build_point`'s."""
+    material, v0, geometry = build_point(point, settings, catalogue, memo)
     opts = settings["solver"]
-    res = simulate(material, v0, options=opts, **geometry)
+    res = simulate(material, v0, options=_solver_options(tuple(opts.items())), **geometry)
     out = {k: getattr(res, k) for k in SCALARS}
     out["status"], out["message"] = res.status, res.message
     out["validity"], out["validity_message"] = res.validity, res.validity_message
     if settings.get("error_estimate"):
         out.update(_error_estimate(res, material, v0, opts, geometry))
     return out
+
+
+@functools.lru_cache(maxsize=16)
+def _solver_options(items: tuple) -> SolverOptions:
+    """The options of a scene's settings, validated once per process (not once per point)."""
+    return SolverOptions(**dict(items))
 
 
 def _error_estimate(res, material, v0, opts, geometry) -> dict:
@@ -65,16 +74,18 @@ def _error_estimate(res, material, v0, opts, geometry) -> dict:
     return {**out, "error_status": fine.status, "error_message": fine.message if not fine.ok else ""}
 
 
-def run_points(points, settings, catalogue: Catalogue | None = None):
-    """Solve each point (materials named in ``catalogue``, default: presets); a failure is stored with
-    its status and message, never raised. Points are solved in :func:`solving_order` (the dataset
-    keeps the order of ``points``)."""
+def solve_rows(points, settings, catalogue: Catalogue | None = None, *, ordered: bool = False) -> list[dict]:
+    """One row per point (in the order of ``points``): its scalars, status and message, and its error
+    estimate with ``error_estimate``; materials named in ``catalogue`` (default: presets). A failure is
+    stored with its status and message, never raised. Points are solved in :func:`solving_order`
+    (``ordered``: the caller has put them in it already)."""
     catalogue = catalogue or Catalogue()
-    rows = [None] * len(points)
-    for i in solving_order(points):
+    rows: list = [None] * len(points)
+    memo: dict = {}
+    for i in range(len(points)) if ordered else solving_order(points):
         p = points[i]
         t = time.perf_counter()
-        row, name, message = _status.guarded(solve_point, p, settings, catalogue)
+        row, name, message = _status.guarded(solve_point, p, settings, catalogue, memo)
         if row is None:
             row = {"status": name, "message": message}
         row.setdefault("wall_time", time.perf_counter() - t)
@@ -82,7 +93,13 @@ def run_points(points, settings, catalogue: Catalogue | None = None):
             row.setdefault("error_status", row["status"])
             row.setdefault("error_message", "no estimate: the point itself is not ok")
         rows[i] = row
-    return _rows_to_dataset(points, rows, settings)
+    return rows
+
+
+def run_points(points, settings, catalogue: Catalogue | None = None):
+    """The dataset of ``points`` solved (:func:`solve_rows`, :func:`rows_dataset`): one shard, in one
+    process; the dataset keeps the order of ``points``."""
+    return rows_dataset(points, solve_rows(points, settings, catalogue), settings)
 
 
 def solving_order(points) -> list[int]:
@@ -104,7 +121,9 @@ def solving_order(points) -> list[int]:
     return [i for members in groups.values() for i in members]
 
 
-def _rows_to_dataset(points, rows, settings):
+def rows_dataset(points, rows, settings):
+    """The shard dataset of ``points`` and their rows (:func:`solve_rows`): dimension ``point``, every
+    variable with its units and long name, status and validity as CF flags."""
     import xarray as xr
 
     n = len(points)

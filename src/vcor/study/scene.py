@@ -261,14 +261,15 @@ def _body_materials(bodies: dict, catalogue: Catalogue) -> dict:
     return out
 
 
-def build_point(point, settings, catalogue: Catalogue | None = None):
+def build_point(point, settings, catalogue: Catalogue | None = None, memo: dict | None = None):
     """(material, v0, geometry) of one point. Each key is used by its axis role
     (:func:`vcor.study.grid.axis_role`): the speed, a geometry keyword, a material parameter, the
     temperature (deg C, through the material's shift function) or the bootstrap sample; ties set a
-    material parameter from an axis."""
+    material parameter from an axis. ``memo`` (a dict the caller keeps, one entry): the last point's
+    material, reused by a point that differs from it only in speed or geometry (the same immutable
+    object, with the values it has computed and cached: a grid's speeds cost what a loop over them does)."""
     catalogue = catalogue or Catalogue()
     geometry = dict(settings["geometry"])
-    overrides = {}
     v0 = None
     for key, value in point.items():
         if key in ("index", "material", "material_id"):
@@ -278,8 +279,21 @@ def build_point(point, settings, catalogue: Catalogue | None = None):
             v0 = float(value)
         elif role == "geometry":
             geometry[key] = value
-        elif role == "material":
-            overrides[key] = value
+    key = tuple((k, v) for k, v in point.items() if k not in ("index", "material_id")
+                and (k == "material" or axis_role(k) not in ("speed", "geometry")))
+    if memo is not None and memo.get("key") == key:
+        material, bodies = memo["value"]
+    else:
+        material, bodies = _point_material(point, settings, catalogue)
+        if memo is not None:
+            memo.update(key=key, value=(material, bodies))
+    return material, v0, (geometry if bodies is None else dict(bodies))
+
+
+def _point_material(point, settings, catalogue: Catalogue):
+    """(material, geometry of the bodies or None) of a point (:func:`build_point`)."""
+    overrides = {k: v for k, v in point.items() if k not in ("index", "material", "material_id")
+                 and axis_role(k) == "material"}
     for target, spec in settings["tie"].items():
         overrides[target] = float(spec["ratio"]) * float(point[spec["to"]])
     T = float(point["T"]) if "T" in point else None
@@ -289,8 +303,8 @@ def build_point(point, settings, catalogue: Catalogue | None = None):
     else:
         material = catalogue.at(point["material"], overrides, T)
     if "bodies" in settings:
-        material, geometry = impact_inputs(*scene_bodies(_body_materials(settings["bodies"], catalogue), material))
-    return material, v0, geometry
+        return impact_inputs(*scene_bodies(_body_materials(settings["bodies"], catalogue), material))
+    return material, None
 
 
 def _needs_direct(material, geometry) -> bool:

@@ -1,0 +1,102 @@
+"""The ``vcor`` commands of the study functions (:mod:`vcor.study.api`), for users without Snakemake::
+
+    vcor sweep --config my.yaml --scene NAME --out sweep.nc [--workers N] [--no-progress]
+    vcor fit --config my.yaml --name NAME --out NAME.nc [--table NAME.txt]
+    vcor calibrate --config my.yaml --name NAME --out NAME.nc
+    vcor dem --config my.yaml --name NAME [--project DIR]
+
+Each writes what the workflow's rule writes for the entry (the same dataset, by the same function), and
+refuses bad input with the workflow's one-line message naming the key, before any work (exit code 2).
+A sweep's points that did not end ``ok`` are stored with their status, never an error: the command
+prints the counts and exits 0. Ctrl-C stops a sweep at once, its worker processes with it (exit code 130).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+__all__ = ["COMMANDS", "add_commands"]
+
+
+def _common(parser, what: str, name_flag: str) -> None:
+    parser.add_argument("--config", required=True, help="the config file (YAML) that defines the entry; relative "
+                        "paths in it are taken from its folder [no unit; required]")
+    parser.add_argument(name_flag, required=True, dest="name", help=f"the name of the {what} in the config [no unit; "
+                        f"required]")
+
+
+def add_commands(sub) -> None:
+    """Add the commands of the module docstring to the subparsers ``sub`` of ``vcor``'s parser."""
+    sw = sub.add_parser("sweep", help="solve a scene's grid into its sweep dataset (as results/<scene>/sweep.nc)",
+                        description="Solve a scene of a config on this machine's cores and write its sweep dataset "
+                                    "(vcor.sweep): the workflow's results/<scene>/sweep.nc, without Snakemake.")
+    _common(sw, "scene (scenes.<name>)", "--scene")
+    sw.add_argument("--out", required=True, help="the NetCDF file to write [no unit; required]")
+    sw.add_argument("--workers", type=int, default=None, help="processes that solve [no unit; default: the cores "
+                    "available]")
+    sw.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                    help="a progress bar on standard error [no unit; default: when it is a terminal]")
+    ft = sub.add_parser("fit", help="fit a material of a config's fits block (as <material_dir>/<name>.nc)",
+                        description="Fit a material of a config's fits: block (vcor.fit) and write its material file.")
+    _common(ft, "fit (fits.<name>)", "--name")
+    ft.add_argument("--out", required=True, help="the material file to write (NetCDF) [no unit; required]")
+    ft.add_argument("--table", default=None, help="also write the fit's text table here [no unit; default: none]")
+    cal = sub.add_parser("calibrate", help="calibrate a material of a config's calibrations block",
+                         description="Calibrate a material to measured COR (vcor.calibrate) and write its record, "
+                                     "which is also its material file.")
+    _common(cal, "calibration (calibrations.<name>)", "--name")
+    cal.add_argument("--out", required=True, help="the record to write (NetCDF) [no unit; required]")
+    dem = sub.add_parser("dem", help="a dem: entry's dataset, COR table, parameters, LAMMPS deck and Yade script",
+                         description="Export a dem: entry of a config (vcor.dem_export): its dataset, COR table, "
+                                     "parameters file, LAMMPS deck and Yade script, laid out as the workflow does.")
+    _common(dem, "DEM entry (dem.<name>)", "--name")
+    dem.add_argument("--project", default=".", help="the folder the workflow's layout is written under "
+                     "(results/dem/...) [no unit; default: the current folder]")
+
+
+def _sweep(args) -> int:
+    from .study.api import sweep_archive
+    from .study.summary import outcome_of
+
+    try:
+        archive = sweep_archive(args.name, config=args.config, workers=args.workers, progress=args.progress)
+    except KeyboardInterrupt:
+        print("vcor sweep: interrupted; nothing written", file=sys.stderr)
+        return 130
+    archive.write(args.out, command=f"vcor sweep --config {args.config} --scene {args.name}")
+    done = outcome_of(archive.dataset)
+    print(f"vcor sweep: {done.points} points, {done.text()}: {args.out}", file=sys.stderr)
+    return 0
+
+
+def _fit(args) -> int:
+    from .study.api import fit
+
+    fitted = fit(args.name, config=args.config)
+    fitted.write(args.out, table=args.table)
+    print(f"vcor fit: {args.name}: {fitted.material.to_dict()}: {args.out}", file=sys.stderr)
+    return 0
+
+
+def _calibrate(args) -> int:
+    from .study.api import calibrate
+
+    calibrated = calibrate(args.name, config=args.config)
+    sys.stderr.write(calibrated.report())
+    calibrated.write(args.out)
+    print(f"vcor calibrate: {args.name}: {args.out}", file=sys.stderr)
+    return 0
+
+
+def _dem(args) -> int:
+    from .study.api import dem_export
+
+    written = dem_export(args.name, config=args.config).write(args.project)
+    for path in written.values():
+        print(path)
+    return 0
+
+
+#: command -> its function (args -> exit code)
+COMMANDS = {"sweep": _sweep, "fit": _fit, "calibrate": _calibrate, "dem": _dem}

@@ -1,0 +1,221 @@
+"""What the public study functions (:mod:`vcor.study.api`) and the ``vcor`` study commands take: a
+config (a file, a mapping or a :class:`~vcor.materials.Catalogue`), a scene (its name in the config or
+its mapping) and materials (names or objects), checked as the workflow checks its config.
+
+Every config file is read by :func:`read_config`, and every config goes through the workflow's own
+checks: the JSON schema (:func:`vcor.study.schema.check_schema`, which also fills in its defaults, so
+that a scene's recorded config is the one the workflow records) and :func:`vcor.study.config.load_project`.
+A refusal is the workflow's one line, naming the key, before any work; for a scene given as a mapping
+the key is written from the argument (``scene.grid.bta: unknown key ...`` rather than
+``scenes.<name>.grid.bta``), and for a config file the file is named first.
+
+A material object (:class:`vcor.materials.Material`) is taken where a name is: in a scene's
+``materials`` list it becomes a config material named ``<kind>-<8 hex digits of its parameters>``
+(the same object, the same name), in a config's ``materials`` block it keeps its key.
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..materials.catalogue import Catalogue, content_hash
+from ..materials.models import Material
+from .config import load_project
+from .project import Project
+from .schema import check_schema
+
+__all__ = ["SCENE_NAME", "Resolved", "as_config", "plain", "read_config", "resolve_entry", "resolve_scene",
+           "schema_path", "spec_of"]
+
+#: the name of a scene given as a mapping that is not one of its config's scenes
+SCENE_NAME = "sweep"
+#: the config's sections a study function keeps besides what it builds
+_SHARED = ("materials", "fits", "calibrations", "material_dir", "job_seconds", "shard_size")
+
+
+def schema_path() -> Path:
+    """The workflow's config schema, shipped with the package (``vcor/study/config.schema.yaml``, the
+    same file as ``workflow/schemas/config.schema.yaml``)."""
+    return Path(__file__).with_name("config.schema.yaml")
+
+
+def read_config(path) -> dict:
+    """The mapping of a YAML config file; ValueError naming the file when it is missing or not a
+    mapping. The one place the study functions and commands read a config file."""
+    import yaml
+
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"config {str(path)!r}: no such file")
+    try:
+        cfg = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as exc:
+        raise ValueError(f"config {str(path)!r}: not YAML ({str(exc).splitlines()[0]})") from None
+    if cfg is None:
+        return {}
+    if not isinstance(cfg, dict):
+        raise ValueError(f"config {str(path)!r}: a mapping of sections (scenes, fits, calibrations, dem, "
+                         f"materials, ...), got {type(cfg).__name__}")
+    return cfg
+
+
+def plain(value):
+    """``value`` with NumPy arrays and scalars, tuples and material objects made plain config values
+    (lists, numbers, material specs), recursively; a new object (the caller's is not changed)."""
+    if isinstance(value, Material):
+        return spec_of(value)
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [plain(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return copy.deepcopy(value)
+
+
+def spec_of(material: Material) -> dict:
+    """The config spec of a material object (its model and parameters)."""
+    d = material.to_dict()
+    return {"model": d.pop("kind"), **d}
+
+
+def _object_name(material: Material) -> str:
+    spec = spec_of(material)
+    return f"{spec['model']}-{content_hash(spec, 8)}"
+
+
+def as_config(config) -> tuple[dict, Path]:
+    """(config mapping, its folder) of ``config``: None (presets only), a path to a YAML file, a mapping
+    or a :class:`~vcor.materials.Catalogue`. The mapping is a copy, plain (:func:`plain`)."""
+    if config is None:
+        return {}, Path(".")
+    if isinstance(config, Catalogue):
+        cfg = {"materials": config.specs, "fits": config.fits, "calibrations": config.calibrations,
+               "material_dir": config.material_dir}
+        return plain(cfg), Path(config.base_dir)
+    if isinstance(config, (str, Path)):
+        return read_config(config), Path(config).parent
+    if isinstance(config, dict):
+        return plain(config), Path(".")
+    raise ValueError(f"config must be None, a path to a YAML file, a mapping or a vcor.materials.Catalogue, "
+                     f"got {type(config).__name__}")
+
+
+def _where(config) -> str:
+    return f"config {str(config)!r}: " if isinstance(config, (str, Path)) else ""
+
+
+@dataclass(frozen=True, kw_only=True)
+class Resolved:
+    """A checked entry of a config: its ``name``, the :class:`~vcor.study.project.Project` holding it with
+    the config's materials, fits and calibrations, and the project's folder ``base_dir``."""
+
+    name: str
+    project: Project
+    base_dir: Path
+
+    @property
+    def scene(self):
+        """The entry as a scene (:class:`vcor.study.project.Scene`)."""
+        return self.project.scenes[self.name]
+
+
+def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None) -> Project:
+    """The project of ``study`` (the workflow's checks); a refusal names ``config``'s file and, for an entry
+    given as a mapping, writes its key from the argument (``rename``: (key prefix, argument))."""
+    try:
+        check_schema(study, schema_path())
+        return load_project(study, base_dir=base, require_targets=False)
+    except ValueError as exc:
+        text = str(exc)
+        if rename is not None:
+            text = re.sub(rf"^{re.escape(rename[0])}(?=[.:\[ ]|$)", rename[1], text)
+        raise type(exc)(f"{_where(config)}{text}") from None
+
+
+def _entries(project: Project, section: str) -> dict:
+    return {"fits": project.catalogue.fits, "calibrations": project.catalogue.calibrations,
+            "dem": project.dem}[section]
+
+
+def resolve_entry(section: str, entry, name, config, argument: str) -> Resolved:
+    """The checked entry of a config ``section`` (``fits``, ``calibrations`` or ``dem``) given as its name
+    in ``config`` (a fit family's member too, ``butyl-prony-n3``) or as a mapping (named ``name``, default
+    ``argument``), with the config's materials, fits and calibrations; ValueError in one line naming the
+    key otherwise, before any work."""
+    cfg, base = as_config(config)
+    study = {k: cfg[k] for k in _SHARED if k in cfg}
+    rename = None
+    if isinstance(entry, str):
+        name = entry
+        if section == "dem" and entry in (cfg.get("dem") or {}):
+            study["dem"] = {entry: cfg["dem"][entry]}
+    elif isinstance(entry, dict):
+        name = argument if name is None else name
+        if not isinstance(name, str) or not re.fullmatch(r"[A-Za-z0-9_.-]+", name):
+            raise ValueError(f"name must be a text of letters, digits, ., - and _, got {name!r}")
+        study[section] = {**(study.get(section) or {}), name: plain(entry)}
+        rename = (f"{section}.{name}", argument)
+    else:
+        raise ValueError(f"{argument} must be a mapping (an entry of a config's {section} block) or the name of "
+                         f"one in config, got {type(entry).__name__}")
+    project = _checked(study, base, config, rename)
+    if name not in _entries(project, section):
+        known = sorted(_entries(project, section))
+        raise ValueError(f"{_where(config)}{argument}: {name!r} is not an entry of the config's {section} block "
+                         f"({known or 'it has none'})")
+    return Resolved(name=name, project=project, base_dir=base)
+
+
+def _objects_named(scene: dict, cfg: dict) -> dict:
+    """The scene with each material object of its list replaced by a config material's name (added to
+    ``cfg``'s materials block)."""
+    materials = scene.get("materials")
+    if not isinstance(materials, (list, tuple)) or not any(isinstance(m, Material) for m in materials):
+        return scene
+    block = dict(cfg.get("materials") or {})
+    names = []
+    for m in materials:
+        if isinstance(m, Material):
+            names.append(_object_name(m))
+            block[names[-1]] = spec_of(m)
+        else:
+            names.append(m)
+    cfg["materials"] = block
+    return {**scene, "materials": names}
+
+
+def _scene_entry(scene, cfg: dict, config) -> tuple[str, dict, bool]:
+    """(name, scene mapping, given by name) of the ``scene`` argument."""
+    scenes = cfg.get("scenes") or {}
+    if isinstance(scene, str):
+        if scene not in scenes:
+            raise ValueError(f"{_where(config)}scene: {scene!r} is not a scene of the config "
+                             f"({sorted(scenes) if scenes else 'it has none'})")
+        return scene, scenes[scene], True
+    if not isinstance(scene, dict):
+        raise ValueError(f"scene must be a mapping (as under scenes.<name> of a config) or the name of a scene "
+                         f"of config, got {type(scene).__name__}")
+    given = plain(_objects_named(dict(scene), cfg))
+    same = [n for n, s in scenes.items() if s == given]
+    return (same[0] if same else SCENE_NAME), given, False
+
+
+def resolve_scene(scene, config=None) -> Resolved:
+    """The checked study of ``scene`` (its name in ``config``, or a mapping) with ``config``'s materials,
+    fits and calibrations; ValueError (one line naming the key: module docstring) before any work."""
+    cfg, base = as_config(config)
+    name, entry, by_name = _scene_entry(scene, cfg, config)
+    study = {k: cfg[k] for k in _SHARED if k in cfg}
+    study["scenes"] = {name: plain(entry)}
+    key = f"scenes.{name}"
+    project = _checked(study, base, config, None if by_name else (key, "scene"))
+    if project.scenes[name].grid is None:
+        raise ValueError(f"{_where(config)}{key if by_name else 'scene'}.grid: the scene has no grid to sweep "
+                         f"(add grid: {{v0: [...]}})")
+    return Resolved(name=name, project=project, base_dir=base)

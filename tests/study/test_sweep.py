@@ -1,0 +1,168 @@
+"""vcor.sweep on the local machine (vcor.study.api, .pool, .progress): processes give the numbers of one
+process, the work is handed out largest first, bad input is refused before any work in one line naming
+the argument, Ctrl-C stops every process within a second, and the progress bar shows on a terminal only."""
+
+import fcntl
+import os
+import pty
+import signal
+import struct
+import subprocess
+import sys
+import termios
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import vcor
+from vcor.study import api, pool, scene
+
+ROOT = Path(__file__).resolve().parents[2]
+ENV = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+
+# two materials, a geometry axis, the error estimate (whose finer runs end at the step budget), flagged points
+SCENE = {"materials": ["sls", "butyl-fc"], "grid": {"v0": [0.5, 3.0, 10.0, 30.0], "nu": [0.45, 0.5]},
+         "error_estimate": True, "solver": {"method": "direct", "steps_per_contact": 200, "max_steps": 250}}
+
+
+def test_processes_give_the_numbers_of_one_process():
+    one = vcor.sweep(SCENE, workers=1, progress=False)
+    two = vcor.sweep(SCENE, workers=2, progress=False)
+    assert set(np.unique(one["error_status"].values)) != {0}  # failed runs stored, not raised
+    assert (one["validity"] != 0).any()
+    a, b = one.drop_vars("wall_time"), two.drop_vars("wall_time")
+    a.attrs.pop("history"), b.attrs.pop("history")
+    xr.testing.assert_identical(a, b)
+
+
+def test_chunks_hand_out_every_point_once_largest_work_first():
+    sc = {"materials": ["sls", "fitted"], "grid": {"v0": list(np.linspace(1, 30, 40)), "beta": [600, 1200]}}
+    points = [{**p, "material_id": "x"} for p in scene.grid_of(sc).points()]
+    settings = scene.settings_of({})
+    chunks = pool.chunks_of(points, settings, 2, from_data={"fitted"})
+    flat = [i for c in chunks for i in c]
+    assert sorted(flat) == list(range(len(points)))
+    assert len(chunks) >= 2 * pool.CHUNKS_PER_WORKER
+    mats = [points[i]["material"] for i in flat]
+    assert mats == sorted(mats, key=lambda m: m != "fitted")  # the fitted material's (larger) work first
+
+
+@pytest.mark.parametrize(("kwargs", "words"), [
+    ({"scene": {"materials": ["slss"], "grid": {"v0": [1]}}}, "scene.materials: unknown material 'slss'"),
+    ({"scene": {"materials": ["sls"], "grid": {"v0": [1], "bta": [1]}}}, "scene.grid.bta: "),
+    ({"scene": {"materials": ["sls"], "grid": {"v0": [1, 2, 1]}}}, "scene.grid.v0: 1 listed more than once"),
+    ({"scene": {"materials": ["sls"], "grid": {"v0": [1]}}, "workers": 0}, "workers must be an integer >= 1"),
+    ({"scene": {"materials": ["sls"], "grid": {"v0": [1]}}, "progress": "yes"}, "progress must be None"),
+    ({"scene": "s", "config": {"scenes": {}}}, "scene: 's' is not a scene of the config"),
+    ({"scene": {"materials": ["sls"]}}, "scene.grid: the scene has no grid"),
+])
+def test_bad_input_is_refused_before_any_work_naming_the_argument(monkeypatch, kwargs, words):
+    def no_work(*args, **kw):
+        raise AssertionError("solving started")
+
+    monkeypatch.setattr(api, "solve_points", no_work)
+    with pytest.raises(ValueError) as info:
+        vcor.sweep(**kwargs)
+    assert words in str(info.value) and "\n" not in str(info.value)
+
+
+def test_a_config_file_is_named_in_its_refusals(tmp_path):
+    (tmp_path / "my.yaml").write_text("scenes:\n  s: {materials: [sls], grid: {v0: [1], bta: [2]}}\n")
+    with pytest.raises(ValueError, match=r"^config '.*my.yaml': scenes\.s\.grid\.bta: "):
+        vcor.sweep("s", config=tmp_path / "my.yaml")
+
+
+def test_material_objects_and_numpy_grids_are_taken():
+    mat = vcor.materials.SLS(15e6, 300.0, 1200.0)
+    ds = vcor.sweep({"materials": [mat], "grid": {"v0": np.array([1.0, 10.0])}}, workers=1, progress=False)
+    name = ds["material"].item()
+    assert name.startswith("sls-")
+    np.testing.assert_array_equal(ds["cor"].sel(material=name).values,
+                                  [vcor.simulate("sls", v).cor for v in (1.0, 10.0)])
+
+
+LONG_SWEEP = textwrap.dedent("""
+    import os, sys
+    import vcor
+    from vcor.study import progress
+    progress.DELAY = 0  # the bar at once (the test is about where it shows, not when)
+    vcor.simulate("sls", 1.0)
+    print("ready", os.getpid(), flush=True)
+    vcor.sweep({"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 30, "num": %d},
+                "beta": {"start": 600, "stop": 4800, "num": 40, "log": True}},
+                "tie": {"alpha": {"to": "beta", "ratio": 0.25}}}, workers=%d, progress=%s)
+    print("done", flush=True)
+""")
+
+
+def _children(pid):
+    out = set()
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        text = (task / "children").read_text().split()
+        out |= {int(t) for t in text}
+    return out
+
+
+def _alive(pid):
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except FileNotFoundError:
+        return False
+    return stat.rsplit(")", 1)[1].split()[0] != "Z"
+
+
+def test_ctrl_c_stops_the_sweep_and_its_processes_within_a_second():
+    with subprocess.Popen([sys.executable, "-c", LONG_SWEEP % (400, 2, "False")], env=ENV, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, text=True) as proc:
+        try:
+            assert proc.stdout.readline().startswith("ready")
+            deadline = time.monotonic() + 60
+            while not (children := _children(proc.pid)) and time.monotonic() < deadline:
+                time.sleep(0.05)
+            assert children, "the worker process did not start"  # workers=2: this process and one worker
+            time.sleep(0.5)
+            assert proc.poll() is None
+            start = time.monotonic()
+            proc.send_signal(signal.SIGINT)
+            proc.wait(timeout=10)
+            took = time.monotonic() - start
+            err = proc.stderr.read()
+        finally:
+            proc.kill()
+    print(f"SIGINT to exit: {took:.3f} s")
+    assert took <= 1.0
+    assert proc.returncode != 0 and "KeyboardInterrupt" in err.splitlines()[-1]
+    assert not [c for c in children if _alive(c)], "worker processes left behind"
+
+
+def _run_in_pty(code):
+    """(output, exit code) of ``python -c code`` with a terminal as its standard streams."""
+    pid, fd = pty.fork()
+    if pid == 0:  # pragma: no cover - the child
+        os.execve(sys.executable, [sys.executable, "-c", code], ENV)
+    fcntl.ioctl(fd, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 120, 0, 0))  # a terminal of 120 columns
+    chunks = []
+    while True:
+        try:
+            data = os.read(fd, 4096)
+        except OSError:
+            break
+        if not data:
+            break
+        chunks.append(data)
+    _, status = os.waitpid(pid, 0)
+    return b"".join(chunks).decode(errors="replace"), os.waitstatus_to_exitcode(status)
+
+
+def test_the_progress_bar_shows_on_a_terminal_and_not_in_a_pipe():
+    code = LONG_SWEEP % (10, 2, "None")
+    out, rc = _run_in_pty(code)
+    assert rc == 0 and "done" in out
+    assert "vcor.sweep:" in out and "400/400" in out and " ok, " in out and " flagged, " in out and " failed" in out
+    piped = subprocess.run([sys.executable, "-c", code], env=ENV, capture_output=True, text=True, check=True)
+    assert "done" in piped.stdout
+    assert piped.stderr == "" and "\r" not in piped.stdout
