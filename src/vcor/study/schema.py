@@ -162,7 +162,9 @@ def explain(error, schema: dict) -> str:
             else f"{key}: unknown section; allowed: {allowed}{_hint(key, allowed)}"
     if rule == "required":
         missing = [k for k in error.validator_value if k not in given]
-        return f"{where}: missing key {missing[0]!r} (required: {error.validator_value})"
+        near = difflib.get_close_matches(missing[0], [str(k) for k in given], n=1, cutoff=0.5)
+        written = f"; {near[0]!r} is written: did you mean {missing[0]!r}?" if near else ""
+        return f"{where}: missing key {missing[0]!r} (required: {error.validator_value}){written}"
     if rule == "enum":
         return f"{where}: {_short(given)} is not allowed; allowed: {error.validator_value}" \
                f"{_hint(given, error.validator_value)}"
