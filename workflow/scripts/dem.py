@@ -1,10 +1,10 @@
 """One dem: entry (thin: vcor.study.dem and vcor.dem): the collision's COR, the DEM laws fitted to it,
-the dataset, the COR table, the parameters file, and the LAMMPS deck and Yade script when the entry
-fits their laws."""
+the dataset, the COR table, the parameters file, and the LAMMPS decks and Yade script when the entry
+has their laws."""
 
 import xarray as xr
 
-from vcor.dem import export, lammps, yade
+from vcor.dem import export, hereditary, lammps, yade
 from vcor.io import netcdf
 from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
@@ -27,6 +27,9 @@ with job_log(smk) as log:
     if "deck" in out:
         lammps.write_deck(out["deck"], written)
         log.note(f"wrote the LAMMPS deck {out['deck']}")
+    if "hereditary" in out:
+        hereditary.write_deck(out["hereditary"], written)
+        log.note(f"wrote the LAMMPS deck of vcor's own contact law {out['hereditary']}")
     if "yade" in out:
         yade.write_script(out["yade"], written)
         log.note(f"wrote the Yade script {out['yade']}")

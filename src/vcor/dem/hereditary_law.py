@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FIXED_POINT_ITERATIONS", "HERTZ_TIME", "NSTEPS", "SERIES_BELOW", "SOE_SPAN", "SOE_START", "SOE_TOL", "HereditaryLaw", "contact_law",
+__all__ = ["FIXED_POINT_ITERATIONS", "HERTZ_TIME", "NSTEPS", "REFUSALS", "SERIES_BELOW", "SOE_SPAN", "SOE_START", "SOE_TOL", "HereditaryLaw", "contact_law",
            "collision_law", "refusal", "step_modulus", "time_step"]
 
 #: t_H = HERTZ_TIME (m_eff / K)^(2/5) v0^(-1/5): the elastic Hertz contact time (the constant of in.pair)
@@ -60,13 +60,15 @@ SOE_START = 1e-7
 #: contact is needed until the bodies part, after the force has returned to zero)
 SOE_SPAN = 10.0
 
-#: why a material has no series for the plugin
-_KELVIN_VOIGT = ("a Kelvin-Voigt dashpot is a Dirac term in E(t), not a sum of exponentials; its hereditary "
-                 "law is the Brilliantov law, which lammps-viscoelastic fits exactly")
-_EQ_ONE = ("two bodies of different materials (or Poisson ratios) combine by Green 2026 Eq. 1 pointwise in time, "
-           "which is not a sum of exponentials; the plugin takes one Prony series per type pair")
-_PLATE = ("a plate target's flexural mobility (Zener's plate) is not a contact law; the plugin models a sphere on "
-          "a second sphere or on a rigid wall")
+#: why the plugin cannot take a collision, by cause
+REFUSALS = {
+    "kelvin-voigt": "a Kelvin-Voigt dashpot is a Dirac term in E(t), not a sum of exponentials; its hereditary law is "
+                    "the Brilliantov law, which lammps-viscoelastic fits exactly",
+    "eq1": "two bodies of different materials (or Poisson ratios) combine by Green 2026 Eq. 1 pointwise in time, which "
+           "is not a sum of exponentials; the plugin takes one Prony series per type pair",
+    "plate": "a plate target's flexural mobility (Zener's plate) is not a contact law; the plugin models a sphere on a "
+             "second sphere or on a rigid wall",
+}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -117,13 +119,13 @@ def refusal(material=None, target_kind: str = "sphere") -> str:
     "a plate target's flexural mobility (Zener's plate) is not a contact law"
     """
     if target_kind == "plate":
-        return _PLATE
+        return REFUSALS["plate"]
     if material is None:
         return ""
     if material.kind == "eq1":
-        return _EQ_ONE
+        return REFUSALS["eq1"]
     if material.viscosity > 0:
-        return _KELVIN_VOIGT
+        return REFUSALS["kelvin-voigt"]
     return ""
 
 
