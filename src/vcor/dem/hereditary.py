@@ -53,8 +53,8 @@ boundary         f f f
 atom_modify      map array
 variable found   equal is_file(${{plugin}})
 if "${{found}} == 0" then &
-   "print 'in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin build prints it), got ${{plugin}}' append /dev/stderr" &
-   "quit 1"
+   "print 'in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin build prints it), &
+got ${{plugin}}' append /dev/stderr" "quit 1"
 plugin           load ${{plugin}}
 """
 #: the time step's fixed point, solved in the deck (the same iteration as hereditary_law.time_step)
@@ -96,7 +96,7 @@ def laws_of(ds) -> list[tuple[float | None, HereditaryLaw]]:
     temps = [float(t) for t in ds["T"].values] if "T" in ds.dims else [None]
     out = []
     for i, T in enumerate(temps):
-        pick = (lambda v, i=i: np.atleast_1d(ds[v].values[i] if T is not None else ds[v].values))
+        pick = (lambda v, i=i, T=T: np.atleast_1d(ds[v].values[i] if T is not None else ds[v].values))
         e, b = pick("hereditary_E"), pick("hereditary_beta")
         keep = np.isfinite(e) & np.isfinite(b)
         out.append((T, HereditaryLaw(e_inf=float(pick("hereditary_E_inf")[0]), e=tuple(map(float, e[keep])),

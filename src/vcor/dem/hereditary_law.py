@@ -18,9 +18,9 @@ own series. A fractional or CERF material is taken through its sum of exponentia
 SOE_SPAN x its longest], with relative error at most SOE_TOL on the transient there (the error found
 is ``soe_error``). Before t_min the sum stays finite where the fractional kernel is singular: the
 COR error this leaves grows as sqrt(t_min / t0) (for the Butyl pair: 2.5e-3 at t_min = 1e-3 t0,
-1.7e-5 at 1e-7 t0, the default; the dataset gives the error for each entry). Refused, with the reason (:func:`refusal`): a Kelvin-Voigt dashpot, two bodies that
-vcor combines by Eq. 1 pointwise in time (two different materials or Poisson ratios), a plate
-target.
+1.7e-5 at 1e-7 t0, the default; the dataset gives the error for each entry). Refused, with the
+reason (:func:`refusal`): a Kelvin-Voigt dashpot, two bodies that vcor combines by Eq. 1 pointwise
+in time (two different materials or Poisson ratios), a plate target.
 
 The time step (:func:`time_step`): dt = t_H(Ebar(dt)) / nsteps, where t_H(E) = 3.2181 (m_eff / K)^(2/5)
 v0^(-1/5) is the Hertz contact time with the modulus E (K = 4/3 E sqrt(R_eff)) and
@@ -28,7 +28,8 @@ Ebar(h) = E_inf + sum E_i (1 - exp(-beta_i h)) / (beta_i h) the modulus one step
 update responds with (:func:`step_modulus`). The fastest rates enter through Ebar: a term with
 beta_i dt << 1 is a spring of modulus E_i, one with beta_i dt >> 1 a dashpot that adds only
 E_i / (beta_i dt) to the step's stiffness, so it does not shorten the step; the update is exact for a
-linear change of u over the step, stable and accurate for any beta_i dt (tested from 1e-5 to 90).
+linear change of u over the step, stable and accurate for any beta_i dt (the COR within 2e-6 of
+vcor's for beta dt from 4e-5 to 160, tests/dem/test_hereditary.py).
 For a Prony series whose rates are slow against the step, Ebar is the glassy modulus E_c(0) and
 t_H the shortest contact the law can have at v0; for a fractional kernel's sum of exponentials,
 Ebar(dt) does not depend on how far its fastest modes reach.
@@ -41,8 +42,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["FIXED_POINT_ITERATIONS", "HERTZ_TIME", "NSTEPS", "REFUSALS", "SERIES_BELOW", "SOE_SPAN", "SOE_START", "SOE_TOL", "HereditaryLaw", "contact_law",
-           "collision_law", "refusal", "step_modulus", "time_step"]
+__all__ = ["FIXED_POINT_ITERATIONS", "HERTZ_TIME", "NSTEPS", "REFUSALS", "SERIES_BELOW", "SOE_SPAN", "SOE_START",
+           "SOE_TOL", "HereditaryLaw", "collision_law", "contact_law", "refusal", "step_modulus", "time_step"]
 
 #: t_H = HERTZ_TIME (m_eff / K)^(2/5) v0^(-1/5): the elastic Hertz contact time (the constant of in.pair)
 HERTZ_TIME = 3.2180654597185065
