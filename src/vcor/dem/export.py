@@ -153,9 +153,10 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     >>> col = fit.collision("sls", [0.5, 1.0, 2.0], target="rigid")
     >>> ds = dem_dataset("demo", [col], [fit.fit_laws(col)])
     >>> ds["model"].values.tolist()
-    ['lammps-viscoelastic', 'lammps-coeff-restitution', 'mercurydpm-bshp', 'yade-mindlin', 'table']
+    ['lammps-viscoelastic', 'lammps-coeff-restitution', 'lammps-hereditary', 'mercurydpm-bshp', 'yade-mindlin',
+     'table']
     >>> np.round(ds["max_abs_error"].values, 3)
-    array([0.065, 0.03 , 0.065, 0.065, 0.   ])
+    array([0.065, 0.03 , 0.   , 0.065, 0.065, 0.   ])
     """
     import xarray as xr
 

@@ -174,7 +174,7 @@ def collision_law(material, factor: float, target_kind: str, t0) -> HereditaryLa
     t0 = np.asarray(t0, dtype=float)
     t0 = t0[np.isfinite(t0)]
     if not t0.size:
-        raise ValueError("lammps-hereditary: no speed of the collision was solved (no contact time for the series)")
+        raise ValueError("lammps-hereditary: no speed of the collision ended ok (no contact time for the series)")
     return contact_law(material, factor, SOE_START * float(t0.min()), SOE_SPAN * float(t0.max()))
 
 
@@ -198,7 +198,7 @@ def time_step(law: HereditaryLaw, m_eff: float, r_eff: float, v0, nsteps: int = 
     >>> from vcor.dem.hereditary_law import contact_law, time_step
     >>> law = contact_law("sls", 1.0 / 1.5)
     >>> f"{float(time_step(law, 2.88e-4, 0.0025, 1.0)):.4e} s"
-    '5.7782e-07 s'
+    '5.7787e-07 s'
     """
     scale = HERTZ_TIME * (m_eff / (4.0 / 3.0 * math.sqrt(r_eff))) ** 0.4 * np.asarray(v0, dtype=float) ** -0.2 / nsteps
     h = scale * law.glassy**-0.4

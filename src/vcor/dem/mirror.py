@@ -37,13 +37,13 @@ def plugin_cor(law: HereditaryLaw, kind: str, radii, densities, v0, nsteps: int 
 
     Examples
     --------
-    Two 5 mm spheres of the paper's SLS at 1 m/s (vcor's COR: 0.7799):
+    Two 5 mm spheres of the paper's SLS at 1 m/s (vcor's COR: 0.79087):
 
     >>> from vcor.dem.hereditary_law import contact_law
     >>> from vcor.dem.mirror import plugin_cor
     >>> law = contact_law("sls", 1.0 / 1.5)
     >>> plugin_cor(law, "pair", (0.005, 0.005), (1100.0, 1100.0), [1.0]).round(5)
-    array([0.7799])
+    array([0.79087])
     """
     v0 = np.atleast_1d(np.asarray(v0, dtype=float))
     pair = kind == "pair"
