@@ -75,13 +75,7 @@ int FixVcorWallHereditary::setmask()
 
 void FixVcorWallHereditary::init()
 {
-  if (comm->nprocs > 1)
-    error->all(FLERR,
-               "fix vcor/wall/hereditary runs on one MPI rank: its contact history is kept per rank and not "
-               "migrated with the atoms, so {} ranks would lose it (run with 1 rank)",
-               comm->nprocs);
-  if (!atom->radius_flag) error->all(FLERR, "fix vcor/wall/hereditary needs atom radii (atom_style sphere)");
-  if (!atom->tag_enable) error->all(FLERR, "fix vcor/wall/hereditary needs atom IDs (atom_modify id yes)");
+  vcor::require_one_rank_radii_ids(lmp, "fix vcor/wall/hereditary");
 }
 
 void FixVcorWallHereditary::setup(int vflag)

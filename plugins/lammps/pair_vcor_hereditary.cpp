@@ -95,13 +95,7 @@ void PairVcorHereditary::coeff(int narg, char **arg)
 
 void PairVcorHereditary::init_style()
 {
-  if (comm->nprocs > 1)
-    error->all(FLERR,
-               "pair_style vcor/hereditary runs on one MPI rank: its contact history is kept per rank and not "
-               "migrated with the atoms, so {} ranks would lose it (run with 1 rank)",
-               comm->nprocs);
-  if (!atom->radius_flag) error->all(FLERR, "pair_style vcor/hereditary needs atom radii (atom_style sphere)");
-  if (!atom->tag_enable) error->all(FLERR, "pair_style vcor/hereditary needs atom IDs (atom_modify id yes)");
+  vcor::require_one_rank_radii_ids(lmp, "pair_style vcor/hereditary");
 
   neighbor->add_request(this, NeighConst::REQ_SIZE);
 

@@ -8,6 +8,11 @@
 
 #include "vcor_hereditary.h"
 
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "lammps.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -95,6 +100,17 @@ std::string parse_law(const std::vector<std::string> &args, Law &law)
   out.set = true;
   law = out;
   return "";
+}
+
+void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
+{
+  if (lmp->comm->nprocs > 1)
+    lmp->error->all(FLERR,
+                    "{} runs on one MPI rank: its contact history is kept per rank and not migrated with the "
+                    "atoms, so {} ranks would lose it (run with 1 rank)",
+                    who, lmp->comm->nprocs);
+  if (!lmp->atom->radius_flag) lmp->error->all(FLERR, "{} needs atom radii (atom_style sphere)", who);
+  if (!lmp->atom->tag_enable) lmp->error->all(FLERR, "{} needs atom IDs (atom_modify id yes)", who);
 }
 
 void Store::begin(bigint step_, double now_, double dt_, int maxterms)

@@ -34,6 +34,10 @@
 #include <unordered_map>
 #include <vector>
 
+namespace LAMMPS_NS {
+class LAMMPS;
+}
+
 namespace vcor {
 
 using LAMMPS_NS::bigint;
@@ -56,6 +60,10 @@ struct Law {
   void cache(double h);
   void coefficients(double h, double *a_out, double *w_out) const;
 };
+
+// Stop LAMMPS (error->all, naming `who`) unless it runs on one MPI rank (the history is kept per
+// rank and not migrated with the atoms) and the atoms have radii and IDs.
+void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
 
 // Parse "E_inf [E_1 beta_1 ...]": returns "" and fills law, or a one-line message naming the
 // coefficient that is wrong.

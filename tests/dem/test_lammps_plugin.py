@@ -115,15 +115,15 @@ def _variant(deck: Path, name: str, edits: list[tuple[str, str]]) -> Path:
 
 
 def test_internal_variables_advance_once_per_step(lmp, vcor_plugin, tmp_path):
-    """LAMMPS evaluates the forces again at every run's set-up and at ``run 0``: the collision as 3000
-    runs of one step, each followed by a ``run 0``, gives the COR of one run (the state is keyed on the
-    time step), to 1e-12."""
+    """LAMMPS evaluates the forces again at every run's set-up and at ``run 0``: the collision (100
+    steps per contact time) as runs of one step, each followed by a ``run 0``, gives the COR of one
+    run to 1e-12 (the state is keyed on the time step)."""
     _, deck = _deck(tmp_path, "butyl-prony3", {"sphere": {}}, v0=[2.0])
-    one = _cors(lmp, vcor_plugin, deck, [2.0])
+    one = _cors(lmp, vcor_plugin, deck, [2.0], "-var", "nsteps", "100")
     chopped = _variant(deck, "in.chopped", [("run              ${nrun}\n",
                                              "variable k loop ${nrun}\nlabel chop\nrun 1 post no\nrun 0 post no\n"
                                              "next k\njump SELF chop\n")])
-    many = _cors(lmp, vcor_plugin, chopped, [2.0])
+    many = _cors(lmp, vcor_plugin, chopped, [2.0], "-var", "nsteps", "100")
     print(f"\none run {one[0]:.15f}, chopped {many[0]:.15f}")
     assert abs(many[0] - one[0]) < 1e-12
 
