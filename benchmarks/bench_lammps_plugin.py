@@ -79,8 +79,8 @@ def main() -> None:
             runs.append({law: one(args.lmp, plugin, law, args.settle, args.measure) for law in order})
     ratios = [r["hereditary"]["ns"] / r["granular"]["ns"] for r in runs]
     rows = [[law, timing.cell([r[law]["contacts"] for r in runs], 1.0, ".0f"),
-             timing.cell([r[law]["pair"] for r in runs], 1.0, ".3f"), timing.cell([r[law]["ns"] for r in runs], 1.0, ".1f")]
-            for law in LAWS]
+             timing.cell([r[law]["pair"] for r in runs], 1.0, ".3f"),
+             timing.cell([r[law]["ns"] for r in runs], 1.0, ".1f")] for law in LAWS]
     rows.append(["plugin / granular (ratio within a run)", "", "", timing.cell(ratios, 1.0, ".2f")])
     version = subprocess.run([args.lmp, "-h"], capture_output=True, text=True, check=False).stdout
     lammps = re.search(r"Simulator - (.+)", version)

@@ -91,9 +91,7 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
   tagint *tag = atom->tag;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  const double now = update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
-
-  store.begin(update->ntimestep, now, update->dt, law.nterms());
+  store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, law.nterms());
   wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
   double contacts = 0.0;
   for (int i = 0; i < nlocal; ++i) {

@@ -138,11 +138,6 @@ double PairVcorHereditary::init_one(int i, int j)
   return maxrad[i] + maxrad[j];
 }
 
-double PairVcorHereditary::simulation_time() const
-{
-  return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
-}
-
 void PairVcorHereditary::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -160,7 +155,7 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
 
-  store.begin(update->ntimestep, simulation_time(), update->dt, maxterms);
+  store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, maxterms);
   long touching = 0;
 
   for (int ii = 0; ii < inum; ++ii) {

@@ -38,7 +38,6 @@ class PairVcorHereditary : public Pair {
 
   void allocate();
   vcor::Law &law(int i, int j) { return laws[i * stride + j]; }
-  double simulation_time() const;
 };
 
 }    // namespace LAMMPS_NS

@@ -12,6 +12,7 @@
 #include "comm.h"
 #include "error.h"
 #include "lammps.h"
+#include "update.h"
 
 #include <cerrno>
 #include <cmath>
@@ -111,6 +112,12 @@ void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
                     who, lmp->comm->nprocs);
   if (!lmp->atom->radius_flag) lmp->error->all(FLERR, "{} needs atom radii (atom_style sphere)", who);
   if (!lmp->atom->tag_enable) lmp->error->all(FLERR, "{} needs atom IDs (atom_modify id yes)", who);
+}
+
+double simulation_time(LAMMPS_NS::LAMMPS *lmp)
+{
+  const LAMMPS_NS::Update *update = lmp->update;
+  return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
 }
 
 void Store::begin(bigint step_, double now_, double dt_, int maxterms)

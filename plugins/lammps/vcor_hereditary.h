@@ -65,6 +65,9 @@ struct Law {
 // rank and not migrated with the atoms) and the atoms have radii and IDs.
 void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
 
+// The simulation time (s) at the current time step (LAMMPS's atime, carried over changes of the step).
+double simulation_time(LAMMPS_NS::LAMMPS *lmp);
+
 // Parse "E_inf [E_1 beta_1 ...]": returns "" and fills law, or a one-line message naming the
 // coefficient that is wrong.
 std::string parse_law(const std::vector<std::string> &args, Law &law);
