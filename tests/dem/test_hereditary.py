@@ -95,8 +95,9 @@ def test_what_the_plugin_cannot_take_is_refused_with_the_reason():
 
 
 def test_a_config_entry_has_the_law_where_the_plugin_can_take_it():
-    """Without models: the law where it applies, and its deck among the entry's files; listed for a
-    collision it cannot take: refused before any job, naming the key and the cause."""
+    """Without models: the law where it applies, and its deck among the entry's files, as the job's
+    collision finds it; listed for a collision it cannot take: refused before any job, naming the key
+    and the cause."""
     base = {"v0": [0.5, 2.0]}
     entries = {
         "twin": ({"sphere": {"material": "sls", "r": 0.005}, "target": {"sphere": {}}}, ""),
@@ -106,6 +107,7 @@ def test_a_config_entry_has_the_law_where_the_plugin_can_take_it():
                    "solver": {"method": "direct"}}, "Eq. 1"),
         "nu": ({"sphere": {"material": "sls", "nu": 0.45}, "target": {"sphere": {"material": "sls", "nu": 0.4}},
                 "solver": {"method": "direct"}}, "Eq. 1"),
+        "default-nu": ({"sphere": {"material": "sls", "nu": 0.5}, "target": {"sphere": {"material": "sls"}}}, ""),
         "plate": ({"sphere": {"material": "sls"}, "target": {"plate": {}}}, "plate"),
     }
     project = load_project({"dem": {k: {**base, **v} for k, (v, _) in entries.items()}}, ".")
@@ -116,6 +118,9 @@ def test_a_config_entry_has_the_law_where_the_plugin_can_take_it():
         has = "lammps-hereditary" in study_dem.entry_models(spec, project.catalogue)
         assert has == (not cause), name
         assert ("hereditary" in project.dem_files(name)) == has
+        cols, fits, _ = study_dem.run_dem(name, spec, project.catalogue)  # the job agrees with the planning
+        why = fit.hereditary_refusal(cols[0])
+        assert ("lammps-hereditary" in fits[0]) == has and bool(why) == bool(cause) and cause in why
         if cause:
             with pytest.raises(ValueError, match=f"dem.{name}.models: lammps-hereditary cannot take this collision: "
                                                  f".*{cause}"):

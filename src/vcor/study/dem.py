@@ -23,6 +23,7 @@ temperature and the laws fitted to each. Without ``models``, an entry has every 
 
 from __future__ import annotations
 
+from ..contact.bodies import NU_DEFAULTS
 from ..contact.impact import make_impact
 from ..contact.pair import target_inputs
 from ..dem.fit import collision, fit_laws
@@ -113,8 +114,9 @@ def hereditary_refusal(spec: dict, catalogue: Catalogue) -> str:
     other = body.get("material")
     if other is None or other == "rigid":
         return ""
-    if (other != sphere["material"] or body.get("nu") != sphere.get("nu")) and (
-            mine != "elastic" or _viscous(other, catalogue) != "elastic"):
+    default_nu = NU_DEFAULTS["steel" if mine == "elastic" else "polymer"]  # one material: one family's default
+    same = other == sphere["material"] and body.get("nu", default_nu) == sphere.get("nu", default_nu)
+    if not same and (mine != "elastic" or _viscous(other, catalogue) != "elastic"):
         return REFUSALS["eq1"]
     return ""
 
