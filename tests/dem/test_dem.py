@@ -87,12 +87,14 @@ def test_a_hereditary_curve_the_one_parameter_laws_cannot_follow():
     assert laws_["lammps-coeff-restitution"]["e"] == pytest.approx(float(np.mean(col.cor)))
     # the Brilliantov laws fall where vcor rises: flagged per law, said in words, the table named
     opposed = {m: int(ds["opposite_trend"].sel(model=m)) for m in laws.MODELS}
-    assert opposed == {"lammps-viscoelastic": 1, "lammps-coeff-restitution": 0, "mercurydpm-bshp": 1,
-                       "yade-mindlin": 1, "table": 0}
+    assert opposed == {"lammps-viscoelastic": 1, "lammps-coeff-restitution": 0, "lammps-hereditary": 0,
+                       "mercurydpm-bshp": 1, "yade-mindlin": 1, "table": 0}
+    # vcor's own law in LAMMPS follows the curve (its error is LAMMPS's time step's) and is named as the route
+    assert errs["lammps-hereditary"] < 1e-5
     note = ds.attrs["trend_warning"]
     print(note)
     for words in ("vcor's COR rises", "lammps-viscoelastic, mercurydpm-bshp, yade-mindlin fall", "cor_lookup",
-                  f"{col.cor[0]:.3f} at 0.1 m/s"):
+                  f"{col.cor[0]:.3f} at 0.1 m/s", "lammps-hereditary: pair_style vcor/hereditary"):
         assert words in note, words
 
 
@@ -174,11 +176,15 @@ def test_the_parameters_file_lists_every_law_with_units(tmp_path):
     got = {(r["model"], r["parameter"]): (float(r["value"]), r["unit"]) for r in rows}
     for model, params in laws.PARAMETERS.items():
         for p, (unit, _) in params.items():
-            assert got[(model, p)][1] == unit
+            series = export.TERM_DIM in ds[p].dims  # one row per term of a series: hereditary_E[1], ...
+            assert got[(model, f"{p}[1]" if series else p)][1] == unit
     assert got[("yade-mindlin", "young")] == (pytest.approx(float(ds["young"]), rel=1e-11), "Pa")
     assert got[("mercurydpm-bshp", "E_eff")][0] == pytest.approx(float(ds["E_eff"]), rel=1e-11)
     assert got[("lammps-coeff-restitution", "E_lammps")][0] == pytest.approx(float(ds["E_lammps"]), rel=1e-11)
     assert got[("contact", "density_1")] == (1100.0, "kg m-3")
+    # the SLS on a wall: E/(1 - nu^2) = 20 MPa, of which E_inf = 5 MPa, and the rate 1200/s
+    assert [got[("lammps-hereditary", p)] for p in ("hereditary_E_inf", "hereditary_E[1]", "hereditary_beta[1]")] == [
+        (pytest.approx(5e6, rel=1e-12), "Pa"), (pytest.approx(15e6, rel=1e-12), "Pa"), (1200.0, "s-1")]
 
 
 def test_a_temperature_entry_fits_every_law_per_temperature():
@@ -237,7 +243,8 @@ def test_every_file_the_dem_rules_write_is_a_target_of_the_entry():
     assert "**PROJECT.dem_files(_dem)" in rules and "vpaths.DEM_FIGURE" in rules
     project = load_project(BASE, ".")
     files = project.dem_files("d")
-    assert set(files) == {"nc", "table", "parameters", "deck", "yade"}  # the entry fits LAMMPS and Yade laws
+    # the entry fits LAMMPS and Yade laws and has vcor's own law in LAMMPS
+    assert set(files) == {"nc", "table", "parameters", "deck", "hereditary", "yade"}
     figures = {paths.fmt(paths.DEM_FIGURE, dem="d", ext=e) for e in ("png", "pdf")}
     expected = set(files.values()) | figures
     targets = set(project.dem_targets("d"))

@@ -1,5 +1,5 @@
 """One dem: entry (thin: vcor.dem_export): the collision's COR, the DEM laws fitted to it, the dataset, the
-COR table, the parameters file, and the LAMMPS deck and Yade script when the entry fits their laws."""
+COR table, the parameters file, and the LAMMPS decks and Yade script when the entry has their laws."""
 
 import vcor
 from vcor.io.joblog import count, job_log
@@ -14,6 +14,7 @@ with job_log(smk) as log:
     done = summary.outcome_of(export.dataset)
     log.note(f"DEM entry {name}: solved {count(done.points, 'collision')}: {done.text()}; fitted "
              f"{count(export.dataset.sizes['model'], 'contact law')}: {written['nc']}")
-    for key, what in (("deck", "the LAMMPS deck"), ("yade", "the Yade script")):
+    for key, what in (("deck", "the LAMMPS deck"), ("hereditary", "the LAMMPS deck of vcor's own contact law"),
+                      ("yade", "the Yade script")):
         if key in written:
             log.note(f"wrote {what} {written[key]}")

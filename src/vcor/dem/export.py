@@ -11,7 +11,9 @@ The dataset (CF attributes as every vcor dataset) has the dimensions ``model`` (
   vcor's over the range and misses it by more than ``WITHIN`` (:mod:`vcor.dem.trend`), and the
   attribute ``trend_warning`` saying so in words (empty when no law does), pointing to the COR table;
 * each law's parameters (``eta_n0``, ``E_lammps``, ``e``, ``A``, ``E_eff``, ``en``, ``vn``,
-  ``young``), with units and the model they belong to, per temperature;
+  ``young``; for ``lammps-hereditary`` the contact's series ``hereditary_E_inf``, ``hereditary_E`` and
+  ``hereditary_beta`` along ``prony_term``, NaN past a temperature's last term, and
+  ``hereditary_soe_error``), with units and the model they belong to, per temperature;
 * the contact (``m_eff``, ``r_eff``, ``nu``, kind), the collision's config and each law's formula
   source, separation and required code version (``models``; ``yade_version_required``) in the
   attributes.
@@ -32,19 +34,23 @@ import numpy as np
 from ..io.receipts import atomic_text
 from ..status import cf_attrs, code
 from . import trend
-from .laws import PARAMETERS, REQUIRES, SOURCES
+from .laws import HEREDITARY, PARAMETERS, REQUIRES, SOURCES
 
-__all__ = ["WITHIN", "YADE_VERSION", "dem_dataset", "parameters_csv", "table_csv", "within_range"]
+__all__ = ["TERM_DIM", "WITHIN", "YADE_VERSION", "dem_dataset", "parameters_csv", "table_csv", "within_range"]
 
 #: the oldest Yade whose Ip2_FrictMat_FrictMat_MindlinPhys has vn (the velocity-dependent COR)
 YADE_VERSION = "2024.02a"
 
+#: the dimension of a series parameter (the terms of lammps-hereditary's Prony series)
+TERM_DIM = "prony_term"
 #: the error bound of the sub-range a dataset reports for each law (COR, absolute)
 WITHIN = 0.01
 #: the separation each law's deck or code implies
 SEPARATION = {
     "lammps-viscoelastic": "force (limit_damping: the force is clipped at zero)",
     "lammps-coeff-restitution": "overlap (no limit_damping: the contact ends at zero overlap; the COR is e)",
+    "lammps-hereditary": "force (the hereditary force is clipped at zero; its internal variables are dropped when "
+                         "the overlap ends)",
     "mercurydpm-bshp": "force (the normal force is clipped at zero)",
     "yade-mindlin": "force (the normal force is clipped at zero)",
     "table": "as vcor: where the contact force vanishes",
@@ -121,6 +127,18 @@ def _global_attrs(ds, name: str, collisions: list, models: list, config) -> None
     })
 
 
+def _per_temperature(values: list) -> np.ndarray:
+    """One parameter at every temperature: a vector, or (temperature, term) for a series, padded with
+    NaN past a temperature's last term."""
+    if all(np.ndim(v) == 0 for v in values):
+        return np.array(values, dtype=float)
+    n = max(len(v) for v in values)
+    out = np.full((len(values), n), np.nan)
+    for i, v in enumerate(values):
+        out[i, : len(v)] = v
+    return out
+
+
 def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, config: dict | None = None):
     """The dataset of one ``dem:`` entry (module docstring): ``collisions`` and ``fits`` per temperature
     (one of each without a temperature sweep).
@@ -135,9 +153,10 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     >>> col = fit.collision("sls", [0.5, 1.0, 2.0], target="rigid")
     >>> ds = dem_dataset("demo", [col], [fit.fit_laws(col)])
     >>> ds["model"].values.tolist()
-    ['lammps-viscoelastic', 'lammps-coeff-restitution', 'mercurydpm-bshp', 'yade-mindlin', 'table']
+    ['lammps-viscoelastic', 'lammps-coeff-restitution', 'lammps-hereditary', 'mercurydpm-bshp', 'yade-mindlin',
+     'table']
     >>> np.round(ds["max_abs_error"].values, 3)
-    array([0.065, 0.03 , 0.065, 0.065, 0.   ])
+    array([0.065, 0.03 , 0.   , 0.065, 0.065, 0.   ])
     """
     import xarray as xr
 
@@ -177,16 +196,23 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     for model in models:
         for p, (unit, meaning) in PARAMETERS[model].items():
             key = p if p not in params else f"{p}_{model}"
-            params[key] = (model, unit, meaning, np.array([f[model][p] for f in fits]))
+            params[key] = (model, unit, meaning, _per_temperature([f[model][p] for f in fits]))
     for key, (_, _, _, values) in params.items():
-        data[key] = (("T",), values) if with_t else ((), values[0])
+        dims = ("T", TERM_DIM) if values.ndim == 2 else ("T",)
+        data[key] = (dims, values) if with_t else (dims[1:], values[0])
     coords = {"model": ("model", np.array(models, dtype=str)), "v0": ("v0", v0)}
     if with_t:
         coords["T"] = ("T", np.asarray(temperatures, dtype=float))
     ds = xr.Dataset(data, coords=coords)
+    if TERM_DIM in ds.dims:
+        ds = ds.assign_coords({TERM_DIM: np.arange(1, ds.sizes[TERM_DIM] + 1)})
+        ds[TERM_DIM].attrs.update(units="1", long_name="term i of lammps-hereditary's Prony series")
     _describe(ds, params, with_t)
     _global_attrs(ds, name, collisions, models, config)
     ds.attrs["trend_warning"] = " ".join(w for w in warnings if w)
+    if HEREDITARY in models:
+        ds.attrs["hereditary_series"] = " | ".join(dict.fromkeys(f[HEREDITARY]["source"] for f in fits))
+        ds.attrs["hereditary_nsteps"] = int(fits[0][HEREDITARY]["nsteps"])
     if "yade-mindlin" in models:
         ds.attrs["yade_version_required"] = YADE_VERSION
         ds.attrs["yade_version_note"] = REQUIRES["yade-mindlin"]
@@ -231,9 +257,11 @@ def _parameter_rows(ds) -> list[str]:
             continue
         name = key.removesuffix(f"_{var.attrs['model']}")
         for i, T in enumerate(temps):
-            value = float(var.values[i] if has_t else var.values)
-            rows.append([var.attrs["model"], name, "" if T is None else f"{T:.10g}", f"{value:.12g}",
-                         var.attrs["units"], var.attrs["long_name"]])
+            values = np.atleast_1d(var.values[i] if has_t else var.values)
+            labels = [name] if TERM_DIM not in var.dims else [f"{name}[{k + 1}]" for k in range(values.size)]
+            rows += [[var.attrs["model"], label, "" if T is None else f"{T:.10g}", f"{float(value):.12g}",
+                      var.attrs["units"], var.attrs["long_name"]]
+                     for label, value in zip(labels, values) if np.isfinite(value)]
     contact = json.loads(ds.attrs["contact"])
     for name, unit, value in [("m_eff", "kg", contact["m_eff_kg"]), ("r_eff", "m", contact["r_eff_m"]),
                               ("nu", "1", contact["nu"])]:

@@ -15,7 +15,9 @@ contact ends where the force vanishes) and describes it as a DEM :class:`~vcor.d
 dissipation A (s) of the clipped Brilliantov law (bounded search over log A; the COR evaluated by
 :func:`vcor.spheres.cor_numeric`, rule ``force``, which is how LAMMPS with ``limit_damping``,
 MercuryDPM's BSHP and Yade end the contact); the constant e (the mean COR); the table (the COR).
-Yade's (en, vn) is the pair that gives the fitted A at vn = the reference speed.
+Yade's (en, vn) is the pair that gives the fitted A at vn = the reference speed. ``lammps-hereditary``
+is not fitted: it is vcor's own contact law (:mod:`vcor.dem.hereditary_law`), with the COR LAMMPS
+computes with vcor's plugin and the deck's time step (:mod:`vcor.dem.mirror`).
 """
 
 from __future__ import annotations
@@ -28,9 +30,11 @@ import numpy as np
 from ..contact.bodies import body_from_spec
 from ..contact.impact import make_impact
 from ..contact.pair import target_inputs, twin_defaults
-from .laws import MODELS, Contact, brilliantov_cor, eta_n0, lammps_modulus, yade_en, yade_young
+from .hereditary_law import NSTEPS, collision_law, refusal
+from .laws import HEREDITARY, MODELS, Contact, brilliantov_cor, eta_n0, lammps_modulus, yade_en, yade_young
+from .mirror import plugin_cor
 
-__all__ = ["B_RANGE", "Collision", "collision", "fit_laws"]
+__all__ = ["B_RANGE", "Collision", "applicable", "collision", "fit_laws", "hereditary_refusal"]
 
 #: the range of Ramirez's b the fit of A searches (the COR of the Brilliantov law goes from 0.9999 to
 #: 0.0003 over it)
@@ -51,6 +55,11 @@ class Collision:
     contact: Contact
     v_ref: float
     validity: list = field(default_factory=list)
+    #: the contact material, its effective modulus factor (E_c = factor E) and the target's kind
+    #: (``sphere``, ``rigid``, ``plate``): what vcor's own law (lammps-hereditary) is built from
+    material: object = None
+    modulus_factor: float = math.nan
+    target_kind: str = ""
 
 
 def _bodies(material, sphere: dict, target):
@@ -62,16 +71,27 @@ def _bodies(material, sphere: dict, target):
     return a, None
 
 
-def _contact(a, b, target, t_ref: float, v_ref: float) -> Contact:
-    """The DEM view of the collision (module docstring)."""
+def _contact(a, b, target, t_ref: float, v_ref: float) -> tuple[Contact, object, float]:
+    """The DEM view of the collision (module docstring), the contact material and its effective
+    modulus factor."""
     mat, geo = target_inputs(a.material, target, {"r": a.size, "rho_a": a.rho, "nu": a.nu})
     impact = make_impact(mat, v_ref, geo)
     g = impact.geometry
-    e_eff = impact.kappa * float(impact.material.modulus_at(t_ref / 4.0)) / (4.0 / 3.0 * math.sqrt(g.r))
+    factor = impact.kappa / (4.0 / 3.0 * math.sqrt(g.r))
+    e_eff = factor * float(impact.material.modulus_at(t_ref / 4.0))
     if b is not None:
-        return Contact(kind="pair", m_eff=impact.m, r_eff=g.r, e_eff=e_eff, nu=a.nu, radii=(a.size, b.size),
-                       densities=(a.rho, b.rho))
-    return Contact(kind="wall", m_eff=impact.m, r_eff=g.r, e_eff=e_eff, nu=a.nu, radii=(a.size,), densities=(a.rho,))
+        contact = Contact(kind="pair", m_eff=impact.m, r_eff=g.r, e_eff=e_eff, nu=a.nu, radii=(a.size, b.size),
+                          densities=(a.rho, b.rho))
+    else:
+        contact = Contact(kind="wall", m_eff=impact.m, r_eff=g.r, e_eff=e_eff, nu=a.nu, radii=(a.size,),
+                          densities=(a.rho,))
+    return contact, impact.material, factor
+
+
+def _target_kind(target) -> str:
+    if isinstance(target, dict):
+        return next(iter(target))
+    return "rigid" if target == "rigid" else "plate"
 
 
 def collision(material, v0, *, sphere: dict | None = None, target="rigid", options: dict | None = None) -> Collision:
@@ -91,9 +111,10 @@ def collision(material, v0, *, sphere: dict | None = None, target="rigid", optio
     if not ok.any():
         raise ValueError(f"no speed of the collision ended ok: {results[0].status}: {results[0].message}")
     near = int(np.argmin(np.where(ok, np.abs(np.log(v0 / v_ref)), np.inf)))
-    contact = _contact(a, b, target, float(t0[near]), v_ref)
+    contact, mat, factor = _contact(a, b, target, float(t0[near]), v_ref)
     return Collision(v0=v0, cor=cor, t0=t0, status=[r.status for r in results], message=[r.message for r in results],
-                     contact=contact, v_ref=v_ref, validity=[r.validity for r in results])
+                     contact=contact, v_ref=v_ref, validity=[r.validity for r in results], material=mat,
+                     modulus_factor=factor, target_kind=_target_kind(target))
 
 
 def _fit_dissipation(contact: Contact, v0, cor) -> float:
@@ -111,10 +132,35 @@ def _fit_dissipation(contact: Contact, v0, cor) -> float:
     return math.exp(best.x)
 
 
-def fit_laws(col: Collision, models=MODELS) -> dict:
+def hereditary_refusal(col: Collision) -> str:
+    """Why vcor's own law (lammps-hereditary) cannot take the collision, or ""."""
+    return refusal(col.material, col.target_kind)
+
+
+def applicable(col: Collision) -> list[str]:
+    """Every model of :data:`~vcor.dem.laws.MODELS` that the collision can have: all, less
+    lammps-hereditary where :func:`hereditary_refusal` gives a reason."""
+    return [m for m in MODELS if m != HEREDITARY or not hereditary_refusal(col)]
+
+
+def _hereditary(col: Collision, nsteps: int = NSTEPS) -> dict:
+    """vcor's own law: the plugin's series and the COR LAMMPS computes with the deck's time step."""
+    law = collision_law(col.material, col.modulus_factor, col.target_kind, col.t0)
+    c = col.contact
+    cor = plugin_cor(law, c.kind, c.radii, c.densities, col.v0, nsteps)
+    return {"cor": cor, "hereditary_E_inf": law.e_inf, "hereditary_E": np.array(law.e),
+            "hereditary_beta": np.array(law.beta), "hereditary_soe_error": law.soe_error, "source": law.source,
+            "nsteps": nsteps}
+
+
+def fit_laws(col: Collision, models=None) -> dict:
     """{model: {"cor": the law's COR at col.v0 (1), parameter: value, ...}} (module docstring); the
     parameters' units are those of :data:`vcor.dem.laws.PARAMETERS`. Speeds whose vcor result is not
-    ok are left out of the fit (the law's COR is still given there)."""
+    ok are left out of the fit (the law's COR is still given there). ``models``: a list of
+    :data:`~vcor.dem.laws.MODELS` (ValueError naming the reason when lammps-hereditary cannot take the
+    collision), or None: every applicable model (:func:`applicable`). lammps-hereditary is not fitted:
+    its COR is the one LAMMPS computes with vcor's plugin (:mod:`vcor.dem.mirror`)."""
+    models = applicable(col) if models is None else list(models)
     unknown = sorted(set(models) - set(MODELS))
     if unknown:
         raise ValueError(f"unknown DEM model(s) {unknown}; allowed: {list(MODELS)}")
@@ -134,6 +180,8 @@ def fit_laws(col: Collision, models=MODELS) -> dict:
         elif model == "yade-mindlin":
             out[model] = {"cor": curve, "en": yade_en(contact, A, col.v_ref), "vn": col.v_ref,
                           "young": yade_young(contact)}
+        elif model == HEREDITARY:
+            out[model] = _hereditary(col)
         elif model == "lammps-coeff-restitution":
             e = float(np.mean(c))
             out[model] = {"cor": np.full(col.v0.shape, e), "e": e, "E_lammps": lammps_modulus(contact)}

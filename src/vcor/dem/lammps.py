@@ -16,7 +16,8 @@ from __future__ import annotations
 
 from ..io.receipts import atomic_text
 
-__all__ = ["DECK_NAMES", "NSTEPS", "deck_name", "write_deck"]
+__all__ = ["DECK_NAMES", "NSTEPS", "PAIR_ATOMS", "PAIR_MASSES", "PAIR_RUN", "WALL_ATOMS", "WALL_MASSES", "WALL_RUN",
+           "deck_name", "write_deck"]
 
 #: the deck of each contact kind
 DECK_NAMES = {"pair": "in.pair", "wall": "in.wall"}
@@ -60,7 +61,9 @@ _LAWS = {"lammps-viscoelastic": ("viscoelastic", "eta_n0", "limit_damping"),
 #: the contact law of both decks (pair_coeff, fix wall/gran): Hertz with the chosen damping
 _HERTZ = "hertz/material ${E} ${coef} ${nu} tangential linear_nohistory 0.0 0.0 damping ${model} ${tail}"
 
-_PAIR = """\
+#: the pieces of a two-sphere deck: the bodies' masses and radii, the atoms (they need ${{dt}}), the run
+#: (it needs the interaction); also used by the hereditary deck (vcor.dem.hereditary)
+PAIR_MASSES = """\
 variable R1      index {r1:.12g}
 variable R2      index {r2:.12g}
 variable rho1    index {rho1:.12g}
@@ -69,9 +72,8 @@ variable m1      equal 4.0/3.0*PI*v_R1^3*v_rho1
 variable m2      equal 4.0/3.0*PI*v_R2^3*v_rho2
 variable meff    equal v_m1*v_m2/(v_m1+v_m2)
 variable Reff    equal v_R1*v_R2/(v_R1+v_R2)
-variable K       equal 4.0/3.0*v_Eeff*sqrt(v_Reff)
-variable tc      equal 3.2180654597185065*(v_meff/v_K)^0.4*v_v0^(-0.2)
-variable dt      equal v_tc/v_nsteps
+"""
+PAIR_ATOMS = """\
 variable L       equal 100.0*(v_R1+v_R2)
 region           box block -${{L}} ${{L}} -${{L}} ${{L}} -${{L}} ${{L}} units box
 create_box       1 box
@@ -89,8 +91,8 @@ variable mvh     equal -0.5*v_v0
 velocity         all set 0.0 0.0 0.0 units box
 set              atom 1 vx ${{vh}}
 set              atom 2 vx ${{mvh}}
-pair_style       granular
-pair_coeff       * * {hertz}
+"""
+PAIR_RUN = """\
 neighbor         ${{R1}} bin
 neigh_modify     delay 0 every 1 check yes
 fix              integ all nve/sphere
@@ -105,14 +107,13 @@ variable cor     equal (vx[2]-vx[1])/v_v0
 variable corf    format cor %.12g
 print            "COR = ${{corf}}" append /dev/stdout screen no universe no
 """
-
-_WALL = """\
+#: the pieces of a sphere-on-a-wall deck (as PAIR_MASSES, PAIR_ATOMS, PAIR_RUN)
+WALL_MASSES = """\
 variable R       index {r1:.12g}
 variable rho     index {rho1:.12g}
 variable m       equal 4.0/3.0*PI*v_R^3*v_rho
-variable K       equal 4.0/3.0*v_Eeff*sqrt(v_R)
-variable tc      equal 3.2180654597185065*(v_m/v_K)^0.4*v_v0^(-0.2)
-variable dt      equal v_tc/v_nsteps
+"""
+WALL_ATOMS = """\
 variable L       equal 100.0*v_R
 region           box block -${{L}} ${{L}} -${{L}} ${{L}} -${{L}} ${{L}} units box
 create_box       1 box
@@ -124,9 +125,8 @@ set              atom 1 diameter ${{D}} density ${{rho}}
 variable mv      equal -v_v0
 velocity         all set 0.0 0.0 0.0 units box
 set              atom 1 vx ${{mv}}
-pair_style       zero ${{R}}
-pair_coeff       * *
-fix              wall all wall/gran granular {hertz} xplane 0.0 NULL
+"""
+WALL_RUN = """\
 neighbor         ${{R}} bin
 neigh_modify     delay 0 every 1 check yes
 fix              integ all nve/sphere
@@ -141,6 +141,26 @@ variable cor     equal vx[1]/v_v0
 variable corf    format cor %.12g
 print            "COR = ${{corf}}" append /dev/stdout screen no universe no
 """
+#: the time step of in.pair / in.wall: the elastic Hertz contact time of E_lammps over nsteps
+_PAIR_DT = """\
+variable K       equal 4.0/3.0*v_Eeff*sqrt(v_Reff)
+variable tc      equal 3.2180654597185065*(v_meff/v_K)^0.4*v_v0^(-0.2)
+variable dt      equal v_tc/v_nsteps
+"""
+_WALL_DT = """\
+variable K       equal 4.0/3.0*v_Eeff*sqrt(v_R)
+variable tc      equal 3.2180654597185065*(v_m/v_K)^0.4*v_v0^(-0.2)
+variable dt      equal v_tc/v_nsteps
+"""
+_PAIR = (PAIR_MASSES + _PAIR_DT + PAIR_ATOMS + """\
+pair_style       granular
+pair_coeff       * * {hertz}
+""" + PAIR_RUN)
+_WALL = (WALL_MASSES + _WALL_DT + WALL_ATOMS + """\
+pair_style       zero ${{R}}
+pair_coeff       * *
+fix              wall all wall/gran granular {hertz} xplane 0.0 NULL
+""" + WALL_RUN)
 
 
 def deck_name(kind: str) -> str:

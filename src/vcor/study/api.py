@@ -226,7 +226,7 @@ def calibrate(calibration: dict | str, *, config: Any = None, name: str | None =
 class DemExport:
     """A DEM entry's export: its ``name``, the ``dataset`` (``results/dem/<name>.nc``: the COR against
     speed, every DEM law's fitted parameter with its error and range) and ``files``, the workflow's files
-    of the entry (key -> path relative to the project: ``table``, ``parameters``, ``deck``, ``yade``),
+    of the entry (key -> path relative to the project: ``table``, ``parameters``, ``deck``, ``hereditary``, ``yade``),
     which :meth:`write` writes."""
 
     name: str
@@ -241,7 +241,7 @@ class DemExport:
         LAMMPS deck and the Yade script under ``folder`` as the workflow lays them out; {key: path}."""
         import xarray as xr
 
-        from ..dem import export, lammps, yade
+        from ..dem import export, hereditary, lammps, yade
 
         out = {key: Path(folder) / path for key, path in self.files.items()}
         self.archive.write(out["nc"], command=command)
@@ -250,6 +250,8 @@ class DemExport:
         written = xr.load_dataset(out["nc"])  # the deck and the script say what the archived dataset says
         if "deck" in out:
             lammps.write_deck(out["deck"], written)
+        if "hereditary" in out:
+            hereditary.write_deck(out["hereditary"], written)
         if "yade" in out:
             yade.write_script(out["yade"], written)
         return out

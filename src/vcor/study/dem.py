@@ -8,7 +8,7 @@
         target: {sphere: {...}}       # or rigid, or {plate: {material, h, rho, nu}}
         v0: {start: 0.1, stop: 10, num: 25, log: true}                      # or a list, m/s
         T: [0, 20, 40]                # optional, deg C: materials with a shift function
-        models: [lammps-viscoelastic, ...]   # optional: every law of vcor.dem.laws.MODELS
+        models: [lammps-viscoelastic, ...]   # optional: every law of vcor.dem.laws.MODELS that applies
         solver: {...}                 # optional solver options (default method adaptive)
 
 ``sphere.material`` and a target body's ``material`` are names of the project's catalogue (preset,
@@ -16,22 +16,26 @@ config material, fit or calibration), inline specs ``{model: ...}`` or (a target
 target sphere without ``material`` is the sphere's twin. With ``T``, every viscoelastic body's
 material is taken at each temperature through its shift function. :func:`check_dem` checks an entry
 before any job (every message names the key); :func:`run_dem` is the job: the collisions at every
-temperature and the laws fitted to each.
+temperature and the laws fitted to each. Without ``models``, an entry has every law of
+:data:`vcor.dem.laws.MODELS`, less ``lammps-hereditary`` where vcor's plugin cannot take the collision
+(:func:`hereditary_refusal`); listing it for such an entry is refused with the reason.
 """
 
 from __future__ import annotations
 
+from ..contact.bodies import NU_DEFAULTS
 from ..contact.impact import make_impact
 from ..contact.pair import target_inputs
 from ..dem.fit import collision, fit_laws
-from ..dem.laws import MODELS
+from ..dem.hereditary_law import REFUSALS
+from ..dem.laws import HEREDITARY, MODELS
 from ..materials.catalogue import Catalogue
 from ..materials.shift import at_temperature
 from ..materials.specs import from_spec, shift_function
 from ..solvers.options import DEFAULT_METHOD, SolverOptions
 from .grid import axis_values
 
-__all__ = ["DEM_KEYS", "check_dem", "dem_material", "run_dem", "solver_method"]
+__all__ = ["DEM_KEYS", "check_dem", "dem_material", "entry_models", "hereditary_refusal", "run_dem", "solver_method"]
 
 #: keys of a dem entry
 DEM_KEYS = {"sphere", "target", "v0", "T", "models", "solver"}
@@ -83,6 +87,47 @@ def _target_at(spec: dict, catalogue: Catalogue, T: float | None, where: str):
     return {kind: {**body, "material": material}}
 
 
+def _viscous(value, catalogue: Catalogue) -> str:
+    """"elastic", "kelvin-voigt" (with a dashpot) or "other": a body's material value (a name or an
+    inline spec), known before a fit's or calibration's file exists (a fit is a Prony or CERF law; a
+    calibration has its start material's kind)."""
+    if isinstance(value, str) and value in catalogue.fits:
+        return "other"
+    if isinstance(value, str) and value in catalogue.calibrations:
+        return _viscous(catalogue.calibrations[value].get("material"), catalogue)
+    material, _ = _body_material(value, catalogue, None, "dem")
+    return "elastic" if material.is_elastic else ("kelvin-voigt" if material.viscosity > 0 else "other")
+
+
+def hereditary_refusal(spec: dict, catalogue: Catalogue) -> str:
+    """Why vcor's own law (``lammps-hereditary``) cannot take an entry's collision, or "": a plate
+    target, a Kelvin-Voigt sphere, or a target sphere of another material or Poisson ratio that is not
+    rigid (:data:`vcor.dem.hereditary_law.REFUSALS`; two elastic bodies combine into one modulus)."""
+    target = spec.get("target", "rigid")
+    if isinstance(target, dict) and "plate" in target:
+        return REFUSALS["plate"]
+    sphere = spec["sphere"]
+    mine = _viscous(sphere["material"], catalogue)
+    if mine == "kelvin-voigt":
+        return REFUSALS["kelvin-voigt"]
+    body = (target.get("sphere") or {}) if isinstance(target, dict) else {}
+    other = body.get("material")
+    if other is None or other == "rigid":
+        return ""
+    default_nu = NU_DEFAULTS["steel" if mine == "elastic" else "polymer"]  # one material: one family's default
+    same = other == sphere["material"] and body.get("nu", default_nu) == sphere.get("nu", default_nu)
+    if not same and (mine != "elastic" or _viscous(other, catalogue) != "elastic"):
+        return REFUSALS["eq1"]
+    return ""
+
+
+def entry_models(spec: dict, catalogue: Catalogue) -> list[str]:
+    """The entry's DEM laws (module docstring)."""
+    if "models" in spec:
+        return list(spec["models"])
+    return [m for m in MODELS if m != HEREDITARY or not hereditary_refusal(spec, catalogue)]
+
+
 def _speeds(spec, where):
     try:
         v0 = axis_values(spec["v0"])
@@ -115,6 +160,10 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
     models = spec.get("models", list(MODELS))
     if not isinstance(models, list) or not models or not set(models) <= set(MODELS):
         raise ValueError(f"{where}.models: a list of DEM models of {list(MODELS)}, got {models!r}")
+    if HEREDITARY in models and "models" in spec:
+        why = hereditary_refusal(spec, catalogue)
+        if why:
+            raise ValueError(f"{where}.models: {HEREDITARY} cannot take this collision: {why}")
     v0 = _speeds(spec, where)
     try:
         options = SolverOptions(**(spec.get("solver") or {}))
@@ -161,7 +210,7 @@ def run_dem(name: str, spec: dict, catalogue: Catalogue):
     v0 = _speeds(spec, where)
     temps = axis_values(spec["T"]) if "T" in spec else None
     sphere = {k: v for k, v in spec["sphere"].items() if k != "material"}
-    models = spec.get("models", list(MODELS))
+    models = entry_models(spec, catalogue)
     collisions, fits = [], []
     for T in temps or [None]:
         material, _ = dem_material(spec, catalogue, T, where)

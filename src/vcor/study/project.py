@@ -22,12 +22,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from ..dem.laws import MODELS
+from ..dem.laws import HEREDITARY
 from ..fitting.spec import fit_families
 from ..materials.catalogue import Catalogue
 from ..plots import needs
 from . import paths
 from .cost import JOB_SECONDS
+from .dem import entry_models
 from .grid import Grid
 from .uncertainty import samples_file, uncertainty_of
 
@@ -178,28 +179,31 @@ class Project:
 
     def dem_files(self, name: str) -> dict[str, str]:
         """The files of a ``dem:`` entry that its collisions' job writes: ``nc`` (the dataset), ``table``
-        (the COR table), ``parameters``, and ``deck`` (the LAMMPS deck, when the entry fits a LAMMPS law)
-        and ``yade`` (the Yade script, when it fits Yade's)."""
+        (the COR table), ``parameters``, ``deck`` (the LAMMPS deck ``in.pair`` or ``in.wall``, when the
+        entry fits a LAMMPS law), ``hereditary`` (the deck ``in.hereditary``, when the entry has vcor's own
+        law, :func:`vcor.study.dem.entry_models`) and ``yade`` (the Yade script, when it fits Yade's)."""
         spec = self.dem[name]
         target = spec.get("target", "rigid")
-        models = spec.get("models", MODELS)
+        models = entry_models(spec, self.catalogue)
         kind = "pair" if isinstance(target, dict) and "sphere" in target else "wall"
         out = {key: paths.fmt(p, dem=name) for key, p in
                (("nc", paths.DEM), ("table", paths.DEM_TABLE), ("parameters", paths.DEM_PARAMETERS))}
-        if any(m.startswith("lammps-") for m in models):
+        if {"lammps-viscoelastic", "lammps-coeff-restitution"} & set(models):
             out["deck"] = paths.fmt(paths.DEM_DECK, dem=name, kind=kind)
+        if HEREDITARY in models:
+            out["hereditary"] = paths.fmt(paths.DEM_DECK, dem=name, kind="hereditary")
         if "yade-mindlin" in models:
             out["yade"] = paths.fmt(paths.DEM_YADE, dem=name)
         return out
 
     def dem_targets(self, name: str) -> list[str]:
         """The outputs of a ``dem:`` entry: its dataset, COR table, parameters file, figure, the LAMMPS
-        deck when it fits a LAMMPS law and the Yade script when it fits Yade's (not its manifest, which
-        lists these)."""
+        decks (:meth:`dem_files`) and the Yade script when it fits Yade's (not its manifest, which lists
+        these)."""
         files = self.dem_files(name)
         out = [files["nc"], files["table"], files["parameters"]]
         out += [paths.fmt(paths.DEM_FIGURE, dem=name, ext=e) for e in ("png", "pdf")]
-        return out + [files[k] for k in ("deck", "yade") if k in files]
+        return out + [files[k] for k in ("deck", "hereditary", "yade") if k in files]
 
     def dem_materials(self, name: str) -> list[str]:
         """Names of the catalogue a ``dem:`` entry's bodies use (the sphere's, a target body's)."""

