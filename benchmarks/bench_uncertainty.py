@@ -206,12 +206,11 @@ def _project(folder: Path, uncertainty: dict | None, quick: bool) -> Path:
 def reversals(sweep_path: Path) -> list[list[str]]:
     """Per material, nu and v0 of a banded sweep: the turns of the median COR(T) larger than the band's
     half-width there (vcor.study.uncertainty.significant_reversals), and the band's largest half-width."""
-    import xarray as xr
-
+    from vcor.io.netcdf import read_dataset
     from vcor.study.uncertainty import significant_reversals
 
     rows = []
-    with xr.open_dataset(sweep_path) as ds:
+    with read_dataset(sweep_path) as ds:
         for m in ds["material"].values:
             for nu in ds["nu"].values:
                 for v0 in ds["v0"].values:

@@ -5,7 +5,7 @@ A parameter study and its ``sweep.nc``
 A study is a **scene** in ``config.yaml``. Snakemake plans the scene's grid into jobs, solves them
 and aggregates the results into ``results/<scene>/sweep.nc``, a NetCDF dataset with units on every
 variable. This example writes a project with one small scene into a temporary folder, runs the
-workflow on it, and reads the dataset with xarray. It needs the workflow extra
+workflow on it, and reads the dataset with xarray (through vcor's reader). It needs the workflow extra
 (``pip install -e '.[workflow]'``) and a clone of the repository (for ``Snakefile`` and ``workflow/``).
 """
 
@@ -15,9 +15,9 @@ import tempfile
 from pathlib import Path
 
 import matplotlib.pyplot as plt
-import xarray as xr
 
 from vcor import plots
+from vcor.io.netcdf import read_dataset
 
 CONFIG = """\
 scenes:
@@ -52,9 +52,12 @@ run.check_returncode()
 # Reading the dataset
 # -------------------
 # One variable per result field, each with its ``units`` and ``long_name``; the grid axes are
-# dimensions; ``status`` and ``validity`` are CF flag variables.
+# dimensions; ``status`` and ``validity`` are CF flag variables. The file follows CF-1.10, which keeps
+# text out of coordinate variables: the material names are the label ``material_label`` along the
+# dimension ``material``. :func:`vcor.io.netcdf.read_dataset` (``xarray.load_dataset`` and the step
+# back) makes them the dimension's index again, so that ``sel(material="sls")`` works.
 
-ds = xr.load_dataset(project / "results" / "my-first" / "sweep.nc")
+ds = read_dataset(project / "results" / "my-first" / "sweep.nc")
 print(ds)
 print()
 print("cor:", ds["cor"].attrs["long_name"], f"[{ds['cor'].attrs['units']}]")

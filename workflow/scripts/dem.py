@@ -2,8 +2,6 @@
 the dataset, the COR table, the parameters file, and the LAMMPS deck and Yade script when the entry
 fits their laws."""
 
-import xarray as xr
-
 from vcor.dem import export, lammps, yade
 from vcor.io import netcdf
 from vcor.io.joblog import count, job_log
@@ -23,7 +21,7 @@ with job_log(smk) as log:
     done = summary.outcome_of(ds)
     log.note(f"DEM entry {name}: solved {count(done.points, 'collision')}: {done.text()}; fitted "
              f"{count(ds.sizes['model'], 'contact law')}: {out['nc']}")
-    written = xr.load_dataset(out["nc"])  # the deck and the script say what the archived dataset says
+    written = netcdf.read_dataset(out["nc"])  # the deck and the script say what the archived dataset says
     if "deck" in out:
         lammps.write_deck(out["deck"], written)
         log.note(f"wrote the LAMMPS deck {out['deck']}")
