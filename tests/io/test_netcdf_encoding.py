@@ -1,5 +1,5 @@
-"""The CF encoding of vcor's NetCDF files (vcor.io.netcdf): what the file holds, that reading gives back
-what was written, and that archives written before the encoding read as they did."""
+"""The CF encoding of vcor's NetCDF files (vcor.io.netcdf): what the file holds, that reading gives a
+dataset back as its writer held it, and that archives written before the encoding still read."""
 
 import json
 

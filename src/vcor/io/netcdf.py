@@ -1,5 +1,5 @@
 """NetCDF output with CF metadata (provenance from :mod:`vcor.provenance`), and the reader that gives
-back what was written.
+a file back as its writer held it.
 
 The archives follow CF-1.10 (checked with the IOOS ``compliance-checker --test cf:1.10``, no errors;
 docs, Datasets). One function, :func:`encode`, decides how a dataset vcor holds in memory becomes
