@@ -41,6 +41,7 @@ import numpy as np
 import yaml
 
 import timing
+from vcor.io.yamlfile import load_yaml
 
 ROOT = timing.ROOT
 TEMPS = (0.0, 20.0, 40.0)
@@ -189,7 +190,7 @@ def _project(folder: Path, uncertainty: dict | None, quick: bool) -> Path:
     for name in ("Snakefile", "workflow", "profiles", "data"):
         src = ROOT / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, folder / name)
-    cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
+    cfg = load_yaml(ROOT / "config.yaml")
     scene = cfg["scenes"]["pyvisco"]
     scene.pop("uncertainty", None)
     if uncertainty:
@@ -232,7 +233,7 @@ def sweep_work(path: Path) -> tuple[int, float, float]:
     from vcor.study.config import load_project
     from vcor.study.cost import point_seconds
 
-    data = load_project(yaml.safe_load((path / "config.yaml").read_text()), path).fitted_to_data
+    data = load_project(load_yaml(path / "config.yaml"), path).fitted_to_data
     shards = sorted((path / "results/pyvisco/shards").glob("*.json"))
     estimate = 0.0
     for index in shards:

@@ -9,7 +9,7 @@ the file, for every writer:
   strictly monotonic, as CF requires (CF 1.10 section 1.3). A dimension coordinate of text (material
   names, history runs, solvers, DEM laws, calibrated parameters) is written as a CF *label*, a string
   auxiliary coordinate variable ``<dim>_label`` along the dimension (CF section 6.1), which the data
-  variables name in their ``coordinates`` attribute; a numeric one that is not strictly monotonic
+  variables name in their ``coordinates`` attribute; any other that is not strictly monotonic numbers
   (repeated frequencies of measured data) likewise as ``<dim>_values``. The dimension keeps its name.
 * no coordinate (dimension or auxiliary) carries ``_FillValue``: CF allows no missing values in
   coordinate variables, and vcor's coordinates never hold any;
@@ -108,7 +108,7 @@ def encode(ds):
             continue
         values = ds[dim].values
         text = values.dtype.kind in "USO"
-        if text or not _strictly_monotonic(values):
+        if text or values.dtype.kind not in "iufmM" or not _strictly_monotonic(values):
             taken = set(ds.variables) | set(ds.dims)
             ds = _rename(ds, dim, cf_name(f"{dim}_label" if text else f"{dim}_values", taken))
     for name in list(ds.variables):
