@@ -11,10 +11,9 @@ Run: python benchmarks/bench_fit.py [--runs 2] [--calls 3] [--quick] [--out FILE
 
 from __future__ import annotations
 
-import yaml
-
 import timing
 from vcor.fitting import fits, prony
+from vcor.io.yamlfile import load_yaml
 
 
 def measure(args):
@@ -24,7 +23,7 @@ def measure(args):
              ("CERF", lambda: prony.fit_cerf(data))]
     terms = (3, 7) if args.quick else (3, 7, 9, 12)
     cases += [(f"Prony, N = {n}", lambda n=n: prony.fit_prony(data, n)) for n in terms]
-    spec = yaml.safe_load((timing.ROOT / "config.yaml").read_text())["fits"]["pyvisco-polymer"]
+    spec = load_yaml(timing.ROOT / "config.yaml")["fits"]["pyvisco-polymer"]
     cases.append(("pyvisco raw DMA (`fits.pyvisco-polymer`): shifts + lag + spectrum",
                   lambda: fits.run_fit(spec, timing.ROOT)[0]))
     out = {}

@@ -16,10 +16,10 @@ import collections
 import time
 
 import numpy as np
-import yaml
 
 import timing
 from vcor import status
+from vcor.io.yamlfile import load_yaml
 from vcor.study import runner, scene
 
 CONFIG = timing.ROOT / "config.yaml"
@@ -29,7 +29,7 @@ QUICK_SCENE, QUICK_METHODS = "stability-ratio", ("direct", "adaptive")  # --quic
 
 
 def stability_scenes() -> dict:
-    return {k: v for k, v in yaml.safe_load(CONFIG.read_text())["scenes"].items() if k.startswith("stability-")}
+    return {k: v for k, v in load_yaml(CONFIG)["scenes"].items() if k.startswith("stability-")}
 
 
 def measure(args):

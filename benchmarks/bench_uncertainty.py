@@ -41,6 +41,7 @@ import numpy as np
 import yaml
 
 import timing
+from vcor.io.yamlfile import load_yaml
 
 ROOT = timing.ROOT
 TEMPS = (0.0, 20.0, 40.0)
@@ -189,7 +190,7 @@ def _project(folder: Path, uncertainty: dict | None, quick: bool) -> Path:
     for name in ("Snakefile", "workflow", "profiles", "data"):
         src = ROOT / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, folder / name)
-    cfg = yaml.safe_load((ROOT / "config.yaml").read_text())
+    cfg = load_yaml(ROOT / "config.yaml")
     scene = cfg["scenes"]["pyvisco"]
     scene.pop("uncertainty", None)
     if uncertainty:
@@ -206,12 +207,11 @@ def _project(folder: Path, uncertainty: dict | None, quick: bool) -> Path:
 def reversals(sweep_path: Path) -> list[list[str]]:
     """Per material, nu and v0 of a banded sweep: the turns of the median COR(T) larger than the band's
     half-width there (vcor.study.uncertainty.significant_reversals), and the band's largest half-width."""
-    import xarray as xr
-
+    from vcor.io.netcdf import read_dataset
     from vcor.study.uncertainty import significant_reversals
 
     rows = []
-    with xr.open_dataset(sweep_path) as ds:
+    with read_dataset(sweep_path) as ds:
         for m in ds["material"].values:
             for nu in ds["nu"].values:
                 for v0 in ds["v0"].values:
@@ -233,7 +233,7 @@ def sweep_work(path: Path) -> tuple[int, float, float]:
     from vcor.study.config import load_project
     from vcor.study.cost import point_seconds
 
-    data = load_project(yaml.safe_load((path / "config.yaml").read_text()), path).fitted_to_data
+    data = load_project(load_yaml(path / "config.yaml"), path).fitted_to_data
     shards = sorted((path / "results/pyvisco/shards").glob("*.json"))
     estimate = 0.0
     for index in shards:

@@ -28,7 +28,10 @@ ds = vcor.sweep(scene, progress=False)
 # Reading the dataset
 # -------------------
 # One variable per result field, each with its ``units`` and ``long_name``; the grid axes are
-# dimensions; ``status`` and ``validity`` are CF flag variables.
+# dimensions; ``status`` and ``validity`` are CF flag variables. The archived file follows CF-1.10,
+# which keeps text out of coordinate variables: it holds the material names as the label
+# ``material_label`` along the dimension ``material``; :func:`vcor.io.netcdf.read_dataset` reads such a
+# file back as here, with the names as the dimension's index, so that ``sel(material="sls")`` works.
 
 print(ds)
 print()

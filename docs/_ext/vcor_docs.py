@@ -41,6 +41,8 @@ from docutils.parsers.rst import Directive
 from docutils.statemachine import StringList
 from sphinx.transforms.post_transforms import SphinxPostTransform
 
+from vcor.io.yamlfile import load_yaml
+
 ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 CAPTIONS = ROOT / "workflow" / "report" / "figures"
@@ -232,7 +234,7 @@ class FigureTable(Directive):
     def run(self):
         from vcor import plots
 
-        schema = yaml.safe_load(SCHEMA.read_text())
+        schema = load_yaml(SCHEMA, what="config schema")
         enum = schema["properties"]["scenes"]["additionalProperties"]["properties"]["figures"]["propertyNames"]["enum"]
         rows = []
         for name, (_, needs) in plots.FIGURES.items():
@@ -334,7 +336,7 @@ class ConfigReference(Directive):
     def run(self):
         from vcor.solvers.options import SolverOptions
 
-        schema = yaml.safe_load(SCHEMA.read_text())
+        schema = load_yaml(SCHEMA, what="config schema")
         meanings = yaml.safe_load("\n".join(self.content)) or {}
         rows, seen = [], set()
         for path, node in schema_rows(schema):

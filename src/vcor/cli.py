@@ -271,14 +271,13 @@ def _catalogue(config):
 
     if config is None:
         return Catalogue()
-    import yaml
-
+    from .io.yamlfile import load_yaml
     from .study.config import load_project
 
     path = Path(config)
     if not path.is_file():
         raise ValueError(f"--config {str(path)!r} does not exist")
-    cfg = yaml.safe_load(path.read_text()) or {}
+    cfg = load_yaml(path, what="--config") or {}
     if not isinstance(cfg, dict):
         raise ValueError(f"--config {str(path)!r}: not a mapping of config keys")
     return load_project({**cfg, "scenes": {}}, base_dir=path.parent, require_targets=False).catalogue

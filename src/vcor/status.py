@@ -66,6 +66,7 @@ def cf_attrs(long_name: str = "solver status") -> dict:
     items = sorted(STATUS_CODES.items(), key=lambda kv: kv[1])
     return {
         "long_name": long_name,
+        "standard_name": "status_flag",
         "units": "1",
         "flag_values": np.array([c for _, c in items], dtype=np.int8),
         "flag_meanings": " ".join(k.replace("-", "_") for k, _ in items),

@@ -6,6 +6,7 @@ import pytest
 import vcor
 from vcor import materials as M
 from vcor.contact import bodies
+from vcor.io.netcdf import read_dataset
 from vcor.study.scene import build_point, settings_of, validate_scene
 
 
@@ -138,13 +139,11 @@ def test_scene_point_with_bodies():
 def test_workflow_scene_with_bodies(make_project, smk, tmp_path):
     """A scene with sphere and plate bodies runs through the workflow; the sweep's COR is the one of
     vcor.simulate with the same bodies."""
-    import xarray as xr
-
     scene = {**SCENE, "solver": {"method": "direct"}, "figures": {"fig8": {}}}
     cfg = {"shard_size": 100, "material_dir": "results/materials", "scenes": {"bodies": scene}}
     path = make_project(tmp_path, cfg)
     smk(path, "-j2", "results/bodies/sweep.nc")
-    ds = xr.open_dataset(path / "results/bodies/sweep.nc")
+    ds = read_dataset(path / "results/bodies/sweep.nc")
     for v0 in (1.0, 10.0):
         want = _solve(SCENE["sphere"], SCENE["plate"], v0=v0, method="direct")
         assert ds["cor"].sel(material="sls", v0=v0).item() == want.cor
@@ -154,8 +153,6 @@ def test_workflow_scene_with_bodies(make_project, smk, tmp_path):
 def test_workflow_body_may_name_a_config_material(make_project, smk, tmp_path):
     """A body naming a config material: its parameters are inlined into the scene's settings, so editing
     the material changes the shard names (its content is part of their identity)."""
-    import xarray as xr
-
     scene = {"materials": ["sls"], "grid": {"v0": [10.0]}, "solver": {"method": "direct"},
              "sphere": {"material": "my-ball"}, "plate": {}}
     cfg = {"shard_size": 100, "material_dir": "results/materials",
@@ -163,7 +160,7 @@ def test_workflow_body_may_name_a_config_material(make_project, smk, tmp_path):
     path = make_project(tmp_path, cfg)
     smk(path, "-j2", "results/b/sweep.nc")
     want = _solve({"material": {"model": "elastic", "E": 5e8}}, {}, method="direct")
-    assert xr.open_dataset(path / "results/b/sweep.nc")["cor"].item() == want.cor
+    assert read_dataset(path / "results/b/sweep.nc")["cor"].item() == want.cor
     import yaml
 
     cfg["materials"]["my-ball"]["E"] = 6e8

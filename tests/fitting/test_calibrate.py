@@ -6,6 +6,7 @@ import pytest
 import vcor
 from vcor import materials as M
 from vcor.fitting import calibrate as C
+from vcor.io.netcdf import read_dataset
 from vcor.materials import Catalogue
 
 TRUE = M.SLS(15e6, 300.0, 1200.0)
@@ -128,7 +129,6 @@ def test_bad_calibration_specs_name_the_key(tmp_path, free, words):
 def test_workflow_calibrates_and_a_scene_uses_the_result(make_project, smk, tmp_path, clean):
     """A calibrations block: the record (estimate, stderr, correlation, data, fit, residuals, band), the
     figure, and the calibrated material used by name in a scene; bad data stop the run before any job."""
-    import xarray as xr
 
     rng = np.random.default_rng(5)
     cor = clean * (1 + 0.005 * rng.standard_normal(V0.size))
@@ -139,13 +139,13 @@ def test_workflow_calibrates_and_a_scene_uses_the_result(make_project, smk, tmp_
     path = make_project(tmp_path, cfg)
     (path / "cor.csv").write_text("v0,cor\nm/s,-\n" + "".join(f"{a:.17g},{b:.17g}\n" for a, b in zip(V0, cor)))
     smk(path, "-j2")
-    ds = xr.open_dataset(path / "results/calibrations/cal.nc")
+    ds = read_dataset(path / "results/calibrations/cal.nc")
     assert list(ds["parameter"].values) == ["E_glassy", "beta"]
     assert ds["correlation"].shape == (2, 2) and ds["identified"].values.tolist() == [1, 1]
     assert (path / "results/calibrations/cal.png").stat().st_size > 0
     mat = M.from_file(path / "results/materials/cal.nc")
     assert mat.params()["beta"] == float(ds["estimate"].sel(parameter="beta"))
-    sweep = xr.open_dataset(path / "results/use/sweep.nc")
+    sweep = read_dataset(path / "results/use/sweep.nc")
     assert sweep["cor"].sel(material="cal", v0=10.0).item() == vcor.simulate(mat, 10.0, method="adaptive").cor
     (path / "cor.csv").write_text("v0,cor\n1,0.5\n2,1.5\n")
     out = smk(path, "-n", check=False)

@@ -9,6 +9,7 @@ import pytest
 
 import vcor
 from vcor.fitting import dma
+from vcor.io.netcdf import read_dataset
 from vcor.materials import shift as tts
 
 DATA = Path(__file__).resolve().parents[2] / "data/pyvisco"
@@ -131,7 +132,6 @@ def test_pyvisco_raw_sets_superposed_both_ways():
 def test_workflow_fits_measured_data_and_sweeps_temperature(make_project, smk, tmp_path):
     """A fit to raw DMA sets in the config (superposition, WLF, Prony master curve): the material
     file carries its shift function, and a scene sweeps T with it."""
-    import xarray as xr
 
     cfg = {"shard_size": 100, "material_dir": "results/materials",
            "fits": {"measured": {"model": "prony", "data": {"file": "data/dma.csv", "T_ref": T_REF}}},
@@ -162,9 +162,9 @@ def test_workflow_fits_measured_data_and_sweeps_temperature(make_project, smk, t
     assert shift.model == default.get("default", "table")
     assert max(abs(shift.log_aT(T) - float(tts.wlf_log_aT(T, T_REF, C1, C2))) for T in TEMPS) < 0.1
     mat = vcor.materials.from_file(nc)
-    fit_ds = xr.open_dataset(nc)
+    fit_ds = read_dataset(nc)
     assert set(np.unique(fit_ds["T_set"].values)) == set(np.unique(dma.read_table(path / "data/dma.csv").columns["T"]))
-    ds = xr.open_dataset(path / "results/temp/sweep.nc")
+    ds = read_dataset(path / "results/temp/sweep.nc")
     for T in (0.0, 20.0, 40.0):
         want = vcor.simulate(tts.time_shifted(mat, shift.log_aT(T)), 1.0, method="adaptive", rigid=True).cor
         assert ds["cor"].sel(material="measured", v0=1.0, T=T).item() == want

@@ -4,11 +4,11 @@ the CLI's ``--config`` and the workflow. README, "Your own materials"."""
 import json
 
 import pytest
-import xarray as xr
 import yaml
 
 import vcor
 from vcor import cli
+from vcor.io.netcdf import read_dataset
 from vcor.materials.specs import from_spec
 
 PRONY3 = vcor.materials.get("butyl-prony3")
@@ -118,7 +118,7 @@ def test_workflow_uses_config_materials_like_presets(make_project, smk, tmp_path
     (path / "data").mkdir(exist_ok=True)
     (path / "data/prony3.csv").write_text("tau,E\n" + "".join(f"{1 / b!r},{e!r}\n" for b, e in zip(RATES, MODULI)))
     smk(path, "-j2")
-    ds = xr.open_dataset(path / "results/own/sweep.nc")
+    ds = read_dataset(path / "results/own/sweep.nc")
     cor = ds["cor"].sel(v0=10.0)
     assert cor.sel(material="my-prony").item() == vcor.simulate(PRONY3, 10.0, method="adaptive").cor
     assert cor.sel(material="my-sls").item() == cor.sel(material="sls").item()
@@ -171,7 +171,7 @@ def test_temperature_axis_shifts_the_material(make_project, smk, tmp_path):
 
     path = make_project(tmp_path, T_CONFIG)
     smk(path, "-j2")
-    ds = xr.open_dataset(path / "results/temp/sweep.nc")
+    ds = read_dataset(path / "results/temp/sweep.nc")
     assert ds["T"].attrs["units"] == "degC"
     shift = tts.ShiftFunction.from_spec(WLF)
     for T in (0.0, 20.0, 40.0):

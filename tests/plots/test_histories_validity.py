@@ -43,7 +43,7 @@ def test_the_dataset_stores_each_runs_flags_and_their_reason(hist, tmp_path):
     assert "flagged" in summary.outcome_of(hist).text()
     path = tmp_path / "histories.nc"
     netcdf.write_dataset(hist, path, title="test histories")
-    with xr.open_dataset(path) as back:
+    with netcdf.read_dataset(path) as back:
         assert back["validity"].values.tolist() == [LARGE, 0]
         assert back["validity"].attrs["flag_meanings"] == var.attrs["flag_meanings"]
 

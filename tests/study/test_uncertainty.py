@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 
 from vcor import status as st
+from vcor.io.netcdf import read_dataset
 from vcor.study import scene as vscene
 from vcor.study.config import load_project
 from vcor.study.uncertainty import reduce_samples
@@ -151,7 +152,7 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
     (path / "data").mkdir(exist_ok=True)
     write_csv(path / "data/dma.csv", synthetic(1))
     smk(path, "-j2")
-    samples = xr.open_dataset(path / "results/materials/samples/measured-b4-s2.nc")
+    samples = read_dataset(path / "results/materials/samples/measured-b4-s2.nc")
     # fitted by SAMPLE_JOBS jobs side by side, each from the full-data fit's file, then merged
     from vcor.study.uncertainty import SAMPLE_JOBS
 
@@ -162,7 +163,7 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
     assert len(mats) == 4
     assert samples["lag"].attrs["units"] == "s" and np.all(np.isfinite(samples["lag"].values))
     assert np.unique(samples["lag"].values).size == 4          # refitted in every sample
-    ds = xr.open_dataset(path / "results/band/sweep.nc")
+    ds = read_dataset(path / "results/band/sweep.nc")
     assert ds["cor"].dims == ("material", "v0", "T") and ds["cor_samples"].dims == ("material", "v0", "T", "sample")
     assert (ds["status"] == 0).all() and (ds["samples_ok"] == 4).all()
     assert (ds["cor_lo"] <= ds["cor"]).all() and (ds["cor"] <= ds["cor_hi"]).all()
@@ -178,7 +179,7 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
     from vcor import plots
 
     assert (path / "results/band/figures/master_curve.png").stat().st_size > 0
-    fit = xr.open_dataset(path / "results/materials/measured.nc")
+    fit = read_dataset(path / "results/materials/measured.nc")
     fig = plots.draw("master_curve", {"material_fit": [fit], "material_samples": [samples]}, {})
     top, bottom = fig.axes[0], fig.axes[1]
     assert "95 % band over 4 bootstrap samples" in top.get_title()
@@ -194,4 +195,4 @@ def test_workflow_carries_every_sample_through_the_sweep(make_project, smk, tmp_
     assert "sweep_shard" in out.stdout + out.stderr
     after = sorted((path / "results/band/shards").glob("*.nc"))
     assert set(shards) < set(after) and len(after) == len(shards) + 1  # the old shard kept, one new
-    assert xr.open_dataset(path / "results/band/sweep.nc").sizes["v0"] == 3
+    assert read_dataset(path / "results/band/sweep.nc").sizes["v0"] == 3

@@ -164,7 +164,7 @@ def test_a_sweep_rebuilds_from_its_dataset_bit_for_bit(tmp_path):
     netcdf.write_dataset(sweep(sc, catalogue), path, title="sweep",
                          extra_attrs=aggregation.dataset_attrs("s", sc, catalogue))
     (tmp_path / "mats/fitted.nc").unlink()  # the rebuild needs the dataset only
-    back = xr.load_dataset(path)
+    back = netcdf.read_dataset(path)
     rebuilt, cat2 = scene_from_dataset(back)
     assert rebuilt.grid.names == ["T", "v0", "nu"] and list(back["cor"].dims) == ["material", "T", "v0", "nu"]
     assert cat2.shift("fitted").to_dict() == wlf and cat2.shift("mine").to_dict() == arrhenius

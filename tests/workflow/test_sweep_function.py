@@ -10,6 +10,7 @@ import pytest
 import xarray as xr
 
 import vcor
+from vcor.io.netcdf import read_dataset
 
 pytestmark = pytest.mark.slow
 
@@ -55,13 +56,13 @@ def project(make_project, smk, tmp_path_factory):
 @pytest.mark.parametrize("scene", SCENES)
 def test_sweep_equals_the_workflows_dataset(project, scene):
     ours = vcor.sweep(scene, config=project / "config.yaml", workers=2, progress=False)
-    _same(ours, xr.load_dataset(project / "results" / scene / "sweep.nc"))
+    _same(ours, read_dataset(project / "results" / scene / "sweep.nc"))
 
 
 def test_a_scene_given_as_its_mapping_is_the_same_scene(project):
     ours = vcor.sweep(CONFIG["scenes"]["tied"], config=project / "config.yaml", workers=1, progress=False)
     assert ours.attrs["scene"] == "tied"
-    _same(ours, xr.load_dataset(project / "results/tied/sweep.nc"))
+    _same(ours, read_dataset(project / "results/tied/sweep.nc"))
 
 
 def test_without_the_workflows_files_the_fits_and_samples_are_computed(project, tmp_path):
@@ -71,7 +72,7 @@ def test_without_the_workflows_files_the_fits_and_samples_are_computed(project, 
     shutil.copytree(project / "data", tmp_path / "data")
     for scene in ("fitted", "band"):
         ours = vcor.sweep(scene, config=tmp_path / "config.yaml", workers=2, progress=False)
-        _same(ours, xr.load_dataset(project / "results" / scene / "sweep.nc"))
+        _same(ours, read_dataset(project / "results" / scene / "sweep.nc"))
     assert sorted(p.name for p in tmp_path.iterdir()) == ["config.yaml", "data"]
 
 
@@ -81,4 +82,4 @@ def test_the_command_line_writes_the_same_dataset(project, tmp_path):
     out = tmp_path / "tied.nc"
     assert main(["sweep", "--config", str(project / "config.yaml"), "--scene", "tied", "--out", str(out),
                  "--workers", "2", "--no-progress"]) == 0
-    _same(xr.load_dataset(out), xr.load_dataset(project / "results/tied/sweep.nc"))
+    _same(read_dataset(out), read_dataset(project / "results/tied/sweep.nc"))

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import xarray as xr
 import yaml
 
 import vcor
+from vcor.io.netcdf import read_dataset
 from vcor.materials import Catalogue
 from vcor.study import shards
 
@@ -104,12 +104,12 @@ def test_fit_rule_deterministic_and_used(smk, tiny_run):
     assert hashlib.sha256(path.read_bytes()).hexdigest() == first
     mat = vcor.materials.from_file(path)
     assert len(mat.E) == 3
-    ds = xr.open_dataset(tiny_run / "results/two/sweep.nc")
+    ds = read_dataset(tiny_run / "results/two/sweep.nc")
     assert ds["cor"].sel(material="tiny-prony", v0=10.0).item() == vcor.simulate(mat, 10.0, method="adaptive").cor
 
 
 def test_sweep_dataset_layout_and_values(tiny_run):
-    ds = xr.open_dataset(tiny_run / "results/tiny/sweep.nc")
+    ds = read_dataset(tiny_run / "results/tiny/sweep.nc")
     assert ds["cor"].dims == ("material", "v0", "beta")
     assert list(ds["v0"].values) == [2.0, 10.0] and list(ds["beta"].values) == [1200.0, 2400.0]
     for v in ["cor", "t0", "s_max", "f_max", "s_residual", "w_h", "omega_min", "energy_residual", "wall_time",
@@ -121,7 +121,7 @@ def test_sweep_dataset_layout_and_values(tiny_run):
               "materials"]:
         assert a in ds.attrs, a
     # the shards (archived too) carry the same units and long names: the aggregate takes them from there
-    shard = xr.open_dataset(min((tiny_run / "results/tiny/shards").glob("*.nc")))
+    shard = read_dataset(min((tiny_run / "results/tiny/shards").glob("*.nc")))
     for v in shard.data_vars:
         assert "units" in shard[v].attrs or v.endswith("message"), v
         assert shard[v].attrs.get("long_name"), v
@@ -139,14 +139,14 @@ def test_sweep_dataset_layout_and_values(tiny_run):
     r = vcor.simulate("sls", 10.0, method="adaptive")
     assert ds["t0"].sel(material="sls", v0=10.0, beta=1200.0).item() == r.t0
     assert np.all(ds["status"].values == 0)
-    two = xr.open_dataset(tiny_run / "results/two/sweep.nc")
+    two = read_dataset(tiny_run / "results/two/sweep.nc")
     assert list(two["material"].values) == ["butyl-fc", "butyl-prony3", "tiny-prony"]
     assert (two["cor"].sel(material="butyl-prony3", v0=5.0).item()
             == vcor.simulate("butyl-prony3", 5.0, method="adaptive").cor)
 
 
 def test_failed_point_kept_with_status(tiny_run):
-    ds = xr.open_dataset(tiny_run / "results/thin/sweep.nc")
+    ds = read_dataset(tiny_run / "results/thin/sweep.nc")
     st = ds["status"].sel(material="sls", v0=10.0)
     assert st.sel(h=0.02).item() == 0
     assert st.sel(h=0.002).item() == vcor.status.STATUS_CODES["step-budget"]
@@ -158,7 +158,7 @@ def test_failed_point_kept_with_status(tiny_run):
 def test_spheres_dataset(tiny_run):
     from vcor import spheres as S
 
-    ds = xr.open_dataset(tiny_run / "results/balls/spheres.nc")
+    ds = read_dataset(tiny_run / "results/balls/spheres.nc")
     assert ds["eps_numeric"].dims == ("rule", "b") and list(ds["rule"].values) == ["overlap", "force"]
     assert ds["eps_numeric"].sel(rule="force", b=0.1).item() == pytest.approx(S.cor_numeric(0.1, "force"), abs=1e-12)
     assert ds["eps_sls"].dims == ("tau_ratio", "rule", "b") and np.all(np.isfinite(ds["eps_sls"]))
@@ -167,7 +167,7 @@ def test_spheres_dataset(tiny_run):
 
 
 def test_histories_dataset(tiny_run):
-    ds = xr.open_dataset(tiny_run / "results/tiny/histories.nc")
+    ds = read_dataset(tiny_run / "results/tiny/histories.nc")
     assert list(ds["run"].values) == ["sls/direct", "sls/ive"]
     assert ds["t"].attrs["units"] == "s" and ds["F"].attrs["units"] == "N"
     assert ds["ghost"].sum() > 0

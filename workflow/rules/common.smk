@@ -1,6 +1,7 @@
-# Config validation (the schema, then vcor.study.config: one line naming the key), the run's set-up
-# (project lock, healing of the archive: vcor.study.archive) and every input function. The project
-# model (vcor.study.project) is built once, here; paths come from vcor.study.paths. No logic in rules.
+# Config validation (the config files read again strictly, the schema, then vcor.study.config: one line
+# naming the key), the run's set-up (project lock, healing of the archive: vcor.study.archive) and every
+# input function. The project model (vcor.study.project) is built once, here; paths come from
+# vcor.study.paths. No logic in rules.
 import dataclasses
 import re
 import sys
@@ -10,6 +11,7 @@ from snakemake.cli import get_argument_parser
 from snakemake.exceptions import WorkflowError
 
 import vcor.io.receipts as vreceipts
+import vcor.io.yamlfile as vyamlfile
 import vcor.plots as vplots
 import vcor.provenance as vprovenance
 import vcor.study.archive as varchive
@@ -23,6 +25,13 @@ import vcor.study.uncertainty as vuncertainty
 from vcor.solvers.options import COMPILED_METHODS
 
 SCHEMA = Path(workflow.basedir) / "workflow" / "schemas" / "config.schema.yaml"
+# Snakemake's own reading of the config files keeps the last of two equal keys: each file it read
+# (configfile: and --configfile) is read again strictly, so that a repeated key stops the run
+for _path in workflow.configfiles:
+    try:
+        vyamlfile.load_yaml(_path, what="config file")
+    except ValueError as exc:
+        raise WorkflowError(str(exc)) from None
 try:
     vschema.check_schema(config, SCHEMA)  # fills in the schema's defaults
     PROJECT = vconfig.load_project(config, base_dir=".")

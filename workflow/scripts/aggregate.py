@@ -2,9 +2,7 @@
 
 from pathlib import Path
 
-import xarray as xr
-
-from vcor.io import receipts
+from vcor.io import netcdf, receipts
 from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
 from vcor.study import summary, sweep
@@ -14,7 +12,7 @@ smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     name, catalogue = smk.wildcards.scene, Catalogue(**smk.params.catalogue)
     # every shard is checked against its receipt (its bytes and its id) before it is used
-    shards = [xr.load_dataset(receipts.verified(p, Path(p).stem)) for p in smk.input.shards]
+    shards = [netcdf.read_dataset(receipts.verified(p, Path(p).stem)) for p in smk.input.shards]
     # row i of shard k is grid point rows[k][i]: the plan's join, not a lookup of values read back
     archive = sweep.combine(name, smk.params.scene, Grid.from_dict(smk.params.grid), shards, smk.params.rows,
                             catalogue)

@@ -1,13 +1,11 @@
 """Draw a calibration: data, fitted curve with its 95 % band, residuals (thin: vcor.plots)."""
 
-import xarray as xr
-
 from vcor import plots
-from vcor.io import receipts
+from vcor.io import netcdf, receipts
 from vcor.io.joblog import job_log
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
-    cal = xr.load_dataset(receipts.verified(smk.input[0]))
+    cal = netcdf.read_dataset(receipts.verified(smk.input[0]))
     plots.save(plots.calibration(cal), smk.output.png, smk.output.pdf)
     log.note(f"drew {smk.output.png} and {smk.output.pdf} from {smk.input[0]}")

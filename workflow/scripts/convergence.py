@@ -1,7 +1,5 @@
 """Combine the work-precision cases and write the table of observed orders (thin)."""
 
-import xarray as xr
-
 from vcor.io import netcdf, receipts
 from vcor.io.joblog import count, job_log
 from vcor.study import convergence
@@ -10,7 +8,7 @@ smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     spec = smk.params.spec
     mats = spec["materials"]
-    per_material = [xr.load_dataset(receipts.verified(p)) for p in smk.input]
+    per_material = [netcdf.read_dataset(receipts.verified(p)) for p in smk.input]
     cases = {(m, i): ds.isel(v0=i, drop=True) for m, ds in zip(mats, per_material) for i in range(ds.sizes["v0"])}
     ds = convergence.combine(cases, mats, spec["v0"])
     netcdf.write_dataset(ds, smk.output.nc, title="vcor work-precision study", command="snakemake rule convergence",

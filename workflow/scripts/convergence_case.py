@@ -16,6 +16,7 @@ with job_log(smk) as log:
     load_kernels(METHODS)  # compiled once per machine (vcor.solvers.backend)
     cases = [convergence.study(name, v, catalogue=catalogue) for v in v0s]
     ds = xr.concat([c.expand_dims(v0=[v]) for c, v in zip(cases, v0s)], dim="v0")
+    ds["v0"].attrs.update(convergence.V0_ATTRS)
     netcdf.write_dataset(ds, smk.output[0], title="vcor work-precision case", extra_attrs={"material": name},
                          command="snakemake rule convergence_case")
     done = summary.outcome_of(convergence.ladder_runs(ds))

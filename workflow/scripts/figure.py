@@ -1,9 +1,7 @@
 """Draw all figures of a scene from its datasets (thin: vcor.plots does the drawing)."""
 
-import xarray as xr
-
 from vcor import plots
-from vcor.io import receipts
+from vcor.io import netcdf, receipts
 from vcor.io.joblog import count, job_log
 
 smk = snakemake  # noqa: F821
@@ -12,7 +10,7 @@ loaded = {}  # one load per file: several figures of a scene read the same datas
 
 def load(path):
     if path not in loaded:
-        loaded[path] = xr.load_dataset(receipts.verified(path))
+        loaded[path] = netcdf.read_dataset(receipts.verified(path))
     return loaded[path]
 
 

@@ -32,6 +32,7 @@ import json
 import numpy as np
 
 from ..io.receipts import atomic_text
+from ..solvers.validity import cf_attrs as validity_attrs
 from ..status import cf_attrs, code
 from . import trend
 from .laws import HEREDITARY, PARAMETERS, REQUIRES, SOURCES
@@ -102,6 +103,7 @@ def _describe(ds, params: dict, with_t: bool) -> None:
             ds[v].attrs["units"] = _UNITS[v]
     ds["status"].attrs.update(cf_attrs())
     ds["status"].attrs["long_name"] = "status of vcor's solve at the point"
+    ds["validity"].attrs.update({k: v for k, v in validity_attrs().items() if k != "long_name"})
     for key, (model, unit, meaning, _) in params.items():
         ds[key].attrs.update(units=unit, long_name=meaning, model=model)
     ds["v0"].attrs.update(units="m s-1", long_name="impact speed (relative normal approach speed of a pair)")

@@ -42,6 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.csvfile import cell_number, data_rows, read_rows, units_row
+from ..io.csvfile import header as column_names
 from ..materials import REGISTRY
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
@@ -82,7 +83,7 @@ def read_cor_data(path) -> CorData:
     a missing or unknown column, a non-numeric or non-finite cell (NaN), v0 <= 0, a COR outside (0, 1],
     cor_std <= 0."""
     rows = read_rows(path, "COR data file")
-    header = [c.strip() for c in rows[0]]
+    header = column_names(path, rows)
     for col in ("v0", "cor"):
         if col not in header:
             raise ValueError(f"{path}, line 1: missing column {col!r} (columns: v0, cor, optional cor_std), "
@@ -476,7 +477,8 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
 
     units = {"modulus_scale": "1", "log_aT": "1 (log10 of a_T)"}
     param_units = [units.get(n, _param_unit(n, cal.base.kind if cal.base else "")) for n in cal.names]
-    ds = xr.Dataset(coords={"parameter": ("parameter", cal.names), "parameter_2": ("parameter_2", cal.names)})
+    label = {"long_name": "free parameter of the calibration"}
+    ds = xr.Dataset(coords={d: (d, cal.names, label) for d in ("parameter", "parameter_2")})
     for name, values, long in (("estimate", cal.estimate, "estimate"), ("stderr", cal.stderr, "standard error"),
                                ("lower95", cal.lower95, "95 % interval, lower end"),
                                ("upper95", cal.upper95, "95 % interval, upper end"),
@@ -489,7 +491,7 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
                         {"long_name": "1: identified by the data; 0: see note", "units": "1"})
     ds["note"] = ("parameter", np.array(cal.notes, dtype=str), {"long_name": "why a parameter is not identified"})
     ds["correlation"] = (("parameter", "parameter_2"), cal.correlation, {"units": "1", "long_name": "correlation"})
-    ds = ds.assign_coords(point=("point", np.arange(cal.data.v0.size)))
+    ds = ds.assign_coords(point=("point", np.arange(cal.data.v0.size), {"units": "1", "long_name": "data point"}))
     ds["v0"] = ("point", cal.data.v0, {"units": UNITS.get("v0", "m s-1"), "long_name": "impact speed (data)"})
     ds["cor"] = ("point", cal.data.cor, {"units": "1", "long_name": "COR, data"})
     if cal.data.cor_std is not None:

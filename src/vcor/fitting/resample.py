@@ -478,6 +478,7 @@ def _samples_variables(full, samples, indices):
          "log_aT_full": ("T_set", full.log_aT, {"units": "1", "long_name": "log10 a_T of the full-data fit"}),
          "log_aT_std": ("T_set", full.log_aT_std,
                         {"units": "1", "long_name": "linearised standard error of log10 a_T (full data)"})},
-        coords={"sample": ("sample", np.asarray(indices), {"units": "1", "long_name": "bootstrap sample"}),
+        coords={"sample": ("sample", np.asarray(indices), {"units": "1", "long_name": "bootstrap sample",
+                                                                  "standard_name": "realization"}),
                 "mode": ("mode", np.arange(width), {"units": "1", "long_name": "Prony term index (by rate)"}),
                 "T_set": ("T_set", full.T, {"units": "degC", "long_name": "temperature of the measured set"})})

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .netcdf import write_dataset
+from .netcdf import read_dataset, write_dataset
 
 if TYPE_CHECKING:
     import xarray
@@ -40,8 +40,6 @@ class Archive:
 
     def loaded(self, *, command: str) -> xarray.Dataset:
         """The dataset as :meth:`write` archives it, read back into memory (an ``xarray.Dataset``)."""
-        import xarray as xr
-
         with tempfile.TemporaryDirectory(prefix="vcor-") as folder:
             path = self.write(Path(folder) / "dataset.nc", command=command)
-            return xr.load_dataset(path)
+            return read_dataset(path)

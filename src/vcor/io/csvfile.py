@@ -6,7 +6,7 @@ import csv
 import math
 from pathlib import Path
 
-__all__ = ["cell_number", "data_rows", "is_number", "read_rows", "units_row"]
+__all__ = ["cell_number", "data_rows", "header", "is_number", "read_rows", "units_row"]
 
 
 def read_rows(path, what: str) -> list[list[str]]:
@@ -20,6 +20,17 @@ def read_rows(path, what: str) -> list[list[str]]:
     if not rows:
         raise ValueError(f"{path}: empty file")
     return rows
+
+
+def header(path, rows) -> list[str]:
+    """The column names of the first row, stripped; a name given twice is an error naming the file, line 1
+    and both columns (read by name, one of the two columns would be lost)."""
+    names = [c.strip() for c in rows[0]]
+    for j, name in enumerate(names):
+        if name in names[:j]:
+            raise ValueError(f"{path}, line 1: column {name!r} is given twice (columns {names.index(name) + 1} and "
+                             f"{j + 1}); remove or rename one")
+    return names
 
 
 def data_rows(path, rows, header, start):

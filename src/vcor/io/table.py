@@ -27,13 +27,13 @@ def _point_dims(ds) -> tuple:
 def dataset_table(path) -> str:
     """CSV text of the point variables of the NetCDF dataset at ``path`` (module docstring); ValueError
     naming the file when it cannot be read or has no point variables."""
-    import xarray as xr
+    from .netcdf import read_dataset
 
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"dataset {str(path)!r} does not exist")
     try:
-        ds = xr.load_dataset(path)
+        ds = read_dataset(path)
     except (OSError, ValueError) as exc:
         raise ValueError(f"dataset {str(path)!r} cannot be read as NetCDF ({exc})") from None
     if not ds.data_vars:

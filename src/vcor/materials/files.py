@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.yamlfile import load_json
 from .models import Material, from_dict
 from .specs import from_spec, shift_function
 
@@ -26,8 +27,9 @@ def from_file(path) -> Material:
     if not path.is_file():
         raise ValueError(f"material file {str(path)!r} does not exist")
     if path.suffix == ".json":
+        record = load_json(path, what="material file")  # a key given twice is refused, naming both lines
         try:
-            return from_dict(json.loads(path.read_text()))
+            return from_dict(record)
         except (ValueError, TypeError, KeyError) as exc:
             raise ValueError(f"material file {str(path)!r}: not a material ({exc})") from None
     import xarray as xr

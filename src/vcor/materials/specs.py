@@ -28,6 +28,7 @@ from pathlib import Path
 
 from ..checks import number, positive
 from ..io.csvfile import cell_number, data_rows, read_rows
+from ..io.csvfile import header as column_names
 from . import models as _materials
 from .shift import ShiftFunction
 
@@ -57,7 +58,7 @@ def read_prony_csv(path) -> dict:
     file, the line (1-based, the header is line 1) and the column."""
     path = Path(path)
     rows = read_rows(path, "Prony table")
-    header = [h.strip() for h in rows[0]]
+    header = column_names(path, rows)
     time_cols = [c for c in ("tau", "beta") if c in header]
     mod_cols = [c for c in ("E", "g") if c in header]
     unknown = [h for h in header if h not in ("tau", "beta", "E", "g")]

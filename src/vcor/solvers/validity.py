@@ -43,7 +43,8 @@ MIN_DAMPING_STEPS = 2000
 
 def cf_attrs() -> dict:
     """CF attributes of a validity variable."""
-    return {"long_name": "validity flags of an ok result (0: inside the model's stated range)", "units": "1",
+    return {"long_name": "validity flags of an ok result (0: inside the model's stated range)",
+            "standard_name": "quality_flag", "units": "1",
             "flag_masks": np.array(list(FLAGS.values()), dtype=np.int8), "flag_meanings": " ".join(FLAGS)}
 
 

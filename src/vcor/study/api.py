@@ -239,15 +239,14 @@ class DemExport:
     def write(self, folder=".", *, command: str = "vcor.dem_export") -> dict[str, Path]:
         """Write the dataset, the COR table, the parameters file and (where the entry fits their laws) the
         LAMMPS deck and the Yade script under ``folder`` as the workflow lays them out; {key: path}."""
-        import xarray as xr
-
         from ..dem import export, hereditary, lammps, yade
+        from ..io.netcdf import read_dataset
 
         out = {key: Path(folder) / path for key, path in self.files.items()}
         self.archive.write(out["nc"], command=command)
         export.table_csv(out["table"], self.collisions, self.temperatures)
         export.parameters_csv(out["parameters"], self.archive.dataset)
-        written = xr.load_dataset(out["nc"])  # the deck and the script say what the archived dataset says
+        written = read_dataset(out["nc"])  # the deck and the script say what the archived dataset says
         if "deck" in out:
             lammps.write_deck(out["deck"], written)
         if "hereditary" in out:

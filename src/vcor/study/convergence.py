@@ -21,10 +21,12 @@ from ..solvers.common import richardson
 from ..solvers.options import solver_options
 from ..solvers.simulate import simulate
 
-__all__ = ["LADDER", "RICHARDSON_STEP_TOLS", "RTOLS", "STEP_TOLS", "ladder_runs", "methods_for", "observed_order",
-           "reference_gap", "study"]
+__all__ = ["LADDER", "RICHARDSON_STEP_TOLS", "RTOLS", "STEP_TOLS", "V0_ATTRS", "ladder_runs", "methods_for",
+           "observed_order", "reference_gap", "study"]
 
 LADDER = (250, 500, 1000, 2000, 4000, 8000)
+#: CF attributes of the impact-speed coordinate of the work-precision datasets
+V0_ATTRS = {"units": "m s-1", "long_name": "impact speed"}
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10)
 #: step_tol ladders of the adaptive method: without Richardson extrapolation, and with it (the default)
 STEP_TOLS = (1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
@@ -173,7 +175,7 @@ def combine(cases, materials, v0s):
             cols.append(ds.expand_dims(v0=[float(v)]))
         rows.append(xr.concat(cols, dim="v0"))
     out = xr.concat(rows, dim="material").assign_coords(material=("material", np.array(materials, dtype=str)))
-    out["v0"].attrs.update(units="m s-1", long_name="impact speed")
+    out["v0"].attrs.update(V0_ATTRS)
     out["material"].attrs["long_name"] = "material"
     for name in ("status", "message"):
         out[name].attrs.update(cases[(materials[0], 0)][name].attrs)

@@ -232,6 +232,6 @@ def _ice_fits(ice, rules):
             "ice_eps_law": ("ice_g", eps, {"units": "1", "long_name": "Bridges et al. law 0.32 g^-0.234"}),
             "ice_eps_fit": (("ice_model", "ice_g"), np.array(curves), {"units": "1", "long_name": "fitted model"}),
         },
-        coords={"ice_model": ("ice_model", np.array(names, dtype=str)),
+        coords={"ice_model": ("ice_model", np.array(names, dtype=str), {"long_name": "fitted model of eps"}),
                 "ice_g": ("ice_g", g, {"units": "cm s-1", "long_name": "impact speed g"})},
     )

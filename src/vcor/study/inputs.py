@@ -47,15 +47,12 @@ def schema_path() -> Path:
 def read_config(path) -> dict:
     """The mapping of a YAML config file; ValueError naming the file when it is missing or not a
     mapping. The one place the study functions and commands read a config file."""
-    import yaml
+    from ..io.yamlfile import load_yaml
 
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"config {str(path)!r}: no such file")
-    try:
-        cfg = yaml.safe_load(path.read_text())
-    except yaml.YAMLError as exc:
-        raise ValueError(f"config {str(path)!r}: not YAML ({str(exc).splitlines()[0]})") from None
+    cfg = load_yaml(path, what="config")  # a key given twice is refused, naming both lines
     if cfg is None:
         return {}
     if not isinstance(cfg, dict):

@@ -137,10 +137,12 @@ def rows_dataset(points, rows, settings):
     if estimate:
         data["error_status"] = ("point", _status.codes_of(r["error_status"] for r in rows))
         data["error_message"] = ("point", np.array([r["error_message"] for r in rows], dtype=object))
-    coords = {"point": np.arange(n)}
+    coords = {"point": ("point", np.arange(n), {"units": "1", "long_name": "point of the shard"})}
     axes = [k for k in points[0] if k not in ("index", "material", "material_id")] if points else []
-    coords["material"] = ("point", np.array([p["material"] for p in points], dtype=object))
-    coords["material_id"] = ("point", np.array([p.get("material_id", "") for p in points], dtype=object))
+    coords["material"] = ("point", np.array([p["material"] for p in points], dtype=object),
+                          {"long_name": "material (preset or fitted name)"})
+    coords["material_id"] = ("point", np.array([p.get("material_id", "") for p in points], dtype=object),
+                             {"long_name": "content identity of the material (vcor.materials.Catalogue.identity)"})
     if points and all("index" in p for p in points):
         coords["index"] = ("point", np.array([int(p["index"]) for p in points], dtype=np.int64))
     for a in axes:

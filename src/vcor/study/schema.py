@@ -28,11 +28,9 @@ class SchemaError(ValueError):
 
 @functools.lru_cache(maxsize=4)
 def _load(path: str) -> dict:
-    import yaml
+    from ..io.yamlfile import load_yaml
 
-    # libyaml's parser when PyYAML has it (the same safe loading, ~7x faster on the schema: every
-    # snakemake call reads it)
-    return yaml.load(Path(path).read_text(), Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    return load_yaml(path, what="config schema")
 
 
 def load_schema(path) -> dict:

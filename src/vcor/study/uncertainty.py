@@ -132,11 +132,10 @@ def samples_identity(catalogue, name: str, spec: dict, part: tuple[int, int] | N
 
 @functools.lru_cache(maxsize=16)
 def _samples(path: str, mtime_ns: int):
-    import xarray as xr
-
     from ..fitting.samples import sample_materials
+    from ..io.netcdf import read_dataset
 
-    return sample_materials(xr.load_dataset(path))
+    return sample_materials(read_dataset(path))
 
 
 def sample_material(path, k: int, overrides: dict | None, T: float | None, name: str):
@@ -207,7 +206,8 @@ def reduce_samples(ds, level: float):
     out["status"] = status.where(bad, _status.code("ok")).astype(np.int8).assign_attrs(ds["status"].attrs)
     out["message"] = xr.DataArray(np.where(bad, message, "").astype(str), dims=status.dims,
                                   attrs=ds["message"].attrs)
-    out["samples_ok"] = (n - n_bad).astype(np.int16).assign_attrs(units="1", long_name="bootstrap samples ok")
+    out["samples_ok"] = xr.DataArray((n - n_bad.values).astype(np.int16), dims=status.dims,
+                                     attrs={"units": "1", "long_name": "bootstrap samples ok (a count)"})
     if "validity" in ds:  # a flag of any sample marks the point, with the first flagged sample's message
         axis = ds["validity"].dims.index("sample")
         flags = ds["validity"].values
@@ -219,7 +219,8 @@ def reduce_samples(ds, level: float):
     red = xr.Dataset(out, coords={**coords, "sample": ds["sample"]})
     red.attrs.update(ds.attrs)
     red.attrs["uncertainty_level"] = level
-    red["sample"].attrs.update(units="1", long_name="bootstrap sample of the fitted materials")
+    red["sample"].attrs.update(units="1", long_name="bootstrap sample of the fitted materials",
+                               standard_name="realization")
     return red
 
 

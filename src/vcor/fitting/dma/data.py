@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ...io.csvfile import cell_number, data_rows, read_rows, units_row
+from ...io.csvfile import header as column_names
 from ...materials.shift import TABLE_TOLERANCE, ZERO_CELSIUS
 from .sets import split_sets
 
@@ -79,7 +80,7 @@ def read_table(path) -> DMATable:
     """Read and check a DMA/shift-factor CSV (module docstring); errors name file, line and column."""
     path = Path(path)
     rows = read_rows(path, "DMA file")
-    header = [h.strip() for h in rows[0]]
+    header = column_names(path, rows)
     kind = _kind(path, header)
     # T: the unit's value is an offset to deg C; every other column's a factor to SI
     scale, start = units_row(path, rows, header, UNITS, {h: 0.0 if h == "T" else 1.0 for h in header})
