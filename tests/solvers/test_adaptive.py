@@ -135,7 +135,7 @@ def test_fractional_plate_in_closed_form_equals_its_exponential_sum(monkeypatch)
     tab = adaptive.level_tables(imp.material, float(imp.kappa), 1e-9, 30, 1.0, 1e-10)
     sls = make_impact("sls", 10.0, {})
     assert adaptive.plate_kind(imp) == 2 and adaptive.plate_kind(sls) == 1
-    assert adaptive.plate_record(imp, tab, 2).kind == 2 and adaptive.plate_record(sls, tab, 1).kind == 1
+    assert adaptive.plate_record(imp, tab, 2)[0].kind == 2 and adaptive.plate_record(sls, tab, 1)[0].kind == 1
     cases = [(v0, h) for v0 in (1.0, 10.0) for h in (None, 10e-3)]
     closed = [vcor.simulate("butyl-fc", v0, method="adaptive", h=h) for v0, h in cases]
     monkeypatch.setattr(vcor.materials.FractionalPower, "sqrt_law", lambda self: None)
@@ -222,19 +222,23 @@ def test_a_run_at_step_tol_over_16_is_much_more_accurate():
 
 
 def test_extrapolation_never_stores_a_negative_cor():
-    """A creeping thin plate separates with a COR of ~1e-11; its three grids then agree within
-    COR_FLOOR (1e-9 absolute) and pass the guard, but the weights (0.07, -0.69, 1.62) can take the
-    extrapolated COR below zero. The finest grid's values are kept then, with a message; an ordinary
-    impact is extrapolated as before."""
+    """A creeping thin plate separates with a COR of ~1e-11; its grids then agree within COR_FLOOR
+    (1e-9 absolute) and pass the guard, but the weights (of both signs) can take the extrapolated COR
+    below zero. The finest grid's values are kept then, with a message; an ordinary impact (grid errors
+    falling as h^2) is extrapolated."""
     def runs(cors):
         return [[{"t0": 0.5, "cor": c}.get(k, 1.0) for k in adaptive.EXTRAPOLATED] for c in cors]
 
     cor = adaptive.EXTRAPOLATED.index("cor")
-    values, message = adaptive.richardson_outcome(runs([1e-11, 2e-10, 5e-11]))  # creeping
-    assert values[cor] == 5e-11 and "extrapolated COR" in message and "negative" in message
-    values, message = adaptive.richardson_outcome(runs([0.4320, 0.43198, 0.431987]))  # ordinary
     w = adaptive.RICHARDSON_WEIGHTS
-    assert message == "" and values[cor] == pytest.approx(w[0] * 0.4320 + w[1] * 0.43198 + w[2] * 0.431987)
+    creeping = [1e-11, 1e-11, 2e-10, 5e-11][-adaptive.GRIDS:]
+    assert sum(wj * c for wj, c in zip(w, creeping)) < 0  # the case: weights that leave the physical range
+    values, message = adaptive.richardson_outcome(runs(creeping))
+    assert values[cor] == creeping[-1] and "extrapolated COR" in message and "negative" in message
+    ordinary = [0.43198 + 2e-4 * 4.0**-j for j in range(adaptive.GRIDS)]
+    values, message = adaptive.richardson_outcome(runs(ordinary))
+    assert message == "" and values[cor] == pytest.approx(sum(wj * c for wj, c in zip(w, ordinary)))
+    assert values[cor] == pytest.approx(0.43198, abs=1e-15)  # an h^2 error is eliminated
     assert sum(w) == pytest.approx(1.0, abs=1e-15)  # a constant is extrapolated to itself
 
 

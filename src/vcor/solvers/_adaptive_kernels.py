@@ -69,12 +69,14 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     tables : LevelTables
         Per level: steps, weights of the newest step and of each mode, decays, live modes.
     plate : Plate
-        The plate's mobility: kind 0, constant; 1, E_b(t) on the kernel's modes; 2, in closed form.
+        The plate's mobility: kind 0, constant; 1, E_b(t) on exponential modes with their own decay
+        table (the kernel's, when the plate is of the contact's material); 2, in closed form.
     body : Body
     control : AdaptiveControl
     stop : Stop
     modes : Modes
-        history P_k (N) and plate X_k = exp(-b_k t), whole on entry and on return.
+        history P_k (N, one per kernel mode) and plate X_k = exp(-b_k t) (one per plate mode), whole
+        on entry and on return.
     state : int64 array
         [loaded, separation, last, status, rejected, waived, level, frozen] (``_records``); set the
         level to the first step's before the first call.
@@ -93,7 +95,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     factors X_k below DECAYED are zero from then on (t only grows).
 
     Plate mobility (kind 1): alpha = scale / sqrt(E_b), E_b(t) = factor (e_inf + sum moduli_k X_k),
-    X_k = exp(-b_k t) carried with the same decays (rate_moduli = b_k moduli_k); kind 2:
+    X_k = exp(-b_k t) carried with the plate's decays (rate_moduli = b_k moduli_k); kind 2:
     E_b(t) = factor (e_inf + sqrt_coef t^-1/2) (the fractional law); kind 0: alpha = const.
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
@@ -114,7 +116,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     mode_integral, mode_moment, mode_decay, live_modes = (tables.mode_integral, tables.mode_moment,
                                                           tables.mode_decay, tables.live_modes)
     P, X = modes.history, modes.plate
-    pe, pbe = plate.moduli, plate.rate_moduli
+    pe, pbe, plate_decay = plate.moduli, plate.rate_moduli, plate.decay
     pscale, pc, pe_inf = plate.scale, plate.factor, plate.e_inf
     m, v0 = body.m, body.v0
     step_tol, inv_tc, sep_frac, ghost = control.step_tol, control.inv_tc, control.sep_fraction, control.ghost
@@ -124,13 +126,13 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     nmax = t.shape[0] - 1
     inv_pscale2 = 1.0 / (pscale * pscale) if pscale > 0.0 else 0.0
     trial_history = np.empty(nk)
-    trial_plate = np.empty(nk)
+    trial_plate = np.empty(X.shape[0])
     # P is whole on entry; modes n_explicit.. are implicit after the first accepted step (see Notes)
     n_explicit = nk
     last_d = 0.0
     last_c = 0.0
     last_row = np.int64(0)  # (not a literal 0: numba would compile _fill a second time for it)
-    n_plate = nk
+    n_plate = pe.shape[0]
     while n_plate > 1 and X[n_plate - 1] == 0.0:
         n_plate -= 1
     lev = state[LEVEL]
@@ -185,14 +187,14 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
             H = Hh - w0 * u[n - 1]
         if plate.kind == 1:
             if n_plate > FEW_MODES:
-                eb, ebd = _plate_sums(mode_decay, row, X, trial_plate, pe, pbe, n_plate)
+                eb, ebd = _plate_sums(plate_decay, row, X, trial_plate, pe, pbe, n_plate)
                 eb = pc * (pe_inf + eb)
                 ebd = -pc * ebd
             else:
                 eb = pe_inf
                 ebd = 0.0
                 for k in range(n_plate):
-                    x = mode_decay[row, k] * X[k]
+                    x = plate_decay[row, k] * X[k]
                     trial_plate[k] = x
                     eb += pe[k] * x
                     ebd -= pbe[k] * x
@@ -353,12 +355,12 @@ def _node_arrays(n):
 
 
 @jit
-def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start_level, size0, out):
-    """The adaptive march (:func:`march_adaptive`), then (n_grids = 3) its replays with every step
-    halved and quartered, and the separation of each, in one call (no histories).
+def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_steps, start_level, size0, out):
+    """The adaptive march (:func:`march_adaptive`), then (n_grids > 1) its replays with every step
+    divided by 2, 4, ... 2^(n_grids - 1), and the separation of each, in one call (no histories).
 
     The records arrive as plain tuples (``_records``) and are passed on so. The tables have
-    level_top + 3 rows from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k.
+    level_top + 1 + ``splits`` rows from h_base / 2^splits: grid k uses rows from splits - k.
     Fills out[k] = [the 9 outcome values of ``separation_point``, separation index, largest step (s)]
     and returns True when every grid separated, the first within ``size0`` steps; False (out undefined)
     for anything else (more steps, divergence, time horizon, step budget), which the caller then runs
@@ -374,7 +376,7 @@ def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start
     t, s, g, F, J, u = _node_arrays(size0 + 1)
     lev = base
     P = np.empty(nk)
-    X = np.empty(nk)
+    X = np.empty(Plate(*plate).moduli.shape[0])
     state = np.empty(8, dtype=np.int64)
     for k in range(n_grids):
         rep = 2**k
@@ -397,7 +399,7 @@ def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start
         state[LEVEL] = start_level
         e = size + 1  # the march fills at most ``size`` steps (views: no copies)
         march_adaptive((t[:e], s[:e], g[:e], F[:e], J[:e], u[:e]), lev[:e], tables, plate, body, control, stop,
-                       (P, X), state, plan, 2 - k)
+                       (P, X), state, plan, splits - k)
         if state[STATUS] != STATUS_SEPARATED:
             return False
         n_sep = state[SEPARATION]

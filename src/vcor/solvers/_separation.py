@@ -4,6 +4,10 @@ step, and the outcome there. A plain NumPy reference is :func:`vcor.solvers.refe
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
 from ._jit import jit
 from ._records import Body, Nodes
 
@@ -28,6 +32,56 @@ def _newton_value(c, tn, x):
     for i in range(c.shape[0] - 2, -1, -1):
         total = total * (x - tn[i]) + c[i]
     return total
+
+
+@jit
+def _singular_value(tn, g, F, un, x):
+    """g at x from the four nodes when the force is proportional to u = sgn(s)|s|^{3/2} there (an elastic
+    kernel, F = k u) and s crosses zero: g = B - alpha F with B smooth and alpha the plate's mobility,
+    so g is fitted as a parabola minus a multiple of F (F ~ |t - t0|^{3/2} is not smooth at the root,
+    and a cubic through g misses it by O(h^{3/2})); NaN when F is not proportional to u (the caller
+    then interpolates g by the cubic)."""
+    ref = 0
+    for j in range(1, 4):
+        if abs(un[j]) > abs(un[ref]):
+            ref = j
+    if un[ref] == 0.0:
+        return math.nan
+    k = F[ref] / un[ref]
+    scale = abs(F[ref])
+    for j in range(4):
+        if abs(F[j] - k * un[j]) > 1e-9 * scale:
+            return math.nan
+    # rows [1, d, d^2, -F] c = g, d = t - tn[3], solved by Gaussian elimination with partial pivoting
+    a = np.empty((4, 5))
+    for j in range(4):
+        d = tn[j] - tn[3]
+        a[j, 0] = 1.0
+        a[j, 1] = d
+        a[j, 2] = d * d
+        a[j, 3] = -F[j]
+        a[j, 4] = g[j]
+    for c in range(4):
+        p = c
+        for r in range(c + 1, 4):
+            if abs(a[r, c]) > abs(a[p, c]):
+                p = r
+        if a[p, c] == 0.0:
+            return math.nan
+        for q in range(5):
+            a[c, q], a[p, q] = a[p, q], a[c, q]
+        for r in range(c + 1, 4):
+            f = a[r, c] / a[c, c]
+            for q in range(c, 5):
+                a[r, q] -= f * a[c, q]
+    coef = np.empty(4)
+    for c in range(3, -1, -1):
+        v = a[c, 4]
+        for q in range(c + 1, 4):
+            v -= a[c, q] * coef[q]
+        coef[c] = v / a[c, c]
+    d = x - tn[3]
+    return coef[0] + coef[1] * d + coef[2] * d * d
 
 
 @jit
@@ -56,13 +110,14 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
 
     The root of the cubic through nodes lo..lo+3 of the target (s when ``by_overlap``, else F) is found
     by the Illinois variant of regula falsi to 1e-15 t_n; s, s' and J (and F unless ``force_rule``) are
-    interpolated by the same cubics there. The work integrals are trapezoidal on nodes 0..n-1 plus the
+    interpolated by the same cubics there, except s' when s crosses zero with F proportional to u (an
+    elastic kernel: :func:`_singular_value`). The work integrals are trapezoidal on nodes 0..n-1 plus the
     partial interval [t_{n-1}, t0]; the peaks of s and F are parabola-refined (:func:`parabola_peak`).
 
     Parameters
     ----------
     nodes : Nodes
-        t (s), s (m), g (m/s), F (N), J (N s) of the march (u unused); a plain tuple (``_records``).
+        t (s), s (m), g (m/s), F (N), J (N s), u (m^1.5) of the march; a plain tuple (``_records``).
     n : int
         The separation node; lo: the first of the four interpolation nodes.
     by_overlap, force_rule : bool
@@ -79,7 +134,7 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
     bool
         True; False (nothing filled) when the target does not change sign in the step.
     """
-    t, s, g, F, J, _ = nodes
+    t, s, g, F, J, u = nodes
     m, v0 = Body(*body).m, Body(*body).v0
     tn = t[lo:lo + 4]
     c = _divided(tn, s[lo:lo + 4] if by_overlap else F[lo:lo + 4])
@@ -116,9 +171,13 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
                 t0 = lo_t if flo < -fhi else hi_t
                 break
     s0 = _newton_value(_divided(tn, s[lo:lo + 4]), tn, t0)
-    g0 = _newton_value(_divided(tn, g[lo:lo + 4]), tn, t0)
     J0 = _newton_value(_divided(tn, J[lo:lo + 4]), tn, t0)
     F0 = 0.0 if force_rule else _newton_value(_divided(tn, F[lo:lo + 4]), tn, t0)
+    g0 = math.nan
+    if by_overlap:
+        g0 = _singular_value(tn, g[lo:lo + 4], F[lo:lo + 4], u[lo:lo + 4], t0)
+    if math.isnan(g0):
+        g0 = _newton_value(_divided(tn, g[lo:lo + 4]), tn, t0)
     z0 = v0 - J0 / m
     # trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]; each node's powers F s' and
     # F z' computed once (carried to the next interval)
@@ -155,6 +214,6 @@ def locate_separation(nodes, n, size, overlap_rule, body, out):
     valid: the four interpolation nodes end at n + 1 when it exists, and s is the target for the
     overlap rule, or when s also crossed zero in step n (F ~ s^{3/2} is not smooth at its root, s is)."""
     s = Nodes(*nodes).s
-    lo = max(0, min(n - 2, size - 4))
+    lo = max(0, min(n - 1, size - 4))
     by_overlap = overlap_rule or (s[n] <= 0.0 < s[n - 1])
     return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, out)
