@@ -153,8 +153,8 @@ def _with(**changes):
     (_with(models=["lammps-hooke"]), ["dem.d.models", "lammps-viscoelastic"]),
     (_with(sphere={"material": "rubber"}), ["dem.d.sphere.material", "rubber"]),
     (_with(sphere={"r": 0.005}), ["dem.d.sphere", "material"]),
-    (_with(target={"sphere": {"material": "kelvin-voigt"}}), ["dem.d", "sphere.material (sls) on target.sphere.material "
-                                                              "(kelvin-voigt)", "no method"]),
+    (_with(target={"sphere": {"material": "kelvin-voigt"}}),
+     ["dem.d", "sphere.material (sls) on target.sphere.material (kelvin-voigt)", "no method"]),
     (_with(speed=3), ["dem.d", "speed"]),
     (_with(sphere={"material": {"model": "prony", "file": "../x.nc"}}), ["dem.d.sphere.material.file", "inside"]),
 ], ids=["two kinds", "reversed range", "zero speed", "one speed", "T without shift", "unknown model",

@@ -2,7 +2,6 @@
 Prony materials and geometries (hypothesis, derandomised so CI is reproducible)."""
 
 import collections
-import itertools
 import math
 
 import pytest

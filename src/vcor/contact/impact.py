@@ -268,12 +268,22 @@ class Impact:
 
         return prony_plate
 
+    @cached_property
+    def mobility_is_constant(self) -> bool:
+        """alpha'(t) = 0: a rigid target, case 4, or a plate whose modulus does not relax (elastic, or the
+        regular part of a Kelvin-Voigt modulus)."""
+        g = self.geometry
+        if g.rigid or g.case == 4:
+            return True
+        plate = g.plate_material if g.plate_material is not None else self.material
+        return plate.is_prony and not np.any(plate.prony_terms()[1])
+
     def unbounded_mobility(self, t: float) -> str:
         """Why the plate's mobility is not finite at time t (s), or "" when it is: the plate's modulus has
         relaxed to zero (a Maxwell fluid, rubbery modulus 0), where Zener's mobility
         sqrt(3 rho_b / E'_b) / (16 rho_b h^2) has no bound."""
         g = self.geometry
-        if g.rigid or g.case == 4 or not math.isfinite(t) or bool(np.isfinite(self.alpha(t))):
+        if g.rigid or g.case == 4 or not math.isfinite(t) or float(self._plate_modulus(t)) > 0.0:
             return ""
         plate = g.plate_material if g.plate_material is not None else self.material
         return (f"the plate's modulus E'_b(t) has relaxed to zero by t = {t:.6g} s (plate material {plate.kind} "

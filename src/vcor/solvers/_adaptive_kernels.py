@@ -368,6 +368,8 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
     """
     nk = LevelTables(*tables).mode_decay.shape[1]
     n_extra, rule, v0 = Stop(*stop).n_extra, Stop(*stop).rule, Body(*body).v0
+    pr = Plate(*plate)
+    still = pr.kind == 0 or (pr.kind == 1 and not np.any(pr.moduli != 0.0))  # a constant mobility
     n_plan = 0
     # the march writes node n before anything reads it, and reads nothing beyond the last node: the
     # arrays need only their first node set; the replays reuse the first grid's node arrays when they
@@ -406,7 +408,7 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
         n_done = state[LAST]
         if k == 0:
             n_plan = min(n_done, n_sep + n_extra)
-        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, out[k]):
+        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, still, out[k]):
             return False
         out[k, 9] = n_sep
         big = 0.0

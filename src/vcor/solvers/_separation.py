@@ -4,10 +4,6 @@ step, and the outcome there. A plain NumPy reference is :func:`vcor.solvers.refe
 
 from __future__ import annotations
 
-import math
-
-import numpy as np
-
 from ._jit import jit
 from ._records import Body, Nodes
 
@@ -35,53 +31,20 @@ def _newton_value(c, tn, x):
 
 
 @jit
-def _singular_value(tn, g, F, un, x):
-    """g at x from the four nodes when the force is proportional to u = sgn(s)|s|^{3/2} there (an elastic
-    kernel, F = k u) and s crosses zero: g = B - alpha F with B smooth and alpha the plate's mobility,
-    so g is fitted as a parabola minus a multiple of F (F ~ |t - t0|^{3/2} is not smooth at the root,
-    and a cubic through g misses it by O(h^{3/2})); NaN when F is not proportional to u (the caller
-    then interpolates g by the cubic)."""
+def _elastic_kernel(F, un):
+    """F = k u on the four nodes (to 1e-9 of the largest F): an elastic kernel, whose force
+    F ~ |t - t0|^{3/2} is not smooth where s crosses zero."""
     ref = 0
     for j in range(1, 4):
         if abs(un[j]) > abs(un[ref]):
             ref = j
     if un[ref] == 0.0:
-        return math.nan
+        return False
     k = F[ref] / un[ref]
-    scale = abs(F[ref])
+    deviation = 0.0
     for j in range(4):
-        if abs(F[j] - k * un[j]) > 1e-9 * scale:
-            return math.nan
-    # rows [1, d, d^2, -F] c = g, d = t - tn[3], solved by Gaussian elimination with partial pivoting
-    a = np.empty((4, 5))
-    for j in range(4):
-        d = tn[j] - tn[3]
-        a[j, 0] = 1.0
-        a[j, 1] = d
-        a[j, 2] = d * d
-        a[j, 3] = -F[j]
-        a[j, 4] = g[j]
-    for c in range(4):
-        p = c
-        for r in range(c + 1, 4):
-            if abs(a[r, c]) > abs(a[p, c]):
-                p = r
-        if a[p, c] == 0.0:
-            return math.nan
-        for q in range(5):
-            a[c, q], a[p, q] = a[p, q], a[c, q]
-        for r in range(c + 1, 4):
-            f = a[r, c] / a[c, c]
-            for q in range(c, 5):
-                a[r, q] -= f * a[c, q]
-    coef = np.empty(4)
-    for c in range(3, -1, -1):
-        v = a[c, 4]
-        for q in range(c + 1, 4):
-            v -= a[c, q] * coef[q]
-        coef[c] = v / a[c, c]
-    d = x - tn[3]
-    return coef[0] + coef[1] * d + coef[2] * d * d
+        deviation = max(deviation, abs(F[j] - k * un[j]))
+    return deviation <= 1e-9 * abs(F[ref])
 
 
 @jit
@@ -105,13 +68,16 @@ def parabola_peak(t, y, n):
 
 
 @jit
-def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
+def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, out):
     """Separation inside [t_{n-1}, t_n] and the outcome there.
 
     The root of the cubic through nodes lo..lo+3 of the target (s when ``by_overlap``, else F) is found
     by the Illinois variant of regula falsi to 1e-15 t_n; s, s' and J (and F unless ``force_rule``) are
-    interpolated by the same cubics there, except s' when s crosses zero with F proportional to u (an
-    elastic kernel: :func:`_singular_value`). The work integrals are trapezoidal on nodes 0..n-1 plus the
+    interpolated by the same cubics there. Where s crosses zero with F proportional to u (an elastic
+    kernel, :func:`_elastic_kernel`: F ~ |t - t0|^{3/2}, so that a cubic through
+    s' = v0 - J/m - alpha' J - alpha F misses it by O(h^{3/2})) on a plate of constant mobility
+    (``still_plate``: alpha' = 0), the model gives s'(t0) = v0 - J(t0)/m exactly (F(t0) = 0), and J is
+    smooth there. The work integrals are trapezoidal on nodes 0..n-1 plus the
     partial interval [t_{n-1}, t0]; the peaks of s and F are parabola-refined (:func:`parabola_peak`).
 
     Parameters
@@ -122,6 +88,8 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
         The separation node; lo: the first of the four interpolation nodes.
     by_overlap, force_rule : bool
         Interpolate the root of s (else of F); F(t0) = 0 in the work integrals.
+    still_plate : bool
+        The plate's mobility is constant in time (a rigid target, an elastic plate).
     body : Body
         m (kg), v0 (m/s).
     out : float64 array
@@ -173,10 +141,9 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
     s0 = _newton_value(_divided(tn, s[lo:lo + 4]), tn, t0)
     J0 = _newton_value(_divided(tn, J[lo:lo + 4]), tn, t0)
     F0 = 0.0 if force_rule else _newton_value(_divided(tn, F[lo:lo + 4]), tn, t0)
-    g0 = math.nan
-    if by_overlap:
-        g0 = _singular_value(tn, g[lo:lo + 4], F[lo:lo + 4], u[lo:lo + 4], t0)
-    if math.isnan(g0):
+    if by_overlap and still_plate and _elastic_kernel(F[lo:lo + 4], u[lo:lo + 4]):
+        g0 = v0 - J0 / m
+    else:
         g0 = _newton_value(_divided(tn, g[lo:lo + 4]), tn, t0)
     z0 = v0 - J0 / m
     # trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]; each node's powers F s' and
@@ -209,11 +176,11 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
 
 
 @jit
-def locate_separation(nodes, n, size, overlap_rule, body, out):
+def locate_separation(nodes, n, size, overlap_rule, body, still_plate, out):
     """:func:`separation_point` for the separation step n of a march whose first ``size`` nodes are
     valid: the four interpolation nodes end at n + 1 when it exists, and s is the target for the
     overlap rule, or when s also crossed zero in step n (F ~ s^{3/2} is not smooth at its root, s is)."""
     s = Nodes(*nodes).s
-    lo = max(0, min(n - 1, size - 4))
+    lo = max(0, min(n - 2, size - 4))
     by_overlap = overlap_rule or (s[n] <= 0.0 < s[n - 1])
-    return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, out)
+    return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, still_plate, out)

@@ -4,12 +4,12 @@ Every kernel is split into its newest step (exact product integration, which hol
 singularity of the fractional law) and older history carried by the exponential sum of
 :func:`vcor.materials.expsums.soe` (exact for Prony, SLS, elastic and Kelvin-Voigt; relative error <= ``soe_tol``
 for the fractional and CERF laws and the fitted two-body modulus of Eq. 1 on [smallest step, horizon];
-the plate's modulus likewise, on its own modes when the plate is of another material than the contact). One variable per exponential is
-updated in O(1) per step for any step size, so the cost is O(N K) and steps can grow by orders of
-magnitude in long, slow contacts (thin plates) and shrink near t = 0 and at separation. A mode
-that decays below 1e-18 over one step (``_records.DECAYED``) is not touched on that step's level
-(its value is the last step's contribution, kept implicitly), so the fast modes of the fractional
-and CERF sums cost nothing on coarse steps.
+the plate's modulus likewise, on its own modes when the plate is of another material than the
+contact). One variable per exponential is updated in O(1) per step for any step size, so the cost is
+O(N K) and steps can grow by orders of magnitude in long, slow contacts (thin plates) and shrink near
+t = 0 and at separation. A mode that decays below 1e-18 over one step (``_records.DECAYED``) is not
+touched on that step's level (its value is the last step's contribution, kept implicitly), so the fast
+modes of the fractional and CERF sums cost nothing on coarse steps.
 
 Step sizes are powers of two times h_base = 2^(floor(log2 t_c) - FLOOR_BITS) (t_c the contact-time
 estimate), so every table (local weights, mode factors) is computed once per level and shared by the
@@ -61,8 +61,9 @@ from ._records import (
 from .common import OUTCOME, Result, separation_scalars
 from .march import N_EXTRA, Arrays, March, finish
 
-__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_HORIZON", "RICHARDSON_WEIGHTS", "SEP_STEPS", "Tables", "grid_outcomes",
-           "level_tables", "one_call", "plate_kind", "plate_record", "richardson_outcome", "run_adaptive", "solve"]
+__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_HORIZON", "RICHARDSON_WEIGHTS", "SEP_STEPS", "PlateTables",
+           "Tables", "grid_outcomes", "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables",
+           "richardson_outcome", "run_adaptive", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16

@@ -167,25 +167,26 @@ def peak(t, y, f=None):
     return float(parabola_peak(np.asarray(t, dtype=float), np.asarray(y, dtype=float), y.size - 1))
 
 
-def separation(t, s, g, F, J, n_sep, rule, m, v0, u=None):
+def separation(t, s, g, F, J, n_sep, rule, m, v0, still_plate=False):
     """Locate separation inside [t_{n-1}, t_n] and evaluate the outcome there.
 
     The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
-    is found as the root of the cubic
-    interpolant (Newton form) through the four nodes around it (third-order interpolation, error
-    O(dt^4)); s, s', J are interpolated the same way (s' of an elastic kernel's crossing of s = 0
-    allowing for its |t - t0|^{3/2} part; ``u`` = sgn(s)|s|^{3/2} at the nodes, computed when not given). The interpolant equals the nodes, so the
-    root is always bracketed in a march's separation step; anything else raises (no silent guess).
+    is found as the root of the cubic interpolant (Newton form) through the four nodes around it
+    (third-order interpolation, error O(dt^4)); s, s', J are interpolated the same way, except s' of an
+    elastic kernel (F = k u, u = sgn(s)|s|^{3/2}) crossing s = 0 on a plate of constant mobility
+    (``still_plate``): s'(t0) = v0 - J(t0)/m there, exactly (its F ~ |t - t0|^{3/2} is not smooth).
+    The interpolant equals the nodes, so the root is always bracketed in a march's separation step;
+    anything else raises (no silent guess).
     Returns a dict of the scalars and ``message`` (empty).
     """
     from ._separation import locate_separation
 
     n = int(n_sep)
     out = np.empty(9)
-    if u is None:
-        u = np.sign(s) * np.abs(s) ** 1.5
+    u = np.sign(s) * np.abs(s) ** 1.5  # (every march's u; the paper's explicit one keeps none)
     nodes = tuple(Nodes(*(np.ascontiguousarray(a, dtype=float) for a in (t, s, g, F, J, u))))
-    if not locate_separation(nodes, n, len(t), rule == "overlap", tuple(Body(0.0, float(m), float(v0))), out):
+    if not locate_separation(nodes, n, len(t), rule == "overlap", tuple(Body(0.0, float(m), float(v0))),
+                             bool(still_plate), out):
         # cannot happen for a march's separation step (the interpolant equals the nodes, and the
         # target was > 0 at step n - 1 and <= 0 at step n); loud rather than a silent guess
         by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])

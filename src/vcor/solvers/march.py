@@ -179,7 +179,7 @@ def finish(impact, march: March, *, rule, history, method):
     res = Result(steps=n_done, wall_time=march.wall, dt=dt, method=method, soe_error=march.soe_error)
     status = int(state[STATUS])
     if status == STATUS_SEPARATED or (state[SEPARATION] >= 0 and n_done >= state[SEPARATION] + N_EXTRA):
-        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0, arr.u[: n_done + 1])
+        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0, impact.mobility_is_constant)
         res.message = out.pop("message")
         res.__dict__.update(out)
         res.steps = int(state[SEPARATION])

@@ -253,7 +253,7 @@ def _outcome(impact, nodes, n_sep, rule):
     out = nodes.arrays()
     out["n_sep"] = n_sep
     out.update(separation_reference(out["t"], out["s"], out["g"], out["F"], out["J"], n_sep, rule,
-                                    impact.m, impact.v0))
+                                    impact.m, impact.v0, impact.mobility_is_constant))
     return out
 
 
@@ -816,7 +816,7 @@ def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_t
 # ---------------------------------------------------------------------------------------------------
 # separation
 # ---------------------------------------------------------------------------------------------------
-def separation_reference(t, s, g, F, J, n, rule, m, v0):
+def separation_reference(t, s, g, F, J, n, rule, m, v0, still_plate=False):
     """Separation inside [t_{n-1}, t_n] and the outcome there (``_separation.separation_point``).
 
     Parameters
@@ -833,10 +833,11 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
     -------
     dict with the names of OUTCOME:
         t0 (s), the root in [t_{n-1}, t_n] of the cubic through the nodes lo..lo + 3
-        (lo = max(0, min(n - 1, len(t) - 4))) of F, or of s for rule "overlap" or when s too
+        (lo = max(0, min(n - 2, len(t) - 4))) of F, or of s for rule "overlap" or when s too
         crossed zero in step n; s_residual = s(t0) (m), g0 = s'(t0) and J0 = J(t0) by the same
         cubics, except g0 when s crossed zero with F proportional to u = sgn(s)|s|^{3/2} on the
-        nodes (an elastic kernel): g = P(t) - a F with P a parabola (:func:`_kinked_value`);
+        nodes (an elastic kernel, to 1e-9) on a plate of constant mobility (``still_plate``):
+        g0 = v0 - J0/m, the model's s' at F = 0;
         ``cor = |g0| / v0``; sphere_velocity z'0 = v0 - J0/m (m/s);
         w_h = int_0^t0 F s' dt and W_z = int_0^t0 F z' dt (J) by the trapezoid rule on nodes
         0..n-1 plus [t_{n-1}, t0] (F(t0) = 0 for rule "force", else its cubic); w_plate = W_z - w_h;
@@ -845,7 +846,7 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
     """
     t, s, g, F, J = (np.asarray(a, dtype=float) for a in (t, s, g, F, J))
     by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
-    lo = max(0, min(n - 1, t.size - 4))
+    lo = max(0, min(n - 2, t.size - 4))
     window = slice(lo, lo + 4)
 
     def cubic(y):
@@ -857,9 +858,11 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
         raise RuntimeError(f"separation step {n}: the target does not change sign")
     t0 = b if target(b) == 0.0 else brentq(target, a, b, xtol=1e-18 * b, rtol=_RTOL, maxiter=500)
     s0, g0, J0 = (float(cubic(y)(t0)) for y in (s, g, J))
-    if by_overlap:
-        kinked = _kinked_value(t[window], g[window], F[window], np.sign(s[window]) * np.abs(s[window]) ** 1.5, t0)
-        g0 = g0 if kinked is None else kinked
+    u = np.sign(s[window]) * np.abs(s[window]) ** 1.5
+    ref = int(np.argmax(np.abs(u)))
+    if (by_overlap and still_plate and u[ref] != 0.0
+            and np.max(np.abs(F[window] - F[window][ref] / u[ref] * u)) <= 1e-9 * abs(F[window][ref])):
+        g0 = v0 - J0 / m
     F0 = 0.0 if rule == "force" else float(cubic(F)(t0))
     z0 = v0 - J0 / m
     zdot = v0 - J / m
@@ -869,19 +872,6 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
     return {"cor": abs(g0) / v0, "t0": float(t0), "s_residual": s0, "w_h": float(w_h), "w_plate": float(w_z - w_h),
             "sphere_velocity": z0, "energy_residual": float((e_in - 0.5 * m * z0 * z0 - w_z) / e_in),
             "s_max": parabola_peak(t[: n + 1], s[: n + 1]), "f_max": parabola_peak(t[: n + 1], F[: n + 1])}
-
-
-def _kinked_value(t, g, F, u, x):
-    """g(x) from four nodes where F = k u (an elastic kernel): g = P(t) - a F, P a parabola, solved
-    exactly (g = B - alpha F with B smooth, F ~ |t - t0|^{3/2} at the root); None when F is not
-    proportional to u to 1e-9."""
-    ref = int(np.argmax(np.abs(u)))
-    if u[ref] == 0.0 or np.max(np.abs(F - F[ref] / u[ref] * u)) > 1e-9 * abs(F[ref]):
-        return None
-    d = t - t[-1]
-    coef = np.linalg.solve(np.column_stack([np.ones(4), d, d * d, -F]), g)
-    dx = x - t[-1]
-    return float(coef[0] + coef[1] * dx + coef[2] * dx * dx)
 
 
 def parabola_peak(t, y):
