@@ -84,6 +84,14 @@ class EqOne(Material, kind="eq1"):
             out = A * B / (A + B)
         return np.where(np.isinf(A), B, np.where(np.isinf(B), A, out))
 
+    def modulus_at(self, t: float) -> float:
+        """E'(t) at one time t (s), Pa, from the bodies' own scalar evaluations (the contact-time
+        estimate asks for it at every impact)."""
+        a, b = self.c_a * self.a.modulus_at(t), self.c_b * self.b.modulus_at(t)
+        if math.isinf(a) or math.isinf(b):
+            return b if math.isinf(a) else a
+        return a * b / (a + b)
+
     def relaxation_rate(self, t):
         A, B, t = self._parts(t)
         dA, dB = self.c_a * self.a.relaxation_rate(t), self.c_b * self.b.relaxation_rate(t)

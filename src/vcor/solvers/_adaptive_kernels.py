@@ -70,7 +70,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         Per level: steps, weights of the newest step and of each mode, decays, live modes.
     plate : Plate
         The plate's mobility: kind 0, constant; 1, E_b(t) on exponential modes with their own decay
-        table (the kernel's, when the plate is of the contact's material); 2, in closed form.
+        table (the kernel's, when the plate is of the contact's material); 2 and 3, in closed form.
     body : Body
     control : AdaptiveControl
     stop : Stop
@@ -95,8 +95,8 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     factors X_k below DECAYED are zero from then on (t only grows).
 
     Plate mobility (kind 1): alpha = scale / sqrt(E_b), E_b(t) = factor (e_inf + sum moduli_k X_k),
-    X_k = exp(-b_k t) carried with the plate's decays (rate_moduli = b_k moduli_k); kind 2:
-    E_b(t) = factor (e_inf + sqrt_coef t^-1/2) (the fractional law); kind 0: alpha = const.
+    X_k = exp(-b_k t) carried with the plate's decays (rate_moduli = b_k moduli_k); kinds 2 and 3: the
+    fractional and the CERF law in closed form (:func:`_closed_form_mobility`); kind 0: alpha = const.
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
     the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against
@@ -202,16 +202,16 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
                 ebd *= pc
             a_n = pscale / math.sqrt(eb)
             ad_n = -0.5 * a_n * a_n * a_n * ebd * inv_pscale2  # 1 / eb = alpha^2 / pscale^2
-        elif plate.kind == 2:
+        elif plate.kind >= 2:
             # the roots and the division are a long chain: computed one step ahead, for the step on the
             # same level (or the plan's next one), while this step's Newton iteration runs
             if tn == ahead_t:
                 a_n = ahead_alpha
                 ad_n = ahead_rate
             else:
-                a_n, ad_n = _sqrt_law_mobility(tn, plate)
+                a_n, ad_n = _closed_form_mobility(tn, plate)
             ahead_t = tn + step[(plan[n] if n < n_plan else lev) + row_offset]
-            ahead_alpha, ahead_rate = _sqrt_law_mobility(ahead_t, plate)
+            ahead_alpha, ahead_rate = _closed_form_mobility(ahead_t, plate)
         else:
             a_n = plate.const
             ad_n = 0.0
@@ -304,14 +304,52 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
 
 
 @jit_inline
-def _sqrt_law_mobility(t, plate):
-    """(alpha, alpha') at t of a plate of the fractional law, E_b = factor (e_inf + sqrt_coef t^-1/2):
-    with D = E_b t^1/2 and y = 1 / (D t), alpha = scale (t^1/2 / D)^1/2 = scale (t^1/2 y t)^1/2 and
-    alpha' = alpha factor sqrt_coef / (4 D t) (one division, two roots)."""
+def _closed_form_mobility(t, plate):
+    """(alpha, alpha') at t of a plate whose modulus is in closed form.
+
+    Kind 2, the fractional law, E_b = factor (e_inf + coef t^-1/2): with D = E_b t^1/2 and
+    y = 1 / (D t), alpha = scale (t^1/2 / D)^1/2 = scale (t^1/2 y t)^1/2 and
+    alpha' = alpha factor coef / (4 D t) (one division, two roots).
+
+    Kind 3, the CERF law, E_b = factor (e_inf + coef erfcx(x)), x = rate t^1/2: with
+    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi) and dx/dt = x / (2 t), alpha = scale E_b^-1/2 and
+    alpha' = -alpha E_b' / (2 E_b)."""
     rt = math.sqrt(t)
-    y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.sqrt_coef) * t)
-    a = plate.scale * math.sqrt(rt * y * t)
-    return a, 0.25 * a * plate.factor * plate.sqrt_coef * y
+    if plate.kind == 2:
+        y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.coef) * t)
+        a = plate.scale * math.sqrt(rt * y * t)
+        return a, 0.25 * a * plate.factor * plate.coef * y
+    x = plate.rate * rt
+    ex = _erfcx(x)
+    eb = plate.factor * (plate.e_inf + plate.coef * ex)
+    a = plate.scale / math.sqrt(eb)
+    if t > 0.0:
+        rate_eb = plate.factor * plate.coef * (2.0 * x * ex - _TWO_OVER_SQRT_PI) * plate.rate / (2.0 * rt)
+    else:
+        rate_eb = 0.0
+    return a, -0.5 * a * rate_eb / eb
+
+
+_TWO_OVER_SQRT_PI = 2.0 / math.sqrt(math.pi)
+#: erfcx(x) = exp(x^2) erfc(x) from libm's erfc below ERFCX_SWITCH (relative error ~ x^2 eps, 7e-14 at
+#: the switch), above it the asymptotic series 1 / (x sqrt(pi)) sum_n (-1)^n (2n - 1)!! / (2 x^2)^n,
+#: ERFCX_TERMS terms (truncation below 1e-17 at the switch)
+ERFCX_SWITCH = 25.0
+ERFCX_TERMS = 8
+
+
+@jit_inline
+def _erfcx(x):
+    """The scaled complementary error function exp(x^2) erfc(x), x >= 0 (see ERFCX_SWITCH)."""
+    if x < ERFCX_SWITCH:
+        return math.exp(x * x) * math.erfc(x)
+    inv = 1.0 / (2.0 * x * x)
+    term = 1.0
+    total = 1.0
+    for n in range(1, ERFCX_TERMS):
+        term *= -(2.0 * n - 1.0) * inv
+        total += term
+    return total / (x * math.sqrt(math.pi))
 
 
 @jit_sum

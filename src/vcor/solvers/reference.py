@@ -641,7 +641,7 @@ class ExponentialSumHistory:
 
 def _adaptive_mobility(impact, representation, window):
     """(alpha, alpha') as the adaptive march evaluates them: 0 or constant (rigid target, case 4, an
-    elastic plate of its own material), the exact law for a fractional plate, else from the plate
+    elastic plate of its own material), the exact law for a fractional or CERF plate, else from the plate
     modulus of an exponential sum, E_b = (E~_inf + sum_k E_k e^{-b_k t}) / (1 - nu^2): alpha =
     S / sqrt(E_b), alpha' = -S E_b' / (2 E_b^1.5). The sum is the kernel's ``representation`` when the
     plate is of the contact's material, else the plate material's own (exact for Prony, its
@@ -652,7 +652,7 @@ def _adaptive_mobility(impact, representation, window):
         alpha = 0.0 if g.rigid else float(impact.alpha(0.0))
         return lambda t: (alpha, 0.0)
     plate = g.plate_material if own else impact.material
-    if plate.sqrt_law() is not None:
+    if plate.sqrt_law() is not None or plate.erfcx_law() is not None:
         return lambda t: _mobility(impact, t)
     if own:
         representation = soe(plate, *window).material
