@@ -137,7 +137,7 @@ class SolverOptions:
     ...
     ValueError: solver option rtol is not used by method 'direct' (it needs method ive); remove it
     >>> opts.replace(method="adaptive").step_tol
-    0.0003
+    0.0004
     """
 
     method: str = _SPEC["method"]["default"]
