@@ -21,7 +21,7 @@ import timing
 import vcor
 from vcor.contact.impact import make_impact
 from vcor.materials.expsums import soe
-from vcor.solvers.adaptive import level_tables, run_adaptive
+from vcor.solvers.adaptive import GRIDS, level_tables, run_adaptive
 from vcor.solvers.options import solver_options
 from vcor.study import runner, scene
 
@@ -151,9 +151,10 @@ def per_impact(args):
         td, ta = [r["direct"] for r in runs], [r["adaptive"] for r in runs]
         rows.append([name, c(td, 1e3, ".3f"), c(ta, 1e3, ".3f"), c([a / d for a, d in zip(ta, td)], 1.0, ".3f"),
                      "/".join(map(str, runs[0]["steps"]))])
+    opts = vcor.SolverOptions()
     return [f"Per impact at default settings, v0 = 10 m/s, whole simulate call, warm: median of {res[0]['calls']} "
             "calls after one untimed call (direct: 2000 steps per contact-time estimate; adaptive: its defaults, "
-            "step_tol 3e-4 with Richardson extrapolation from three grids).",
+            f"step_tol {opts.step_tol:g} with Richardson extrapolation from {GRIDS} grids).",
             timing.table(["material", "direct [ms]", "adaptive [ms]", "adaptive / direct", "steps direct/adaptive"],
                          rows)]
 
@@ -166,9 +167,9 @@ def breakdown(args):
                     + ["/".join(map(str, runs[0]["steps"])), runs[0]["modes"]])
     return [f"Where the time of one adaptive impact goes (v0 = 10 m/s, warm: median of {res[0]['calls']} calls after "
             "one untimed call): set-up = options, impact and contact-time estimate; one march = run_adaptive "
-            "without extrapolation; three marches = run_adaptive as simulate calls it (grid, halved, quartered, "
+            f"without extrapolation; {GRIDS} marches = run_adaptive as simulate calls it (the grid and its replays, "
             "extrapolation); modes: terms of the exponential sum on [t_c / 2^18, 256 t_c].",
-            timing.table(["material", "simulate [µs]", "set-up [µs]", "three marches [µs]", "one march [µs]",
+            timing.table(["material", "simulate [µs]", "set-up [µs]", f"{GRIDS} marches [µs]", "one march [µs]",
                           "steps (grid/all)", "modes"], rows)]
 
 

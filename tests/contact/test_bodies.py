@@ -97,11 +97,70 @@ def test_eq1_antiderivatives_are_the_integrals():
     assert M.from_dict(d) == M.EqOne(M.get("sls"), 4 / 3, M.get("butyl-fc"), 4 / 3)
 
 
-def test_methods_that_cannot_solve_eq1_say_so():
-    with pytest.raises(ValueError, match="use method 'direct'"):
-        _solve({"material": {"model": "elastic", "E": 1e9}}, {}, method="adaptive")
-    with pytest.raises(ValueError, match="direct"):
-        _solve({"material": "sls"}, {"material": "butyl-prony3"}, method="adaptive", swept="sls")
+#: the acceptance pairs: an elastic config-material sphere (E = 70 GPa, an aluminium-like stiffness) on an
+#: SLS and a Prony plate
+STIFF_BALL = {"material": {"model": "elastic", "E": 7e10}}
+
+
+@pytest.mark.parametrize("plate", ["sls", "butyl-prony3"])
+@pytest.mark.parametrize("v0", [1.0, 10.0])
+def test_an_elastic_sphere_on_a_viscoelastic_plate_runs_by_default(plate, v0):
+    """No method given: adaptive solves it (the Eq. 1 contact modulus as its exponential sum, the plate's
+    mobility from the plate's own modulus), within 1e-6 of direct at 8 times its default steps (whose
+    own error is ~2e-9), and reports the sum's error, below soe_tol."""
+    s = bodies.body_from_spec("sphere", STIFF_BALL)
+    material, geometry = bodies.impact_inputs(s, bodies.body_from_spec("plate", {"material": plate}))
+    res = vcor.simulate(material, v0, **geometry)
+    ref = vcor.simulate(material, v0, method="direct", steps_per_contact=16000, **geometry)
+    print(f"\nelastic sphere on {plate}, {v0} m/s: COR {res.cor:.9f} (direct {ref.cor:.9f}, "
+          f"{res.cor / ref.cor - 1:+.1e}), t0 {res.t0 / ref.t0 - 1:+.1e}, sum error {res.soe_error:.1e}")
+    assert res.method == "adaptive" and res.ok and ref.ok
+    assert abs(res.cor / ref.cor - 1) <= 1e-6 and abs(res.t0 / ref.t0 - 1) <= 1e-6
+    assert 0.0 < res.soe_error <= vcor.SolverOptions().soe_tol
+
+
+@pytest.mark.parametrize("sphere, plate", [("sls", "butyl-prony3"), ("butyl-fc", "sls"), ("butyl-cerf", "butyl-fc")])
+def test_every_pair_of_viscoelastic_bodies_runs_by_default(sphere, plate):
+    """Two viscoelastic bodies of different laws (a not completely monotone Eq. 1 modulus, fitted with
+    terms of both signs): adaptive within 1e-6 of direct at 8 times its default steps; soe (the fixed-step
+    exponential-sum history) within 1e-9 of direct at the same step."""
+    material, geometry = bodies.impact_inputs(bodies.body_from_spec("sphere", {"material": sphere}),
+                                              bodies.body_from_spec("plate", {"material": plate}))
+    res = vcor.simulate(material, 10.0, **geometry)
+    ref = vcor.simulate(material, 10.0, method="direct", steps_per_contact=16000, **geometry)
+    assert res.ok and abs(res.cor / ref.cor - 1) <= 1e-6 and abs(res.t0 / ref.t0 - 1) <= 1e-6
+    same_dt = vcor.simulate(material, 10.0, method="direct", **geometry)
+    soe = vcor.simulate(material, 10.0, method="soe", dt=same_dt.dt, **geometry)
+    assert abs(soe.cor - same_dt.cor) <= 1e-9 and 0.0 < soe.soe_error <= 1e-10
+
+
+def test_the_internal_variable_methods_take_a_pair_from_t_zero():
+    """ive and ive-numba take the Eq. 1 modulus as its exponential sum from t = 0 (fitted and checked there
+    too): ive (Radau, rtol 1e-10) within 1e-7 of direct at 16000 steps per contact; two fractional bodies
+    (E'(0) infinite) are refused naming the methods that solve them."""
+    material, geometry = bodies.impact_inputs(bodies.body_from_spec("sphere", STIFF_BALL),
+                                              bodies.body_from_spec("plate", {"material": "sls"}))
+    ref = vcor.simulate(material, 1.0, method="direct", steps_per_contact=16000, **geometry)
+    res = vcor.simulate(material, 1.0, method="ive", **geometry)
+    assert res.ok and abs(res.cor / ref.cor - 1) <= 1e-7 and 0.0 < res.soe_error <= 1e-10
+    assert vcor.simulate(material, 1.0, method="ive-numba", **geometry).ok
+    fc = {"material": "butyl-fc"}
+    singular, geometry = bodies.impact_inputs(bodies.body_from_spec("sphere", {"material": {
+        "model": "fractional", "E0": 1e6, "E1": 1e6}}), bodies.body_from_spec("plate", fc))
+    with pytest.raises(ValueError, match="use method 'adaptive'"):
+        vcor.simulate(singular, 1.0, method="ive", **geometry)
+
+
+def test_a_kelvin_voigt_partner_is_refused_naming_the_bodies():
+    """A Dirac term has no pointwise Eq. 1 combination: the message names both bodies as the user gave
+    them (sphere, plate, target.*) and says what does work."""
+    kv = bodies.body_from_spec("sphere", {"material": "kelvin-voigt"})
+    with pytest.raises(ValueError, match=r"sphere.material \(kelvin-voigt\) on plate.material \(sls\).*no method"):
+        bodies.impact_inputs(kv, bodies.body_from_spec("plate", {"material": "sls"}))
+    with pytest.raises(ValueError, match=r"sphere.material \(sls\) on target.sphere.material \(kelvin-voigt\)"):
+        vcor.simulate("sls", 1.0, target={"sphere": {"material": "kelvin-voigt"}})
+    with pytest.raises(ValueError, match=r"target.plate.material: a Kelvin-Voigt plate"):
+        vcor.simulate("sls", 1.0, target={"plate": {"material": "kelvin-voigt"}})
 
 
 SCENE = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}, "sphere": {"material": {"model": "elastic", "E": 2e11}},
@@ -109,7 +168,8 @@ SCENE = {"materials": ["sls"], "grid": {"v0": [1.0, 10.0]}, "sphere": {"material
 
 
 @pytest.mark.parametrize("change, words", [
-    ({}, ["scenes.s.solver.method", "method: direct"]),
+    ({"sphere": {"material": "kelvin-voigt"}}, ["scenes.s", "sphere.material (kelvin-voigt) on plate.material",
+                                               "no method"]),
     ({"sphere": {"material": "sls"}, "plate": {"material": "sls"}}, ["both bodies name a material"]),
     ({"geometry": {"r": 0.02}}, ["scenes.s.geometry", "bodies"]),
     ({"grid": {"v0": [1.0], "h": [0.01, 0.02]}}, ["scenes.s.grid", "geometry axes ['h']"]),
@@ -127,12 +187,72 @@ def test_bad_bodies_fail_before_solving(change, words):
 
 
 def test_scene_point_with_bodies():
-    scene = {**SCENE, "solver": {"method": "direct"}}
+    scene = dict(SCENE)  # no solver: the default method takes two bodies
     validate_scene("s", scene)
     settings = settings_of(scene)
     material, _, geometry = build_point({"material": "sls", "v0": 10.0}, settings)
     assert material.kind == "eq1" and geometry["plate_material"] == M.get("sls") and geometry["rho_a"] == 7800.0
     assert geometry["rho_b"] == 1100.0 and geometry["nu_plate"] == 0.5
+
+
+#: a config with an elastic config material ("ball", E = 70 GPa) as the sphere of a scene (on the swept SLS
+#: and Prony plates) and of a DEM entry (on an SLS plate target), no solver given anywhere
+BALL_CONFIG = {"material_dir": "results/materials", "materials": {"ball": {"model": "elastic", "E": 7e10}},
+               "scenes": {"ball": {"materials": ["sls", "butyl-prony3"], "grid": {"v0": [1.0, 10.0]},
+                                   "sphere": {"material": "ball"}, "plate": {}}},
+               "dem": {"ball": {"sphere": {"material": "ball", "r": 0.005}, "target": {"plate": {"material": "sls"}},
+                                "v0": [0.5, 2.0, 8.0]}}}
+
+
+def _direct_fine(material_name, v0, sphere=None, target=None):
+    """direct at 16000 steps per contact time of the ball on a plate of ``material_name`` (the reference)."""
+    ball = bodies.body_from_spec("sphere", {**STIFF_BALL, **(sphere or {})})
+    plate = bodies.body_from_spec("plate", target or {"material": material_name})
+    material, geometry = bodies.impact_inputs(ball, plate)
+    return vcor.simulate(material, v0, method="direct", steps_per_contact=16000, **geometry)
+
+
+def test_a_scene_and_a_dem_entry_with_an_elastic_config_sphere_run_by_default():
+    """The acceptance pair through the study layer, no solver given: the scene's points and the DEM entry's
+    collisions are solved by adaptive, within 1e-6 of direct at 16000 steps per contact time."""
+    from vcor.study import dem as study_dem
+    from vcor.study import runner
+    from vcor.study.config import load_project
+
+    project = load_project(BALL_CONFIG, ".")
+    sc = BALL_CONFIG["scenes"]["ball"]
+    validate_scene("ball", sc, project.catalogue)
+    settings = settings_of(sc)
+    assert settings["solver"]["method"] == "adaptive"
+    ds = runner.run_points([{"index": i, "material": m, "v0": v} for i, (m, v) in
+                            enumerate((m, v) for m in sc["materials"] for v in sc["grid"]["v0"])], settings,
+                           project.catalogue)
+    for i in range(ds.sizes["point"]):
+        m, v0 = str(ds["material"].values[i]), float(ds["v0"].values[i])
+        ref = _direct_fine(m, v0)
+        assert ds["status"].values[i] == 0 and abs(float(ds["cor"].values[i]) / ref.cor - 1) <= 1e-6, (m, v0)
+        assert 0.0 < float(ds["soe_error"].values[i]) <= 1e-10
+    spec = BALL_CONFIG["dem"]["ball"]
+    (col,), _, _ = study_dem.run_dem("ball", spec, project.catalogue)
+    for v0, cor in zip(spec["v0"], col.cor):
+        ref = _direct_fine("sls", v0, sphere={"r": 0.005})
+        assert abs(cor / ref.cor - 1) <= 1e-6, v0
+
+
+@pytest.mark.slow
+def test_workflow_scene_and_dem_entry_with_an_elastic_config_sphere(make_project, smk, tmp_path):
+    """The same config through Snakemake: the sweep and the DEM dataset hold adaptive's numbers (the sweep
+    records the method), within 1e-6 of direct at 16000 steps per contact time."""
+    import xarray as xr
+
+    path = make_project(tmp_path, {**BALL_CONFIG, "shard_size": 100})
+    smk(path, "-j2", "results/ball/sweep.nc")
+    ds = xr.open_dataset(path / "results/ball/sweep.nc")
+    for m in ("sls", "butyl-prony3"):
+        for v0 in (1.0, 10.0):
+            ref = _direct_fine(m, v0)
+            assert abs(ds["cor"].sel(material=m, v0=v0).item() / ref.cor - 1) <= 1e-6, (m, v0)
+    assert "adaptive" in ds.attrs.get("solver", "") or "adaptive" in str(ds.attrs)
 
 
 @pytest.mark.slow

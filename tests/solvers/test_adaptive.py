@@ -135,7 +135,7 @@ def test_fractional_plate_in_closed_form_equals_its_exponential_sum(monkeypatch)
     tab = adaptive.level_tables(imp.material, float(imp.kappa), 1e-9, 30, 1.0, 1e-10)
     sls = make_impact("sls", 10.0, {})
     assert adaptive.plate_kind(imp) == 2 and adaptive.plate_kind(sls) == 1
-    assert adaptive.plate_record(imp, tab, 2).kind == 2 and adaptive.plate_record(sls, tab, 1).kind == 1
+    assert adaptive.plate_record(imp, tab, 2)[0].kind == 2 and adaptive.plate_record(sls, tab, 1)[0].kind == 1
     cases = [(v0, h) for v0 in (1.0, 10.0) for h in (None, 10e-3)]
     closed = [vcor.simulate("butyl-fc", v0, method="adaptive", h=h) for v0, h in cases]
     monkeypatch.setattr(vcor.materials.FractionalPower, "sqrt_law", lambda self: None)
@@ -147,25 +147,32 @@ def test_fractional_plate_in_closed_form_equals_its_exponential_sum(monkeypatch)
             assert getattr(a, k) == pytest.approx(getattr(b, k), rel=1e-9), (case, k)
 
 
-def _richardson_reference(name, v0):
-    a = vcor.simulate(name, v0, method="direct")
-    b = vcor.simulate(name, v0, method="direct", dt=a.dt / 2)
-    c = vcor.simulate(name, v0, method="direct", dt=a.dt / 4)
-    return c.cor + (c.cor - b.cor) / 3, c.t0 + (c.t0 - b.t0) / 3
+def _independent_reference(name, v0):
+    """(COR, t0) not computed by adaptive: ive (Radau) at rtol 1e-12 for the Prony-type kernels (exact
+    internal variables; for the elastic kernel it agrees with DOP853 at rtol 1e-14 to 1e-13), and direct
+    at 2000, 4000, 8000 steps per contact time, Richardson-extrapolated (h^2, h^2.5), for the fractional
+    and CERF laws (the same from 8000 steps differs by at most 1.3e-9)."""
+    if vcor.materials.get(name).is_prony:
+        r = vcor.simulate(name, v0, method="ive", rtol=1e-12)
+        return r.cor, r.t0
+    runs = [vcor.simulate(name, v0, method="direct", steps_per_contact=2000 * k) for k in (1, 2, 4)]
+    w = np.linalg.solve(np.array([[1.0, 1.0, 1.0], [1.0, 0.25, 1 / 16], [1.0, 2**-2.5, 4**-2.5]]), [1.0, 0.0, 0.0])
+    return float(w @ [r.cor for r in runs]), float(w @ [r.t0 for r in runs])
 
 
 @pytest.mark.parametrize("name", PRESETS)
-def test_default_accuracy_against_extrapolated_direct(name):
-    """With every default (method adaptive), COR and t0 within 1e-6 relative of direct at dt/2 and dt/4
-    (Richardson-extrapolated), on every preset at 0.001 .. 300 m/s; the worst per preset is printed."""
+def test_default_accuracy_against_independent_references(name):
+    """With every default (method adaptive), COR and t0 within 1e-7 relative of references not computed
+    by adaptive (:func:`_independent_reference`), on every preset at 0.001 .. 300 m/s; the worst per
+    preset is printed (benchmarks/bench_accuracy.py tabulates them against the settings)."""
     worst = 0.0
     for v0 in (0.001, 1.0, 10.0, 50.0, 300.0):
         res = vcor.simulate(name, v0)
-        cor, t0 = _richardson_reference(name, v0)
-        assert res.ok, res.message
+        cor, t0 = _independent_reference(name, v0)
+        assert res.ok and res.message == "", res.message
         e_cor, e_t0 = abs(res.cor / cor - 1), abs(res.t0 / t0 - 1)
         worst = max(worst, e_cor, e_t0)
-        assert e_cor <= 1e-6 and e_t0 <= 1e-6, (v0, e_cor, e_t0)
+        assert e_cor <= 1e-7 and e_t0 <= 1e-7, (v0, e_cor, e_t0)
     print(f"\n{name}: worst relative error {worst:.2e}")
 
 
@@ -222,19 +229,23 @@ def test_a_run_at_step_tol_over_16_is_much_more_accurate():
 
 
 def test_extrapolation_never_stores_a_negative_cor():
-    """A creeping thin plate separates with a COR of ~1e-11; its three grids then agree within
-    COR_FLOOR (1e-9 absolute) and pass the guard, but the weights (0.07, -0.69, 1.62) can take the
-    extrapolated COR below zero. The finest grid's values are kept then, with a message; an ordinary
-    impact is extrapolated as before."""
+    """A creeping thin plate separates with a COR of ~1e-11; its grids then agree within COR_FLOOR
+    (1e-9 absolute) and pass the guard, but the weights (of both signs) can take the extrapolated COR
+    below zero. The finest grid's values are kept then, with a message; an ordinary impact (grid errors
+    falling as h^2) is extrapolated."""
     def runs(cors):
         return [[{"t0": 0.5, "cor": c}.get(k, 1.0) for k in adaptive.EXTRAPOLATED] for c in cors]
 
     cor = adaptive.EXTRAPOLATED.index("cor")
-    values, message = adaptive.richardson_outcome(runs([1e-11, 2e-10, 5e-11]))  # creeping
-    assert values[cor] == 5e-11 and "extrapolated COR" in message and "negative" in message
-    values, message = adaptive.richardson_outcome(runs([0.4320, 0.43198, 0.431987]))  # ordinary
     w = adaptive.RICHARDSON_WEIGHTS
-    assert message == "" and values[cor] == pytest.approx(w[0] * 0.4320 + w[1] * 0.43198 + w[2] * 0.431987)
+    creeping = [1e-11, 1e-11, 2e-10, 5e-11][-adaptive.GRIDS:]
+    assert sum(wj * c for wj, c in zip(w, creeping)) < 0  # the case: weights that leave the physical range
+    values, message = adaptive.richardson_outcome(runs(creeping))
+    assert values[cor] == creeping[-1] and "extrapolated COR" in message and "negative" in message
+    ordinary = [0.43198 + 2e-4 * 4.0**-j for j in range(adaptive.GRIDS)]
+    values, message = adaptive.richardson_outcome(runs(ordinary))
+    assert message == "" and values[cor] == pytest.approx(sum(wj * c for wj, c in zip(w, ordinary)))
+    assert values[cor] == pytest.approx(0.43198, abs=1e-15)  # an h^2 error is eliminated
     assert sum(w) == pytest.approx(1.0, abs=1e-15)  # a constant is extrapolated to itself
 
 
@@ -316,3 +327,25 @@ def test_reassociated_sums_are_safe():
     for (m, v), ref in zip(cases, json.loads(plain.stdout), strict=True):
         r = vcor.simulate(m, v, method="adaptive")
         assert [r.cor, r.t0, r.w_h, r.s_max] == pytest.approx(ref, rel=1e-12), (m, v)
+
+
+def test_the_cerf_plate_in_closed_form():
+    """A CERF plate's modulus E0 + E1 erfcx(b1 sqrt t) is evaluated in closed form in the march (plate kind
+    3; its ~100 exponential modes cost a third of an impact): the impact against the same march carrying
+    the plate on the CERF law's exponential sum (relative error <= soe_tol = 1e-10): equal to 1e-9. (The
+    march's erfcx against scipy's: through the NumPy reference, which takes the plate's mobility from
+    the material, tests/solvers/test_reference.py, 1e-12.)"""
+    imp = make_impact("butyl-cerf", 10.0, {})
+    assert adaptive.plate_kind(imp) == 3
+    cases = [(v0, h) for v0 in (1.0, 10.0) for h in (None, 10e-3)]
+    closed = [vcor.simulate("butyl-cerf", v0, h=h) for v0, h in cases]
+    original = adaptive.plate_kind
+    try:
+        adaptive.plate_kind = lambda impact: 1 if original(impact) == 3 else original(impact)
+        summed = [vcor.simulate("butyl-cerf", v0, h=h) for v0, h in cases]
+    finally:
+        adaptive.plate_kind = original
+    for case, a, b in zip(cases, closed, summed, strict=True):
+        assert a.ok and b.ok, (case, a.message, b.message)
+        for k in ("cor", "t0", "f_max"):
+            assert getattr(a, k) == pytest.approx(getattr(b, k), rel=1e-9), (case, k)

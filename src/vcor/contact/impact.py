@@ -241,28 +241,55 @@ class Impact:
     def mobility_function(self):
         """t -> (alpha(t), alpha'(t)) as floats, in m/(N s) and m/(N s^2); for a Prony plate a fast
         scalar path with the plate's constants computed once (the internal-variable solver calls it in
-        every right-hand-side evaluation)."""
+        every right-hand-side evaluation). Where the plate's modulus has relaxed to zero (a Maxwell
+        fluid) alpha is inf (:meth:`unbounded_mobility` says so)."""
         g = self.geometry
         if g.rigid:
             return lambda t: (0.0, 0.0)
         if g.case == 4:
             return lambda t: (float(self.alpha(t)), 0.0)
-        mat = self.material
-        if not mat.is_prony or g.plate_material is not None:
+        own = g.plate_material is not None
+        mat = g.plate_material if own else self.material
+        if not mat.is_prony:
             return lambda t: (float(self.alpha(t)), float(self.alpha_rate(t)))
         e_inf, e, b = mat.prony_terms()
-        c = 1.0 / (1.0 - g.nu**2)
+        c = 1.0 / (1.0 - (g.nu_plate if own else g.nu) ** 2)
         scale = self.mobility_scale
         modes = bool(e.size)
 
         def prony_plate(t):
             ex = e * np.exp(-b * t) if modes else e
             eb = c * (e_inf + float(ex.sum()))
+            if not eb > 0.0:
+                return math.inf, math.inf
             deb = -c * float((ex * b).sum())
             a = scale / math.sqrt(eb)
             return a, (-0.5 * a * deb / eb if t > 0 else 0.0)
 
         return prony_plate
+
+    @cached_property
+    def mobility_is_constant(self) -> bool:
+        """alpha'(t) = 0: a rigid target, case 4, or a plate whose modulus does not relax (elastic, or the
+        regular part of a Kelvin-Voigt modulus)."""
+        g = self.geometry
+        if g.rigid or g.case == 4:
+            return True
+        plate = g.plate_material if g.plate_material is not None else self.material
+        return plate.is_prony and not np.any(plate.prony_terms()[1])
+
+    def unbounded_mobility(self, t: float) -> str:
+        """Why the plate's mobility is not finite at time t (s), or "" when it is: the plate's modulus has
+        relaxed to zero (a Maxwell fluid, rubbery modulus 0), where Zener's mobility
+        sqrt(3 rho_b / E'_b) / (16 rho_b h^2) has no bound."""
+        g = self.geometry
+        if g.rigid or g.case == 4 or not math.isfinite(t) or float(self._plate_modulus(t)) > 0.0:
+            return ""
+        plate = g.plate_material if g.plate_material is not None else self.material
+        return (f"the plate's modulus E'_b(t) has relaxed to zero by t = {t:.6g} s (plate material {plate.kind} "
+                f"{plate.params()}, rubbery modulus {plate.rubbery:g} Pa: a Maxwell fluid, e.g. SLS alpha = 0), "
+                f"where Zener's plate mobility sqrt(3 rho_b / E'_b) / (16 rho_b h^2) is unbounded: give the plate "
+                f"a rubbery modulus > 0 (SLS alpha > 0), or take a rigid target (rigid=True) or case 4")
 
     def contact_time_estimate(self) -> float:
         """Hertz contact time on a rigid target, t_c = 2.9432 s_max / v0, s_max = (5 m v0^2 / (4 k))^(2/5),

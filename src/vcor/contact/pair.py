@@ -9,7 +9,8 @@ Green 2026 Eq. 1:
   immovable target), exact in every method;
 * one of them rigid: the other's E';
 * both elastic: E'_a E'_b / (E'_a + E'_b), a constant;
-* otherwise Eq. 1 pointwise in time (:class:`vcor.materials.EqOne`), which the method ``direct`` solves.
+* otherwise Eq. 1 pointwise in time (:class:`vcor.materials.EqOne`), which every method solves
+  (:mod:`vcor.contact.bodies`).
 
 The COR is that of the relative normal velocity: (v_b - v_a after) / (v_a - v_b before).
 
@@ -25,7 +26,7 @@ from __future__ import annotations
 import math
 
 from ..materials import models as _materials
-from .bodies import Body, body_from_spec, impact_inputs
+from .bodies import Body, body_from_spec, eq_one, impact_inputs
 
 __all__ = ["PLATE_KEYWORDS", "TARGET_KINDS", "sphere_pair", "target_inputs", "twin_defaults"]
 
@@ -39,9 +40,10 @@ def _volume(r: float) -> float:
     return 4.0 / 3.0 * math.pi * r**3
 
 
-def sphere_pair(a: Body, b: Body) -> tuple[_materials.Material, dict]:
+def sphere_pair(a: Body, b: Body,
+                names: tuple[str, str] = ("sphere", "target.sphere")) -> tuple[_materials.Material, dict]:
     """(contact material, geometry keywords) of sphere ``a`` hitting sphere ``b`` head-on (module
-    docstring).
+    docstring); ``names``: what the caller calls the two spheres (messages name them so).
 
     Examples
     --------
@@ -70,7 +72,7 @@ def sphere_pair(a: Body, b: Body) -> tuple[_materials.Material, dict]:
     if a.material.is_elastic and b.material.is_elastic:
         ea, eb = a.c * a.material.glassy, b.c * b.material.glassy
         return _materials.Elastic(ea * eb / (ea + eb)), {**geometry, "nu": 0.0, "case": 3}
-    return _materials.EqOne(a.material, a.c, b.material, b.c), {**geometry, "nu": 0.0, "case": 3}
+    return eq_one(a, b, names), {**geometry, "nu": 0.0, "case": 3}
 
 
 def twin_defaults(sphere: Body, kind: str, spec) -> dict:
@@ -129,6 +131,6 @@ def target_inputs(material, target, geometry: dict) -> tuple[_materials.Material
     other = body_from_spec(kind, twin_defaults(sphere, kind, spec), swept=swept or sphere.material,
                            where=f"target.{kind}")
     if kind == "sphere":
-        return sphere_pair(sphere, other)
-    return impact_inputs(sphere, other)
+        return sphere_pair(sphere, other, ("sphere", "target.sphere"))
+    return impact_inputs(sphere, other, ("sphere", "target.plate"))
 

@@ -20,7 +20,7 @@ is ``soe_error``). Before t_min the sum stays finite where the fractional kernel
 COR error this leaves grows as sqrt(t_min / t0) (for the Butyl pair: 2.5e-3 at t_min = 1e-3 t0,
 1.7e-5 at 1e-7 t0, the default; the dataset gives the error for each entry). Refused, with the
 reason (:func:`refusal`): a Kelvin-Voigt dashpot, two bodies that vcor combines by Eq. 1 pointwise
-in time (two different materials or Poisson ratios), a plate target.
+in time (two different materials or Poisson ratios: a fitted sum whose terms may be negative), a plate target.
 
 The time step (:func:`time_step`): dt = t_H(Ebar(dt)) / nsteps, where t_H(E) = 3.2181 (m_eff / K)^(2/5)
 v0^(-1/5) is the Hertz contact time with the modulus E (K = 4/3 E sqrt(R_eff)) and
@@ -66,7 +66,8 @@ REFUSALS = {
     "kelvin-voigt": "a Kelvin-Voigt dashpot is a Dirac term in E(t), not a sum of exponentials; its hereditary law is "
                     "the Brilliantov law, which lammps-viscoelastic fits exactly",
     "eq1": "two bodies of different materials (or Poisson ratios) combine by Green 2026 Eq. 1 pointwise in time, which "
-           "is not a sum of exponentials; the plugin takes one Prony series per type pair",
+           "vcor's solvers carry as a fitted exponential sum with terms of either sign; the plugin takes one Prony "
+           "series of non-negative moduli per type pair",
     "plate": "a plate target's flexural mobility (Zener's plate) is not a contact law; the plugin models a sphere on a "
              "second sphere or on a rigid wall",
 }

@@ -252,6 +252,11 @@ class Material:
         then evaluates a plate's modulus in closed form instead of through the exponential sum)."""
         return None
 
+    def erfcx_law(self) -> tuple[float, float, float] | None:
+        """(E0 in Pa, E1 in Pa, b1 in s^-0.5) when E(t) = E0 + E1 erfcx(b1 sqrt(t)) exactly (the CERF law),
+        else None (the adaptive march then evaluates a plate's modulus in closed form)."""
+        return None
+
     def relaxation_spectrum(self) -> tuple | None:
         """(transient(t) in Pa, rho(s) in Pa s) when the transient E(t) - E(inf) is completely monotone,
         transient(t) = int_0^inf rho(s) e^{-s t} ds, with t in s and s in 1/s; None otherwise. The

@@ -101,6 +101,9 @@ class Cerf(Material, kind="cerf"):
         t = np.asarray(t, dtype=float)
         return self.E0 + self.E1 * erfcx(self.b1 * np.sqrt(t))
 
+    def erfcx_law(self) -> tuple[float, float, float]:
+        return float(self.E0), float(self.E1), float(self.b1)
+
     def relaxation_spectrum(self):
         """erfcx(b1 sqrt t) = b1/pi int_0^inf e^-st / (s^1/2 (s + b1^2)) ds."""
         e1, b = self.E1, self.b1

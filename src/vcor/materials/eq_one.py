@@ -4,7 +4,7 @@ a viscoelastic sphere on a viscoelastic plate)."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
@@ -26,7 +26,12 @@ class EqOne(Material, kind="eq1"):
     both are the same material (E'/2), and differ in between (the documentation, user guide "Bodies").
     E'(t) has no closed form for its step integrals or its complex modulus: steps are integrated by
     Gauss-Legendre (the base class), the antiderivatives by composite Gauss-Legendre on a grid graded
-    towards t = 0. Kelvin-Voigt (Dirac) bodies cannot be combined pointwise and are refused.
+    towards t = 0; the fast solvers carry it as an exponential sum fitted on their time window
+    (:mod:`vcor.materials.expfit`). Kelvin-Voigt (Dirac) bodies cannot be combined pointwise and are
+    refused.
+
+    ``names`` says what the two bodies are called where they were given (``("sphere", "plate")``,
+    ``("sphere", "target.sphere")``): messages use them. It is not a parameter (not compared, not stored).
     """
 
     TITLE: ClassVar[str] = "two bodies' plane-strain moduli combined pointwise, Green 2026 Eq. 1"
@@ -42,11 +47,12 @@ class EqOne(Material, kind="eq1"):
     c_a: float
     b: Material
     c_b: float
+    names: tuple = field(default=("body a", "body b"), compare=False, repr=False)
 
     def __post_init__(self):
-        for name, m in (("a", self.a), ("b", self.b)):
+        for name, m in zip(self.names, (self.a, self.b)):
             if not isinstance(m, Material) or m.viscosity > 0 or isinstance(m, EqOne):
-                raise ValueError(f"EqOne: body {name} must be a material without a Dirac (Kelvin-Voigt) term, "
+                raise ValueError(f"EqOne: {name} must be a material without a Dirac (Kelvin-Voigt) term, "
                                  f"got {m!r}")
         _positive("c_a", self.c_a, unit="(1/(1 - nu^2))")
         _positive("c_b", self.c_b, unit="(1/(1 - nu^2))")
@@ -54,6 +60,19 @@ class EqOne(Material, kind="eq1"):
     @property
     def fastest_rate(self) -> float:
         return max(self.a.fastest_rate, self.b.fastest_rate)
+
+    def summed_rates(self, order: int) -> list:
+        """The sums of up to ``order`` of the two bodies' Prony rates (1/s): the spectrum of E' when
+        both are Prony-type, the first candidates of its exponential-sum fit
+        (:func:`vcor.materials.expfit.summed_rates`)."""
+        from .expfit import summed_rates
+
+        rates = [b for m in (self.a, self.b) if m.is_prony for b in m.prony_terms()[2]]
+        return summed_rates(rates, order)
+
+    def describe_bodies(self) -> str:
+        """The two bodies as given, e.g. "sphere (elastic) and plate (sls)"."""
+        return f"{self.names[0]} ({self.a.kind}) and {self.names[1]} ({self.b.kind})"
 
     def _parts(self, t):
         t = np.asarray(t, dtype=float)
@@ -64,6 +83,14 @@ class EqOne(Material, kind="eq1"):
         with np.errstate(invalid="ignore", divide="ignore"):
             out = A * B / (A + B)
         return np.where(np.isinf(A), B, np.where(np.isinf(B), A, out))
+
+    def modulus_at(self, t: float) -> float:
+        """E'(t) at one time t (s), Pa, from the bodies' own scalar evaluations (the contact-time
+        estimate asks for it at every impact)."""
+        a, b = self.c_a * self.a.modulus_at(t), self.c_b * self.b.modulus_at(t)
+        if math.isinf(a) or math.isinf(b):
+            return b if math.isinf(a) else a
+        return a * b / (a + b)
 
     def relaxation_rate(self, t):
         A, B, t = self._parts(t)
@@ -103,4 +130,4 @@ class EqOne(Material, kind="eq1"):
         return {"a": self.a.to_dict(), "c_a": self.c_a, "b": self.b.to_dict(), "c_b": self.c_b}
 
     def _scaled(self, modulus, time):
-        return EqOne(self.a.scaled(modulus, time), self.c_a, self.b.scaled(modulus, time), self.c_b)
+        return EqOne(self.a.scaled(modulus, time), self.c_a, self.b.scaled(modulus, time), self.c_b, self.names)

@@ -27,6 +27,11 @@ The CERF spectrum is the fractional one times b1^2/(s + b1^2) <= 1 (analytic in 
 its SOE uses the same nodes, and both are checked a posteriori on log-spaced times (32 per
 period h of the error in log t)
 (:attr:`SOE.checked_error`); :func:`soe` raises if the check exceeds ``tol``.
+
+* The pointwise Eq. 1 combination of two bodies (:class:`~vcor.materials.eq_one.EqOne`) has no known
+  spectrum and is in general not completely monotone: it is fitted by least squares on the window
+  (:mod:`vcor.materials.expfit`), and its contract is the relative error of the modulus itself,
+  <= ``tol``, checked a posteriori on times ten times denser than the fit's.
 """
 
 from __future__ import annotations
@@ -39,6 +44,7 @@ import numpy as np
 
 from ..checks import number
 from . import models as _materials
+from .expfit import ExponentialSum, fit_exponential_sum
 
 __all__ = ["SOE", "fractional_bound", "soe"]
 
@@ -49,11 +55,14 @@ CHECKS_PER_PERIOD = 32
 @dataclass(frozen=True, kw_only=True)
 class SOE:
     """An exponential-sum representation: ``material`` (a Prony with E(inf) + slow-mode constant,
-    moduli E_k in Pa, rates beta_k in 1/s), the interval [t_min, t_max] in s, the a-priori bound
-    (NaN where none is derived: exact representations have 0), and the largest relative error of the
-    transient found on the check's log-spaced times (0 for exact representations)."""
+    moduli E_k in Pa, rates beta_k in 1/s; for a fitted two-body modulus an
+    :class:`~vcor.materials.expfit.ExponentialSum`, whose terms may be negative), the interval
+    [t_min, t_max] in s, the a-priori bound (NaN where none is derived: exact representations have 0),
+    and the largest relative error found on the check's log-spaced times (0 for exact
+    representations): of the transient E(t) - E(inf) for the completely monotone laws, of the modulus
+    E(t) for a fit."""
 
-    material: _materials.Prony
+    material: _materials.Prony | ExponentialSum
     t_min: float
     t_max: float
     bound: float
@@ -105,14 +114,16 @@ def _transient(material):
     spectrum = material.relaxation_spectrum()
     if spectrum is not None:
         return spectrum
-    raise ValueError(f"no exponential-sum (SOE) construction for material kind {material.kind!r}"
-                     + (": the pointwise Eq. 1 combination of two bodies is solved by method 'direct'"
-                        if isinstance(material, _materials.EqOne) else ""))
+    raise ValueError(f"no exponential-sum (SOE) construction for material kind {material.kind!r}: method "
+                     f"'direct' solves any kernel")
 
 
-def soe(material, t_min: float, t_max: float, tol: float = 1e-10) -> SOE:
+def soe(material, t_min: float, t_max: float, tol: float = 1e-10, from_zero: bool = False) -> SOE:
     """SOE of ``material``'s relaxation modulus on [t_min, t_max] (s) with relative error <= ``tol``
-    for the transient (see the module docstring). Prony-type materials are returned exactly.
+    for the transient (see the module docstring). Prony-type materials are returned exactly; the Eq. 1
+    combination of two bodies is fitted, with relative error <= ``tol`` for the modulus, on [0, t_max]
+    with ``from_zero`` (the internal-variable methods integrate the kernel from t = 0; the sums of the
+    completely monotone laws are not accurate there and refuse it).
 
     The interval is widened to powers of two (t_min down, t_max up) and the result cached, so a sweep
     whose points have nearby steps and horizons shares one construction."""
@@ -126,7 +137,25 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10) -> SOE:
             e_inf, e, b = material.prony_terms()
             exact = _materials.Prony(float(e_inf), tuple(map(float, e)), tuple(map(float, b)))
         return SOE(material=exact, t_min=t_min, t_max=t_max, bound=0.0, checked_error=0.0, exact=True)
-    return _soe_cached(material, math.floor(math.log2(t_min)), math.ceil(math.log2(t_max)), tol)
+    lo, hi = math.floor(math.log2(t_min)), math.ceil(math.log2(t_max))
+    if isinstance(material, _materials.EqOne):
+        return _fit_cached(material, lo, hi, tol, bool(from_zero))
+    if from_zero:
+        raise ValueError(f"the exponential sum of material kind {material.kind!r} is built for t > 0 only: its "
+                         f"modulus is not a finite sum of exponentials down to t = 0")
+    return _soe_cached(material, lo, hi, tol)
+
+
+@functools.lru_cache(maxsize=256)
+def _fit_cached(material, lo: int, hi: int, tol: float, from_zero: bool) -> SOE:
+    t_min, t_max = 2.0**lo, 2.0**hi
+    try:
+        fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_max, tol,
+                                              from_zero)
+    except ValueError as exc:
+        raise ValueError(f"the contact modulus of {material.describe_bodies()} (Green 2026 Eq. 1, pointwise): "
+                         f"{exc}; raise soe_tol, or use method 'direct' (it takes the modulus as it is)") from None
+    return SOE(material=fitted, t_min=t_min, t_max=t_max, bound=math.nan, checked_error=checked, exact=False)
 
 
 @functools.lru_cache(maxsize=256)

@@ -69,12 +69,14 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     tables : LevelTables
         Per level: steps, weights of the newest step and of each mode, decays, live modes.
     plate : Plate
-        The plate's mobility: kind 0, constant; 1, E_b(t) on the kernel's modes; 2, in closed form.
+        The plate's mobility: kind 0, constant; 1, E_b(t) on exponential modes with their own decay
+        table (the kernel's, when the plate is of the contact's material); 2 and 3, in closed form.
     body : Body
     control : AdaptiveControl
     stop : Stop
     modes : Modes
-        history P_k (N) and plate X_k = exp(-b_k t), whole on entry and on return.
+        history P_k (N, one per kernel mode) and plate X_k = exp(-b_k t) (one per plate mode), whole
+        on entry and on return.
     state : int64 array
         [loaded, separation, last, status, rejected, waived, level, frozen] (``_records``); set the
         level to the first step's before the first call.
@@ -93,8 +95,8 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     factors X_k below DECAYED are zero from then on (t only grows).
 
     Plate mobility (kind 1): alpha = scale / sqrt(E_b), E_b(t) = factor (e_inf + sum moduli_k X_k),
-    X_k = exp(-b_k t) carried with the same decays (rate_moduli = b_k moduli_k); kind 2:
-    E_b(t) = factor (e_inf + sqrt_coef t^-1/2) (the fractional law); kind 0: alpha = const.
+    X_k = exp(-b_k t) carried with the plate's decays (rate_moduli = b_k moduli_k); kinds 2 and 3: the
+    fractional and the CERF law in closed form (:func:`_closed_form_mobility`); kind 0: alpha = const.
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
     the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against
@@ -114,7 +116,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     mode_integral, mode_moment, mode_decay, live_modes = (tables.mode_integral, tables.mode_moment,
                                                           tables.mode_decay, tables.live_modes)
     P, X = modes.history, modes.plate
-    pe, pbe = plate.moduli, plate.rate_moduli
+    pe, pbe, plate_decay = plate.moduli, plate.rate_moduli, plate.decay
     pscale, pc, pe_inf = plate.scale, plate.factor, plate.e_inf
     m, v0 = body.m, body.v0
     step_tol, inv_tc, sep_frac, ghost = control.step_tol, control.inv_tc, control.sep_fraction, control.ghost
@@ -124,13 +126,13 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     nmax = t.shape[0] - 1
     inv_pscale2 = 1.0 / (pscale * pscale) if pscale > 0.0 else 0.0
     trial_history = np.empty(nk)
-    trial_plate = np.empty(nk)
+    trial_plate = np.empty(X.shape[0])
     # P is whole on entry; modes n_explicit.. are implicit after the first accepted step (see Notes)
     n_explicit = nk
     last_d = 0.0
     last_c = 0.0
     last_row = np.int64(0)  # (not a literal 0: numba would compile _fill a second time for it)
-    n_plate = nk
+    n_plate = pe.shape[0]
     while n_plate > 1 and X[n_plate - 1] == 0.0:
         n_plate -= 1
     lev = state[LEVEL]
@@ -185,14 +187,14 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
             H = Hh - w0 * u[n - 1]
         if plate.kind == 1:
             if n_plate > FEW_MODES:
-                eb, ebd = _plate_sums(mode_decay, row, X, trial_plate, pe, pbe, n_plate)
+                eb, ebd = _plate_sums(plate_decay, row, X, trial_plate, pe, pbe, n_plate)
                 eb = pc * (pe_inf + eb)
                 ebd = -pc * ebd
             else:
                 eb = pe_inf
                 ebd = 0.0
                 for k in range(n_plate):
-                    x = mode_decay[row, k] * X[k]
+                    x = plate_decay[row, k] * X[k]
                     trial_plate[k] = x
                     eb += pe[k] * x
                     ebd -= pbe[k] * x
@@ -200,16 +202,16 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
                 ebd *= pc
             a_n = pscale / math.sqrt(eb)
             ad_n = -0.5 * a_n * a_n * a_n * ebd * inv_pscale2  # 1 / eb = alpha^2 / pscale^2
-        elif plate.kind == 2:
+        elif plate.kind >= 2:
             # the roots and the division are a long chain: computed one step ahead, for the step on the
             # same level (or the plan's next one), while this step's Newton iteration runs
             if tn == ahead_t:
                 a_n = ahead_alpha
                 ad_n = ahead_rate
             else:
-                a_n, ad_n = _sqrt_law_mobility(tn, plate)
+                a_n, ad_n = _closed_form_mobility(tn, plate)
             ahead_t = tn + step[(plan[n] if n < n_plan else lev) + row_offset]
-            ahead_alpha, ahead_rate = _sqrt_law_mobility(ahead_t, plate)
+            ahead_alpha, ahead_rate = _closed_form_mobility(ahead_t, plate)
         else:
             a_n = plate.const
             ad_n = 0.0
@@ -302,14 +304,52 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
 
 
 @jit_inline
-def _sqrt_law_mobility(t, plate):
-    """(alpha, alpha') at t of a plate of the fractional law, E_b = factor (e_inf + sqrt_coef t^-1/2):
-    with D = E_b t^1/2 and y = 1 / (D t), alpha = scale (t^1/2 / D)^1/2 = scale (t^1/2 y t)^1/2 and
-    alpha' = alpha factor sqrt_coef / (4 D t) (one division, two roots)."""
+def _closed_form_mobility(t, plate):
+    """(alpha, alpha') at t of a plate whose modulus is in closed form.
+
+    Kind 2, the fractional law, E_b = factor (e_inf + coef t^-1/2): with D = E_b t^1/2 and
+    y = 1 / (D t), alpha = scale (t^1/2 / D)^1/2 = scale (t^1/2 y t)^1/2 and
+    alpha' = alpha factor coef / (4 D t) (one division, two roots).
+
+    Kind 3, the CERF law, E_b = factor (e_inf + coef erfcx(x)), x = rate t^1/2: with
+    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi) and dx/dt = x / (2 t), alpha = scale E_b^-1/2 and
+    alpha' = -alpha E_b' / (2 E_b)."""
     rt = math.sqrt(t)
-    y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.sqrt_coef) * t)
-    a = plate.scale * math.sqrt(rt * y * t)
-    return a, 0.25 * a * plate.factor * plate.sqrt_coef * y
+    if plate.kind == 2:
+        y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.coef) * t)
+        a = plate.scale * math.sqrt(rt * y * t)
+        return a, 0.25 * a * plate.factor * plate.coef * y
+    x = plate.rate * rt
+    ex = _erfcx(x)
+    eb = plate.factor * (plate.e_inf + plate.coef * ex)
+    a = plate.scale / math.sqrt(eb)
+    if t > 0.0:
+        rate_eb = plate.factor * plate.coef * (2.0 * x * ex - _TWO_OVER_SQRT_PI) * plate.rate / (2.0 * rt)
+    else:
+        rate_eb = 0.0
+    return a, -0.5 * a * rate_eb / eb
+
+
+_TWO_OVER_SQRT_PI = 2.0 / math.sqrt(math.pi)
+#: erfcx(x) = exp(x^2) erfc(x) from libm's erfc below ERFCX_SWITCH (relative error ~ x^2 eps, 7e-14 at
+#: the switch), above it the asymptotic series 1 / (x sqrt(pi)) sum_n (-1)^n (2n - 1)!! / (2 x^2)^n,
+#: ERFCX_TERMS terms (truncation below 1e-17 at the switch)
+ERFCX_SWITCH = 25.0
+ERFCX_TERMS = 8
+
+
+@jit_inline
+def _erfcx(x):
+    """The scaled complementary error function exp(x^2) erfc(x), x >= 0 (see ERFCX_SWITCH)."""
+    if x < ERFCX_SWITCH:
+        return math.exp(x * x) * math.erfc(x)
+    inv = 1.0 / (2.0 * x * x)
+    term = 1.0
+    total = 1.0
+    for n in range(1, ERFCX_TERMS):
+        term *= -(2.0 * n - 1.0) * inv
+        total += term
+    return total / (x * math.sqrt(math.pi))
 
 
 @jit_sum
@@ -353,12 +393,12 @@ def _node_arrays(n):
 
 
 @jit
-def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start_level, size0, out):
-    """The adaptive march (:func:`march_adaptive`), then (n_grids = 3) its replays with every step
-    halved and quartered, and the separation of each, in one call (no histories).
+def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_steps, start_level, size0, out):
+    """The adaptive march (:func:`march_adaptive`), then (n_grids > 1) its replays with every step
+    divided by 2, 4, ... 2^(n_grids - 1), and the separation of each, in one call (no histories).
 
     The records arrive as plain tuples (``_records``) and are passed on so. The tables have
-    level_top + 3 rows from h_base / 4: grid k (0, 1, 2) uses rows from 2 - k.
+    level_top + 1 + ``splits`` rows from h_base / 2^splits: grid k uses rows from splits - k.
     Fills out[k] = [the 9 outcome values of ``separation_point``, separation index, largest step (s)]
     and returns True when every grid separated, the first within ``size0`` steps; False (out undefined)
     for anything else (more steps, divergence, time horizon, step budget), which the caller then runs
@@ -366,6 +406,8 @@ def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start
     """
     nk = LevelTables(*tables).mode_decay.shape[1]
     n_extra, rule, v0 = Stop(*stop).n_extra, Stop(*stop).rule, Body(*body).v0
+    pr = Plate(*plate)
+    still = pr.kind == 0 or (pr.kind == 1 and not np.any(pr.moduli != 0.0))  # a constant mobility
     n_plan = 0
     # the march writes node n before anything reads it, and reads nothing beyond the last node: the
     # arrays need only their first node set; the replays reuse the first grid's node arrays when they
@@ -374,7 +416,7 @@ def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start
     t, s, g, F, J, u = _node_arrays(size0 + 1)
     lev = base
     P = np.empty(nk)
-    X = np.empty(nk)
+    X = np.empty(Plate(*plate).moduli.shape[0])
     state = np.empty(8, dtype=np.int64)
     for k in range(n_grids):
         rep = 2**k
@@ -397,14 +439,14 @@ def adaptive_grids(n_grids, tables, plate, body, control, stop, max_steps, start
         state[LEVEL] = start_level
         e = size + 1  # the march fills at most ``size`` steps (views: no copies)
         march_adaptive((t[:e], s[:e], g[:e], F[:e], J[:e], u[:e]), lev[:e], tables, plate, body, control, stop,
-                       (P, X), state, plan, 2 - k)
+                       (P, X), state, plan, splits - k)
         if state[STATUS] != STATUS_SEPARATED:
             return False
         n_sep = state[SEPARATION]
         n_done = state[LAST]
         if k == 0:
             n_plan = min(n_done, n_sep + n_extra)
-        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, out[k]):
+        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, still, out[k]):
             return False
         out[k, 9] = n_sep
         big = 0.0

@@ -87,10 +87,13 @@ Nodes = namedtuple("Nodes", "t s g F J u")
 LevelTables = namedtuple("LevelTables", "step inv_step newest_integral newest_moment mode_integral mode_moment "
                          "mode_decay live_modes")
 #: the plate's mobility in the adaptive march: kind 0 (rigid target, or a constant mobility: const),
-#: 1 (E_b on the kernel's exponential modes), 2 (E_b = factor (e_inf + sqrt_coef t^-1/2) in closed form);
-#: alpha = scale / sqrt(E_b) (scale in m N^-1 s^-1 Pa^0.5), E_b = factor (e_inf + sum moduli_k X_k) (Pa)
-#: with X_k = e^{-b_k t}, rate_moduli_k = b_k moduli_k (Pa/s)
-Plate = namedtuple("Plate", "kind scale factor e_inf sqrt_coef const moduli rate_moduli")
+#: 1 (E_b on exponential modes), 2 (E_b = factor (e_inf + coef t^-1/2), the fractional law, in closed
+#: form; coef in Pa s^0.5), 3 (E_b = factor (e_inf + coef erfcx(rate sqrt(t))), the CERF law, in closed
+#: form; coef in Pa, rate in s^-0.5); alpha = scale / sqrt(E_b) (scale in m N^-1 s^-1 Pa^0.5),
+#: kind 1: E_b = factor (e_inf + sum moduli_k X_k) (Pa) with X_k = e^{-b_k t}, rate_moduli_k = b_k
+#: moduli_k (Pa/s) and per level the decays e^{-b_k h} (``decay``, rows as the level tables'; the
+#: kernel's mode_decay when the plate is of the contact's material)
+Plate = namedtuple("Plate", "kind scale factor e_inf coef rate const moduli rate_moduli decay")
 #: the adaptive march's step control: step_tol (relative), 1 / contact-time estimate (1/s), the lowest
 #: and highest level, the time horizon (s), a separation is located on a step <= sep_fraction t, and
 #: the ghost continuation's length (fraction of t0)

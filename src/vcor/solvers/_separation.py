@@ -31,6 +31,23 @@ def _newton_value(c, tn, x):
 
 
 @jit
+def _elastic_kernel(F, un):
+    """F = k u on the four nodes (to 1e-9 of the largest F): an elastic kernel, whose force
+    F ~ |t - t0|^{3/2} is not smooth where s crosses zero."""
+    ref = 0
+    for j in range(1, 4):
+        if abs(un[j]) > abs(un[ref]):
+            ref = j
+    if un[ref] == 0.0:
+        return False
+    k = F[ref] / un[ref]
+    deviation = 0.0
+    for j in range(4):
+        deviation = max(deviation, abs(F[j] - k * un[j]))
+    return deviation <= 1e-9 * abs(F[ref])
+
+
+@jit
 def parabola_peak(t, y, n):
     """Maximum of samples y[0..n] refined by the parabola through the largest one and its neighbours
     (any spacing); the largest sample itself at an end or where the parabola is not concave."""
@@ -51,22 +68,28 @@ def parabola_peak(t, y, n):
 
 
 @jit
-def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
+def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, out):
     """Separation inside [t_{n-1}, t_n] and the outcome there.
 
     The root of the cubic through nodes lo..lo+3 of the target (s when ``by_overlap``, else F) is found
     by the Illinois variant of regula falsi to 1e-15 t_n; s, s' and J (and F unless ``force_rule``) are
-    interpolated by the same cubics there. The work integrals are trapezoidal on nodes 0..n-1 plus the
+    interpolated by the same cubics there. Where s crosses zero with F proportional to u (an elastic
+    kernel, :func:`_elastic_kernel`: F ~ |t - t0|^{3/2}, so that a cubic through
+    s' = v0 - J/m - alpha' J - alpha F misses it by O(h^{3/2})) on a plate of constant mobility
+    (``still_plate``: alpha' = 0), the model gives s'(t0) = v0 - J(t0)/m exactly (F(t0) = 0), and J is
+    smooth there. The work integrals are trapezoidal on nodes 0..n-1 plus the
     partial interval [t_{n-1}, t0]; the peaks of s and F are parabola-refined (:func:`parabola_peak`).
 
     Parameters
     ----------
     nodes : Nodes
-        t (s), s (m), g (m/s), F (N), J (N s) of the march (u unused); a plain tuple (``_records``).
+        t (s), s (m), g (m/s), F (N), J (N s), u (m^1.5) of the march; a plain tuple (``_records``).
     n : int
         The separation node; lo: the first of the four interpolation nodes.
     by_overlap, force_rule : bool
         Interpolate the root of s (else of F); F(t0) = 0 in the work integrals.
+    still_plate : bool
+        The plate's mobility is constant in time (a rigid target, an elastic plate).
     body : Body
         m (kg), v0 (m/s).
     out : float64 array
@@ -79,7 +102,7 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
     bool
         True; False (nothing filled) when the target does not change sign in the step.
     """
-    t, s, g, F, J, _ = nodes
+    t, s, g, F, J, u = nodes
     m, v0 = Body(*body).m, Body(*body).v0
     tn = t[lo:lo + 4]
     c = _divided(tn, s[lo:lo + 4] if by_overlap else F[lo:lo + 4])
@@ -116,9 +139,12 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
                 t0 = lo_t if flo < -fhi else hi_t
                 break
     s0 = _newton_value(_divided(tn, s[lo:lo + 4]), tn, t0)
-    g0 = _newton_value(_divided(tn, g[lo:lo + 4]), tn, t0)
     J0 = _newton_value(_divided(tn, J[lo:lo + 4]), tn, t0)
     F0 = 0.0 if force_rule else _newton_value(_divided(tn, F[lo:lo + 4]), tn, t0)
+    if by_overlap and still_plate and _elastic_kernel(F[lo:lo + 4], u[lo:lo + 4]):
+        g0 = v0 - J0 / m
+    else:
+        g0 = _newton_value(_divided(tn, g[lo:lo + 4]), tn, t0)
     z0 = v0 - J0 / m
     # trapezoid on nodes 0..n-1 plus the partial interval [t_{n-1}, t0]; each node's powers F s' and
     # F z' computed once (carried to the next interval)
@@ -150,11 +176,11 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, out):
 
 
 @jit
-def locate_separation(nodes, n, size, overlap_rule, body, out):
+def locate_separation(nodes, n, size, overlap_rule, body, still_plate, out):
     """:func:`separation_point` for the separation step n of a march whose first ``size`` nodes are
     valid: the four interpolation nodes end at n + 1 when it exists, and s is the target for the
     overlap rule, or when s also crossed zero in step n (F ~ s^{3/2} is not smooth at its root, s is)."""
     s = Nodes(*nodes).s
     lo = max(0, min(n - 2, size - 4))
     by_overlap = overlap_rule or (s[n] <= 0.0 < s[n - 1])
-    return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, out)
+    return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, still_plate, out)

@@ -3,12 +3,13 @@
 Every kernel is split into its newest step (exact product integration, which holds the t^-1/2
 singularity of the fractional law) and older history carried by the exponential sum of
 :func:`vcor.materials.expsums.soe` (exact for Prony, SLS, elastic and Kelvin-Voigt; relative error <= ``soe_tol``
-for the fractional and CERF laws on [smallest step, horizon]). One variable per exponential is
-updated in O(1) per step for any step size, so the cost is O(N K) and steps can grow by orders of
-magnitude in long, slow contacts (thin plates) and shrink near t = 0 and at separation. A mode
-that decays below 1e-18 over one step (``_records.DECAYED``) is not touched on that step's level
-(its value is the last step's contribution, kept implicitly), so the fast modes of the fractional
-and CERF sums cost nothing on coarse steps.
+for the fractional and CERF laws and the fitted two-body modulus of Eq. 1 on [smallest step, horizon];
+the plate's modulus likewise, on its own modes when the plate is of another material than the
+contact). One variable per exponential is updated in O(1) per step for any step size, so the cost is
+O(N K) and steps can grow by orders of magnitude in long, slow contacts (thin plates) and shrink near
+t = 0 and at separation. A mode that decays below 1e-18 over one step (``_records.DECAYED``) is not
+touched on that step's level (its value is the last step's contribution, kept implicitly), so the fast
+modes of the fractional and CERF sums cost nothing on coarse steps.
 
 Step sizes are powers of two times h_base = 2^(floor(log2 t_c) - FLOOR_BITS) (t_c the contact-time
 estimate), so every table (local weights, mode factors) is computed once per level and shared by the
@@ -25,9 +26,9 @@ the time horizon starts at HORIZON_START t_c and grows by 32 up to MAX_HORIZON t
 restarted with an exponential sum for the longer horizon) before the run ends as ``step-budget``.
 
 By default (``extrapolate``, option ``richardson``) the accepted grid is replayed with every step
-halved and quartered and the results are Richardson-extrapolated (errors h^2 and h^2.5 eliminated,
-see ``RICHARDSON_EXPONENTS``); the three marches share one set of level tables (exponential sum on
-[h_base / 4, 2 horizon]).
+divided by 2, 4 and 8 and the results are Richardson-extrapolated (errors h^2, h^2.5 and h^3
+eliminated, see ``RICHARDSON_EXPONENTS``); the four marches share one set of level tables (exponential
+sum on [h_base / 8, 2 horizon]).
 """
 
 from __future__ import annotations
@@ -60,8 +61,9 @@ from ._records import (
 from .common import OUTCOME, Result, separation_scalars
 from .march import N_EXTRA, Arrays, March, finish
 
-__all__ = ["FLOOR_BITS", "HORIZON_START", "MAX_HORIZON", "RICHARDSON_WEIGHTS", "SEP_STEPS", "Tables", "grid_outcomes",
-           "level_tables", "one_call", "plate_kind", "plate_record", "richardson_outcome", "run_adaptive", "solve"]
+__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_HORIZON", "RICHARDSON_WEIGHTS", "SEP_STEPS", "PlateTables",
+           "Tables", "grid_outcomes", "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables",
+           "richardson_outcome", "run_adaptive", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -76,10 +78,13 @@ MAX_HORIZON = 2.0**30
 INITIAL_SIZE = 2048
 #: the largest step is this fraction of the horizon
 MAX_STEP_FRACTION = 1.0 / 16.0
-#: the grid halved and quartered of the Richardson extrapolation: their tables are the coarse grid's
-#: levels shifted by one and two, so one table with SPLIT_LEVELS extra levels (and its exponential
-#: sum from h_base / 4) serves the three marches
-SPLIT_LEVELS = 2
+#: the grids of the Richardson extrapolation are the accepted grid and the grids with every step divided
+#: by 2, 4, ... 2^SPLIT_LEVELS: their tables are the coarse grid's levels shifted by one, two, ..., so
+#: one table with SPLIT_LEVELS extra levels (and its exponential sum from h_base / 2^SPLIT_LEVELS)
+#: serves every march
+SPLIT_LEVELS = 3
+#: the number of grids of the extrapolation
+GRIDS = SPLIT_LEVELS + 1
 
 
 def solve(impact, options, tc, history):
@@ -94,7 +99,7 @@ class Tables:
     """Level tables of one (material, step range, horizon): ``levels`` (the kernel record,
     :class:`~._records.LevelTables`), the plate modulus's constant ``e_inf`` (Pa), its modes'
     ``moduli`` (Pa) and ``rate_moduli`` (moduli times rates, Pa/s), the exponential sum's number of
-    terms and its checked relative error."""
+    terms and its checked relative error, the end of its window ``t_max`` (s) and its tolerance."""
 
     levels: LevelTables
     e_inf: float
@@ -102,6 +107,8 @@ class Tables:
     rate_moduli: np.ndarray
     n_terms: int
     soe_error: float
+    t_max: float
+    tol: float
 
     @functools.cached_property
     def plain_levels(self) -> tuple:
@@ -141,7 +148,8 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
         i0, m0 = mat.first_step(hl)
     levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live)
     return Tables(levels=levels, e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
-                  rate_moduli=np.concatenate(([0.0], b * e)), n_terms=rep.n_terms, soe_error=rep.checked_error)
+                  rate_moduli=np.concatenate(([0.0], b * e)), n_terms=rep.n_terms, soe_error=rep.checked_error,
+                  t_max=t_max, tol=tol)
 
 
 def _grown(a, n):
@@ -152,29 +160,69 @@ def _grown(a, n):
 
 def plate_kind(impact) -> int:
     """How the march evaluates the plate's mobility: 0, a rigid target or a constant mobility; 1, the
-    plate's modulus on the kernel's exponential sum; 2, in closed form (the fractional law,
-    ``Material.sqrt_law``). ValueError for a plate whose modulus is not the contact kernel's (checked
-    before any table is built), naming the method that solves it."""
+    plate's modulus on exponential modes (the kernel's own when the plate is of the contact's material,
+    else the plate material's exact Prony terms or exponential sum, :func:`plate_tables`); in closed
+    form, 2 for the fractional law (``Material.sqrt_law``) and 3 for the CERF law
+    (``Material.erfcx_law``; its ~100 modes would cost a third of the impact)."""
     g = impact.geometry
     if g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
         return 0
-    if g.plate_material is not None:
-        raise ValueError("method 'adaptive' carries the plate modulus on the contact kernel's exponentials; "
-                         "with a deformable sphere on a viscoelastic plate (Eq. 1, vcor.contact.bodies) the "
-                         "plate's modulus differs from the contact modulus: use method 'direct'")
-    return 2 if impact.material.sqrt_law() is not None else 1
+    plate = impact.material if g.plate_material is None else g.plate_material
+    if plate.sqrt_law() is not None:
+        return 2
+    return 3 if plate.erfcx_law() is not None else 1
 
 
-def plate_record(impact, tables: Tables, kind: int) -> Plate:
-    """The march's :class:`~._records.Plate` for ``kind`` (:func:`plate_kind`) and ``tables``."""
+@dataclass(kw_only=True, frozen=True)
+class PlateTables:
+    """A plate material's modulus as exponential modes for the march: the constant ``e_inf`` (Pa), per mode
+    (column 0: the constant, rate 0) the ``moduli`` (Pa), ``rate_moduli`` (moduli times rates, Pa/s) and
+    per level the ``decay`` e^{-b h_l}, and the exponential sum's checked relative error."""
+
+    e_inf: float
+    moduli: np.ndarray
+    rate_moduli: np.ndarray
+    decay: np.ndarray
+    soe_error: float
+
+
+@functools.lru_cache(maxsize=64)
+def plate_tables(material, h_base: float, n_levels: int, t_max: float, tol: float) -> PlateTables:
+    """(Cached.) :class:`PlateTables` of a plate material whose modulus is not the contact kernel's
+    (vcor.contact.bodies: a deformable sphere on a viscoelastic plate), on the levels h_base 2^l
+    (l < n_levels) of the kernel's tables and its exponential sum's window [h_base, t_max] (s)."""
+    rep = soe(material, h_base, t_max, tol)
+    e_inf, e, b = rep.material.prony_terms()
+    hl = h_base * 2.0 ** np.arange(n_levels)
+    decay = np.ones((n_levels, e.size + 1))
+    decay[:, 1:] = np.exp(-np.multiply.outer(hl, b))
+    return PlateTables(e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
+                       rate_moduli=np.concatenate(([0.0], b * e)), decay=decay, soe_error=rep.checked_error)
+
+
+def plate_record(impact, tables: Tables, kind: int) -> tuple[Plate, float]:
+    """The march's :class:`~._records.Plate` for ``kind`` (:func:`plate_kind`) and the kernel's
+    ``tables``, and the relative error of the plate modulus's exponential sum (0: exact or closed form)."""
+    g = impact.geometry
+    same = (tables.moduli, tables.rate_moduli, tables.levels.mode_decay)
     if kind == 0:
-        const = 0.0 if impact.geometry.rigid else float(impact.alpha(0.0))
-        return Plate(0, 0.0, 0.0, 0.0, 0.0, const, tables.moduli, tables.rate_moduli)
-    factor = 1.0 / (1.0 - impact.geometry.nu**2)
+        const = 0.0 if g.rigid else float(impact.alpha(0.0))
+        return Plate(0, 0.0, 0.0, 0.0, 0.0, 0.0, const, *same), 0.0
+    own = g.plate_material is not None
+    plate = g.plate_material if own else impact.material
+    factor = 1.0 / (1.0 - (g.nu_plate if own else g.nu) ** 2)
     if kind == 2:
-        e0, c = impact.material.sqrt_law()
-        return Plate(2, impact.mobility_scale, factor, float(e0), float(c), 0.0, tables.moduli, tables.rate_moduli)
-    return Plate(1, impact.mobility_scale, factor, tables.e_inf, 0.0, 0.0, tables.moduli, tables.rate_moduli)
+        e0, c = plate.sqrt_law()
+        return Plate(2, impact.mobility_scale, factor, float(e0), float(c), 0.0, 0.0, *same), 0.0
+    if kind == 3:
+        e0, e1, b1 = plate.erfcx_law()
+        return Plate(3, impact.mobility_scale, factor, e0, e1, b1, 0.0, *same), 0.0
+    if not own:
+        return Plate(1, impact.mobility_scale, factor, tables.e_inf, 0.0, 0.0, 0.0, *same), tables.soe_error
+    lv = tables.levels
+    pt = plate_tables(plate, float(lv.step[0]), int(lv.step.size), tables.t_max, tables.tol)
+    return (Plate(1, impact.mobility_scale, factor, pt.e_inf, 0.0, 0.0, 0.0, pt.moduli, pt.rate_moduli, pt.decay),
+            pt.soe_error)
 
 
 def _body(impact) -> tuple:
@@ -198,14 +246,16 @@ class _Grid:
     plan: np.ndarray | None = None
 
 
-def _tables_for(impact, h_base, factor, tol):
-    """(horizon (s), number of levels, tables) for the horizon ``factor`` contact-time estimates."""
+def _tables_for(impact, h_base, factor, tol, kind):
+    """(horizon (s), number of levels, tables, plate record as a plain tuple, largest relative error of
+    the kernel's and the plate's exponential sums) for the horizon ``factor`` contact-time estimates."""
     top = h_base * 2.0**FLOOR_BITS
     horizon = factor * 2.0 * top  # a power of two >= factor t_c: the tables of a sweep's points are shared
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
     tables = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                           2.0 * horizon, tol)
-    return horizon, n_levels, tables
+    plate, plate_error = plate_record(impact, tables, kind)
+    return horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error)
 
 
 def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind):
@@ -213,9 +263,9 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
     Returns (March, levels, horizon, factor)."""
     plan = _NO_PLAN if grid.plan is None else grid.plan
     while True:
-        horizon, n_levels, tables = _tables_for(impact, grid.h_base, factor, tol)
+        horizon, n_levels, tables, plate, soe_error = _tables_for(impact, grid.h_base, factor, tol, kind)
         nk = tables.levels.mode_decay.shape[1]
-        modes = tuple(Modes(np.zeros(nk), np.ones(nk)))
+        modes = tuple(Modes(np.zeros(nk), np.ones(Plate(*plate).moduli.size)))
         first = START_LEVEL if grid.fixed_level is None else int(grid.fixed_level)
         lo, hi = (0, n_levels - 1) if grid.fixed_level is None else (first, first)
         control = tuple(AdaptiveControl(step_tol, 1.0 / grid.tc, lo, hi, horizon, 1.0 / SEP_STEPS, ghost))
@@ -224,7 +274,6 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
         arr = Arrays(min(size, max_steps))
         t, lev = np.zeros(arr.n + 1), np.zeros(arr.n + 1, dtype=np.int64)
         arr.g[0] = impact.v0
-        plate = tuple(plate_record(impact, tables, kind))
         while True:
             march_adaptive(tuple(Nodes(t, arr.s, arr.g, arr.F, arr.J, arr.u)), lev, tuple(tables.levels), plate,
                            _body(impact), control, _STOPS[rule], modes, state, plan, SPLIT_LEVELS - grid.split)
@@ -237,7 +286,7 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
                 and factor < MAX_HORIZON):
             step = float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan
             march = March(arrays=arr, state=state, n_done=n_done, dt=step, t=t, note=_ghost_note(state, t, n_done),
-                          budget=_budget_text(t, n_done, horizon, factor, max_steps))
+                          budget=_budget_text(t, n_done, horizon, factor, max_steps), soe_error=soe_error)
             return march, lev, horizon, factor
         factor *= 32.0
 
@@ -260,23 +309,27 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
             f"contact-time estimates) does not separate in any practical sense")
 
 
-#: Richardson extrapolation from three nested grids (the accepted grid, every step halved, every step
-#: quartered): the scheme's error expands in h^2 and h^2.5 (half-integer powers from u = s^{3/2}, with
-#: s ~ t at impact and ~ (t0 - t) at separation, and from the t^-1/2 kernels; measured on uniform
-#: grids: the two-grid extrapolation leaves order 2.5 for every preset), both terms are eliminated
-RICHARDSON_EXPONENTS = (2.0, 2.5)
-#: weights of the three grids' values (coarse, halved, quartered): w with sum_j w_j 2^(-p j) = 0 for
-#: both exponents p and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
+#: Richardson extrapolation from GRIDS nested grids (the accepted grid, every step divided by 2, 4, 8):
+#: the scheme's error expands in h^2, h^2.5 and h^3 (the trapezoidal rule's h^2; half-integer powers
+#: from u = s^{3/2}, with s ~ t at impact, and from the t^-1/2 kernels near lag 0: measured on uniform
+#: grids, the two-grid extrapolation leaves order 2.5 for every preset; h^3 from the quadratic
+#: interpolation of u), and all three are eliminated. Measured on the presets at 0.001..300 m/s
+#: against independent references (benchmarks/bench_accuracy.py): the three-grid extrapolation
+#: (h^2, h^2.5) leaves the h^3 term, 1e-7..5e-7 at the former default; the fourth grid removes it
+RICHARDSON_EXPONENTS = (2.0, 2.5, 3.0)
+#: weights of the grids' values (coarse to fine): w with sum_j w_j 2^(-p j) = 0 for every exponent p
+#: and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
 RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
-    np.array([[1.0] + [2.0 ** (-p * j) for p in RICHARDSON_EXPONENTS] for j in range(3)]).T, np.array([1.0, 0.0, 0.0])))
+    np.array([[1.0] + [2.0 ** (-p * j) for p in RICHARDSON_EXPONENTS] for j in range(GRIDS)]).T,
+    np.eye(GRIDS)[0]))
 #: ... only where t0 and the COR each show that the grids are in the asymptotic range: either the
-#: coarse and the quartered grid agree to RICHARDSON_GAP (t0 relative; COR relative plus COR_FLOOR
-#: absolute), or the ratio of successive differences (x_h - x_h/2) / (x_h/2 - x_h/4) is in
-#: RICHARDSON_RATIO (4 for h^2 errors, 5.7 for h^2.5; measured 3.6..4.4 on thin plates, whose grids
-#: differ by up to 1 %; with two error terms of opposite sign the ratio alone can leave the band,
-#: e.g. 8.5 for t0 of the fractional law at 50 m/s, where the grids agree to 1e-7). Otherwise (e.g. a
-#: force creeping to zero over hours, t0 ill-conditioned: grids tens of per cent apart, erratic
-#: ratios) the values of the quartered grid are kept and the message says so
+#: coarse and the finest grid agree to RICHARDSON_GAP (t0 relative; COR relative plus COR_FLOOR
+#: absolute), or the ratio of successive differences of the three finest grids,
+#: (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for h^2 errors, 5.7 for h^2.5; measured
+#: 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two error terms of opposite sign the
+#: ratio alone can leave the band, e.g. 8.5 for t0 of the fractional law at 50 m/s, where the grids
+#: agree to 1e-7). Otherwise (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens
+#: of per cent apart, erratic ratios) the values of the finest grid are kept and the message says so
 RICHARDSON_GAP = 1e-3
 COR_FLOOR = 1e-9
 RICHARDSON_RATIO = (2.5, 8.0)
@@ -289,18 +342,18 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
                  fixed_level=None, extrapolate=False, one_call_path=True):
     """Adaptive march (see the module docstring). ``tc``: contact-time estimate, s.
 
-    ``extrapolate``: march again on the accepted grid with every step halved and with every step
-    quartered (the same levels on tables for h_base / 2 and h_base / 4; no error control) and
-    Richardson-extrapolate the scalars with ``RICHARDSON_WEIGHTS`` (eliminates the h^2 and h^2.5
-    error terms); histories are those of the quartered grid.
+    ``extrapolate``: march again on the accepted grid with every step divided by 2, 4, ... 2^SPLIT_LEVELS
+    (the same levels on tables for h_base / 2, h_base / 4, ...; no error control) and
+    Richardson-extrapolate the scalars with ``RICHARDSON_WEIGHTS`` (eliminates the error terms of
+    RICHARDSON_EXPONENTS); histories are those of the finest grid.
     ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
     a uniform grid on which the march is the direct scheme with an exponential-sum history.
     ``one_call_path`` (tests): False runs the general path also where :func:`one_call` would do."""
-    kind = plate_kind(impact)  # a plate the method cannot carry: the error before any work
+    kind = plate_kind(impact)
     h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
     t_start = time.perf_counter()
     if one_call_path and not history and fixed_level is None:
-        res = _one_call(impact, tc, kind, h_base, 3 if extrapolate else 1, step_tol, max_steps, rule, tol)
+        res = _one_call(impact, tc, kind, h_base, GRIDS if extrapolate else 1, step_tol, max_steps, rule, tol)
         if res is not None:
             res.wall_time = time.perf_counter() - t_start
             return res
@@ -314,7 +367,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         return coarse
     n_plan = min(march.n_done, int(march.state[SEPARATION]) + N_EXTRA)
     runs = [coarse]
-    for shift in (1, 2):
+    for shift in range(1, SPLIT_LEVELS + 1):
         last = history and shift == SPLIT_LEVELS
         grid = _Grid(h_base=h_base, tc=tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
         march, _, _, factor = _march(impact, grid, factor, ghost=ghost if last else 0.0,
@@ -335,7 +388,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
 
 
 def one_call(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
-    """The usual case of :func:`run_adaptive` (no histories; ``n_grids`` 3 with extrapolation, else 1)
+    """The usual case of :func:`run_adaptive` (no histories; ``n_grids`` GRIDS with extrapolation, else 1)
     in one numba call (``_adaptive_kernels.adaptive_grids``): the same marches and separations as the
     general path, without its Python between them. None when a grid did not simply separate within
     the first time horizon and 2048 steps (the general path then runs and reports it)."""
@@ -344,62 +397,65 @@ def one_call(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
 
 
 def grid_outcomes(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
-    """The rows :func:`one_call` extrapolates (tests): per grid (coarse, halved, quartered) the
-    OUTCOME values, the separation index and the largest step (s), as a (n_grids, 11) array; None
-    where :func:`one_call` declines."""
+    """The rows :func:`one_call` extrapolates (tests): per grid (coarse to fine) the OUTCOME values, the
+    separation index and the largest step (s), as a (n_grids, 11) array; None where :func:`one_call`
+    declines."""
     h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
-    rows = _grid_rows(impact, tc, plate_kind(impact), h_base, n_grids, step_tol, max_steps, rule, tol)
+    rows, _ = _grid_rows(impact, tc, plate_kind(impact), h_base, n_grids, step_tol, max_steps, rule, tol)
     return None if rows is None else np.array(rows)
 
 
 def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
-    horizon, n_levels, tables = _tables_for(impact, h_base, HORIZON_START, tol)
+    """(rows, the exponential sums' relative error) of :func:`grid_outcomes`; rows None where declined."""
+    horizon, n_levels, tables, plate, soe_error = _tables_for(impact, h_base, HORIZON_START, tol, kind)
     control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / SEP_STEPS, 0.0)  # an AdaptiveControl
-    out = np.empty((3, 11))
-    if not adaptive_grids(n_grids, tables.plain_levels, tuple(plate_record(impact, tables, kind)), _body(impact),
-                          control, _STOPS[rule], max_steps, START_LEVEL, INITIAL_SIZE, out):
-        return None
-    return out[:n_grids].tolist()
+    out = np.empty((GRIDS, 11))
+    if not adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, _STOPS[rule],
+                          max_steps, START_LEVEL, INITIAL_SIZE, out):
+        return None, soe_error
+    return out[:n_grids].tolist(), soe_error
 
 
 def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
-    rows = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
+    rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
     if rows is None:
         return None
-    values, message = richardson_outcome(rows) if n_grids == 3 else (rows[-1], "")
+    values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1], "")
     res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
-                 method="adaptive")
+                 method="adaptive", soe_error=soe_error)
     res.message = message
     return res
 
 
 def richardson_outcome(runs):
-    """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (per grid, coarse
-    to fine, its OUTCOME values in that order; further values ignored) and "", or, where the grids are
-    not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR is
-    negative, the finest grid's values and a message saying why."""
-    (w0, w1, w2), (r0, r1, r2) = RICHARDSON_WEIGHTS, runs
-    gap_t0, gap_cor = abs(r2[_T0] - r0[_T0]) / r2[_T0], abs(r2[_COR] - r0[_COR])
+    """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (GRIDS rows, per grid,
+    coarse to fine, its OUTCOME values in that order; further values ignored) and "", or, where the
+    grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR
+    is negative, the finest grid's values and a message saying why."""
+    first, last = runs[0], runs[-1]
+    gap_t0, gap_cor = abs(last[_T0] - first[_T0]) / last[_T0], abs(last[_COR] - first[_COR])
     lo, hi = RICHARDSON_RATIO
-    cor = w0 * r0[_COR] + w1 * r1[_COR] + w2 * r2[_COR]
+    extrapolated = (np.asarray(RICHARDSON_WEIGHTS) @ np.asarray([r[: len(first)] for r in runs], dtype=float)).tolist()
+    cor = extrapolated[_COR]
     if cor < 0.0:
         # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
         # may leave the physical range; keep the finest grid's value rather than store a negative COR
-        return r2, (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
-                    f"{r0[_COR]:.3g}, {r1[_COR]:.3g}, {r2[_COR]:.3g}); values of the quartered grid")
+        return last, (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
+                      f"{', '.join(f'{r[_COR]:.3g}' for r in runs)}); values of the finest grid")
     if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, _T0) <= hi)
-            and (gap_cor <= RICHARDSON_GAP * r2[_COR] + COR_FLOOR or lo <= _difference_ratio(runs, _COR) <= hi)):
+            and (gap_cor <= RICHARDSON_GAP * last[_COR] + COR_FLOOR or lo <= _difference_ratio(runs, _COR) <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
-        return r2, (f"not Richardson-extrapolated: the grid and the grid quartered differ by {gap_t0:.2g} (t0, "
-                    f"relative) and {gap_cor:.2g} (COR), and the differences between the grid, the grid halved "
-                    f"and the grid quartered do not shrink as h^2..h^2.5 (ratios "
-                    f"{_difference_ratio(runs, _T0):.3g} for t0, {_difference_ratio(runs, _COR):.3g} for the "
-                    f"COR; asymptotically 4..5.7); values of the quartered grid")
-    return [w0 * a + w1 * b + w2 * c for a, b, c in zip(r0, r1, r2)], ""
+        return last, (f"not Richardson-extrapolated: the grid and the finest grid (every step divided by "
+                      f"{2**SPLIT_LEVELS}) differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} (COR), and the "
+                      f"differences between the three finest grids do not shrink as h^2..h^2.5 (ratios "
+                      f"{_difference_ratio(runs, _T0):.3g} for t0, {_difference_ratio(runs, _COR):.3g} for the "
+                      f"COR; asymptotically 4..5.7); values of the finest grid")
+    return extrapolated, ""
 
 
 def _difference_ratio(runs, i):
-    """(x0 - x1) / (x1 - x2) of the values ``runs[j][i]`` on the grids h, h/2, h/4 (4 for h^2 errors,
-    5.7 for h^2.5)."""
-    d1, d2 = runs[0][i] - runs[1][i], runs[1][i] - runs[2][i]
+    """(x0 - x1) / (x1 - x2) of the values ``runs[j][i]`` on the three finest grids h, h/2, h/4 (4 for h^2
+    errors, 5.7 for h^2.5)."""
+    a, b, c = (r[i] for r in runs[-3:])
+    d1, d2 = a - b, b - c
     return d1 / d2 if d2 != 0.0 else math.inf

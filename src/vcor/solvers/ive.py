@@ -5,6 +5,11 @@ For a Prony kernel k(t) = G_inf + sum_k G_k exp(-b_k t) the force is F = G_inf u
 Q_k' = -b_k Q_k + G_k u', u = s^{3/2}. With s' = v0 - J/m - alpha' J - alpha F and J' = F this is a
 system of N + 2 ODEs (plus two quadrature states for W_h and int F z' dt). Separation is a terminal
 event on F = 0 (direction -1). The method must be stiff-capable (default "Radau").
+
+The two-body contact modulus of Green's Eq. 1 (:class:`vcor.materials.EqOne`) is not a Prony series;
+both methods take it as its exponential-sum fit on [0, the horizon] (:mod:`vcor.materials.expfit`,
+relative error <= ``SUM_TOL``, checked at t = 0 too, reported as ``soe_error``), when its E'(0) is
+finite. ``ive``'s work is bounded by ``max_steps`` solve_ivp steps over all its horizons.
 """
 
 from __future__ import annotations
@@ -15,12 +20,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..materials.expsums import soe
 from ._fixed_kernels import march_prony
 from ._records import Body, Internal, Stop
 from .common import Histories, Result, peak
 from .march import LINEAR_MAX_T_FACTOR, T_MAX_START, drive, finish, step_plan
 
-__all__ = ["run_ive_fixed", "run_ive_scipy", "solve_fixed", "solve_scipy"]
+__all__ = ["SUM_TOL", "kernel_terms", "run_ive_fixed", "run_ive_scipy", "solve_fixed", "solve_scipy"]
+
+#: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
+#: methods (below their own error; the same as the default soe_tol of the exponential-sum methods)
+SUM_TOL = 1e-10
+#: the sum's samples run from t = 0 and then log-spaced from this fraction of the horizon (s)
+SUM_WINDOW_START = 2.0**-40
 
 
 def solve_fixed(impact, options, tc, history):
@@ -35,21 +47,33 @@ def solve_scipy(impact, options, tc, history):
     LINEAR_MAX_T_FACTOR contact-time estimates)."""
     return run_ive_scipy(impact, rtol=options.rtol, method=options.ive_method, tc=tc, t_max=T_MAX_START * tc,
                          max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=options.ghost, rule=options.rule,
-                         volterra=options.volterra, c2=options.c2 if options.volterra else 0.0)
+                         volterra=options.volterra, c2=options.c2 if options.volterra else 0.0,
+                         max_steps=options.max_steps)
 
 
-def prony_terms(impact, method):
-    """(E_inf, E[], beta[]) of the impact's kernel; ValueError naming the method for other kernels."""
+def kernel_terms(impact, method, horizon):
+    """(E_inf, E[], beta[], relative error) of the impact's kernel as internal variables: a Prony kernel's
+    own terms (error 0), or the exponential sum of a two-body Eq. 1 modulus on [0, ``horizon``] (s)
+    with a finite E'(0) (module docstring). ValueError naming the methods that solve other kernels."""
     mat = impact.material
-    if not mat.is_prony:
-        raise ValueError(f"method {method!r} needs a Prony kernel (sls, butyl-prony3, prony, elastic, "
-                         f"kelvin-voigt); got {mat.kind!r}: use method 'direct'")
-    return mat.prony_terms()
+    if mat.is_prony:
+        return (*mat.prony_terms(), 0.0)
+    what = f"got {mat.kind!r}"
+    if mat.kind == "eq1" and math.isfinite(mat.glassy):
+        try:
+            rep = soe(mat, SUM_WINDOW_START * horizon, horizon, SUM_TOL, from_zero=True)
+        except ValueError as exc:
+            what = str(exc)
+        else:
+            return (*rep.material.prony_terms(), rep.checked_error)
+    raise ValueError(f"method {method!r} needs a Prony kernel (sls, butyl-prony3, prony, elastic, kelvin-voigt) or "
+                     f"a two-body contact modulus that is a sum of exponentials from t = 0; {what}: use method "
+                     f"'adaptive' (or 'direct')")
 
 
 def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0):
     """Internal variables with the fixed-step exponential update (numba, O(N)); Prony kernels."""
-    g_inf, e, b = prony_terms(impact, "ive-numba")
+    g_inf, e, b, sum_error = kernel_terms(impact, "ive-numba", (max_steps + 8) * dt * (1.0 + ghost))
     kap = impact.kappa
     bdt = b * dt
     decay = np.exp(-bdt)
@@ -65,6 +89,7 @@ def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False
     t_start = time.perf_counter()
     march = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
     march.wall = time.perf_counter() - t_start
+    march.soe_error = sum_error
     return finish(impact, march, rule=rule, history=history, method="ive-numba")
 
 
@@ -83,15 +108,19 @@ class _System:
     mobility: object  # t -> (alpha(t) in m/(N s), alpha'(t) in m/(N s^2))
     rule: str  # separation rule: "force" (F = 0) or "overlap" (s = 0)
     c2: float | None  # second-order (Volterra) coefficient c2 (SI); None: no second-order term
+    sum_error: float  # relative error of the kernel's exponential sum (0: a Prony kernel's own terms)
 
     @classmethod
-    def of(cls, impact, rule, volterra, c2):
-        g_inf, e, b = prony_terms(impact, "ive")
+    def of(cls, impact, rule, volterra, c2, horizon):
+        g_inf, e, b, sum_error = kernel_terms(impact, "ive", horizon)
+        if volterra and sum_error > 0.0:
+            raise ValueError("solver option volterra: the second-order term of method 'ive' needs a Prony kernel "
+                             "(its G_k > 0); a two-body contact modulus takes it with method 'direct'")
         kap = impact.kappa
         G = kap * e
         return cls(G_inf=kap * g_inf, G=G, inv_G=np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0), b=b,
                    eta=kap * impact.material.viscosity, m=impact.m, v0=impact.v0, mobility=impact.mobility_function(),
-                   rule=rule, c2=c2 if volterra else None)
+                   rule=rule, c2=c2 if volterra else None, sum_error=sum_error)
 
     @property
     def nq(self) -> int:
@@ -152,26 +181,52 @@ def _solve(system, y0, span, settings, events=None):
                          dense_output=True, max_step=max_step)
 
 
-def _until_separation(system, settings, t_max, max_t):
+class _StepBudget(Exception):
+    """solve_ivp took the run's budget of steps (raised from the separation event, which solve_ivp
+    evaluates once per step)."""
+
+
+class _Steps:
+    """The separation event, counting solve_ivp's steps over every horizon; at ``budget`` steps it raises
+    :class:`_StepBudget`. ``t``: the time of the last step (s)."""
+
+    terminal = True
+    direction = -1
+
+    def __init__(self, system, budget):
+        self.system, self.budget, self.steps, self.t = system, budget, 0, 0.0
+
+    def __call__(self, t, y):
+        self.steps += 1
+        self.t = t
+        if self.steps > self.budget:
+            raise _StepBudget
+        return self.system.event(t, y)
+
+
+def _until_separation(system, settings, t_max, max_t, steps):
     """(solution, last horizon): the horizon doubles from ``t_max`` up to ``max_t`` (s) until the
-    separation event fires or the solver fails."""
+    separation event fires or the solver fails; ``steps``: the counting event (:class:`_Steps`)."""
     y0 = np.zeros(4 + system.nq)
     t_end = t_max
     while True:
-        sol = _solve(system, y0, (0.0, t_end), settings, events=system.event)
+        sol = _solve(system, y0, (0.0, t_end), settings, events=steps)
         if sol.status == 1 or not sol.success or t_end >= max_t:
             return sol, t_end
         t_end = min(2 * t_end, max_t)
 
 
-def _refusal(sol, method, t_end):
+def _refusal(sol, method, t_end, impact):
     """(status, message) when the run has no verdict (failed, non-finite, no separation by ``t_end``),
     else None."""
     if not sol.success or not np.all(np.isfinite(sol.y)):
-        return "diverged", f"solve_ivp({method}) failed: {sol.message}" if not sol.success else "non-finite state"
+        cause = impact.unbounded_mobility(float(sol.t[-1]))
+        text = f"solve_ivp({method}) failed: {sol.message}" if not sol.success else "non-finite state"
+        return "diverged", text + (f"; {cause}" if cause else "")
     if sol.status != 1:
         return "step-budget", (f"stopped by the time budget before a verdict: the contact force had not "
-                               f"returned to zero at T_max = {t_end:.6g} s")
+                               f"returned to zero at T_max = {t_end:.6g} s ({LINEAR_MAX_T_FACTOR:g} contact-time "
+                               f"estimates); use method adaptive, whose horizon grows further")
     return None
 
 
@@ -235,19 +290,29 @@ def _history(res, system, sol, settings, ghost, alpha):
 
 
 def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",
-                  volterra=False, c2=1.0):
+                  volterra=False, c2=1.0, max_steps=20_000):
     """Internal-variable solver with ``solve_ivp`` (options validated by ``SolverOptions``). With
     ``volterra`` the second-order term for the Prony kernel is separable,
     c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing and is an
-    independent check of the direct solver's O(N^2) Volterra sums."""
-    system = _System.of(impact, rule, volterra, c2)
+    independent check of the direct solver's O(N^2) Volterra sums. At ``max_steps`` solve_ivp steps
+    (over all horizons) the run ends with status step-budget."""
+    system = _System.of(impact, rule, volterra, c2, 2.0 * max_t * (1.0 + ghost))
     settings = (method, rtol, system.atol(rtol, tc), tc / 20)
+    name = f"ive-{method}" + ("+volterra" if volterra else "")
     t_start = time.perf_counter()
-    sol, t_end = _until_separation(system, settings, t_max, max_t)
+    steps = _Steps(system, max_steps)
+    try:
+        sol, t_end = _until_separation(system, settings, t_max, max_t, steps)
+    except _StepBudget:
+        return Result(method=name, steps=max_steps, wall_time=time.perf_counter() - t_start, dt=math.nan,
+                      status="step-budget", soe_error=system.sum_error,
+                      message=f"stopped by the step budget before a verdict: solve_ivp({method}) took max_steps = "
+                              f"{max_steps} steps (counted over its horizons) and had reached t = {steps.t:.6g} s "
+                              f"without the contact force returning to zero; raise max_steps, or use method "
+                              f"adaptive (it solves long contacts such as thin plates)")
     wall = time.perf_counter() - t_start
-    res = Result(method=f"ive-{method}" + ("+volterra" if volterra else ""), steps=int(sol.t.size), wall_time=wall,
-                 dt=math.nan)
-    refusal = _refusal(sol, method, t_end)
+    res = Result(method=name, steps=int(sol.t.size), wall_time=wall, dt=math.nan, soe_error=system.sum_error)
+    refusal = _refusal(sol, method, t_end, impact)
     if refusal is not None:
         res.status, res.message = refusal
         return res

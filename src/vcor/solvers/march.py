@@ -156,8 +156,8 @@ def drive(impact, dt, n_steps, max_steps, ghost, step_fn):
 class March:
     """What a march leaves for :func:`finish`: the node ``arrays``, the ``state`` (``_records``), the
     last node ``n_done``, the step ``dt`` (s; the largest step on a variable grid), the time grid ``t``
-    (None: uniform, dt n), a ``note`` for the message, the ``budget`` text of a step-budget verdict and
-    the solver's ``wall`` time (s)."""
+    (None: uniform, dt n), a ``note`` for the message, the ``budget`` text of a step-budget verdict, the
+    solver's ``wall`` time (s) and the relative error of the exponential sums it used (0: none, or exact)."""
 
     arrays: Arrays
     state: np.ndarray
@@ -167,6 +167,7 @@ class March:
     note: str = ""
     budget: str = ""
     wall: float = 0.0
+    soe_error: float = 0.0
 
 
 def finish(impact, march: March, *, rule, history, method):
@@ -175,19 +176,19 @@ def finish(impact, march: March, *, rule, history, method):
     arr, state, n_done, dt = march.arrays, march.state, march.n_done, march.dt
     t = dt * np.arange(n_done + 1) if march.t is None else march.t[: n_done + 1]
     s, g, F, J = arr.s[: n_done + 1], arr.g[: n_done + 1], arr.F[: n_done + 1], arr.J[: n_done + 1]
-    res = Result(steps=n_done, wall_time=march.wall, dt=dt, method=method)
+    res = Result(steps=n_done, wall_time=march.wall, dt=dt, method=method, soe_error=march.soe_error)
     status = int(state[STATUS])
     if status == STATUS_SEPARATED or (state[SEPARATION] >= 0 and n_done >= state[SEPARATION] + N_EXTRA):
-        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0)
+        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0, impact.mobility_is_constant)
         res.message = out.pop("message")
         res.__dict__.update(out)
         res.steps = int(state[SEPARATION])
     elif status == STATUS_DIVERGED:
         res.status = "diverged"
-        res.message = (
-            f"Newton iteration failed or a non-finite value appeared at step {n_done} "
-            f"(t = {t[-1]:.6g} s, step {dt:.3g} s); try method adaptive, or a smaller step (dt or step_tol)"
-        )
+        cause = impact.unbounded_mobility(float(t[-1]))
+        res.message = (f"the march stopped at step {n_done}: {cause}" if cause else
+                       f"Newton iteration failed or a non-finite value appeared at step {n_done} "
+                       f"(t = {t[-1]:.6g} s, step {dt:.3g} s); try method adaptive, or a smaller step (dt or step_tol)")
     else:
         res.status = "step-budget"
         res.message = march.budget

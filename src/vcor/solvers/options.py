@@ -28,8 +28,8 @@ __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_
 #: explicit baseline of the work-precision study
 METHOD_NAMES = ("adaptive", "direct", "ive", "ive-numba", "paper", "soe")
 #: the method everywhere a user does not choose one (simulate, the CLI, sweeps, histories,
-#: calibration): the fastest that meets the default accuracy (COR and t0 within 1e-6 relative of
-#: Richardson-extrapolated direct) on every preset, and the one that solves thin plates
+#: calibration): the fastest that meets the default accuracy (COR and t0 within 1e-7 relative of
+#: independent references) on every preset, the one that solves thin plates, and every pair of bodies
 DEFAULT_METHOD = "adaptive"
 #: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
 FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
@@ -64,18 +64,21 @@ _SPEC = {
                 bounds=("float", 0.0, math.inf, "(0, inf) s"), unit="s"),
     "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
                                bounds=("int", 10, math.inf, "an integer >= 10"), unit="1"),
-    "max_steps": _spec(200_000, FIXED_STEP_METHODS, "step budget of the fixed-step march (integer >= 100; "
-                       "4000000 for soe and ive-numba, whose cost is linear in the steps); a run that reaches it "
+    "max_steps": _spec(200_000, FIXED_STEP_METHODS + ("ive",), "step budget (integer >= 100): of the fixed-step "
+                       "march (4000000 for soe and ive-numba, whose cost is linear in the steps), and of solve_ivp's "
+                       "steps for ive (20000, each a Python right-hand side: about a minute); a run that reaches it "
                        "without separating ends with status step-budget",
                        bounds=("int", 100, math.inf, "an integer >= 100"),
-                       method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000}, unit="1"),
-    "step_tol": _spec(3e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
+                       method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000, "ive": 20_000}, unit="1"),
+    "step_tol": _spec(4e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
                       "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in "
-                      "(0, 0.01); the default 3e-4 is the largest that keeps the extrapolated COR and t0 within 1e-6 "
-                      "of the reference on every preset", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
+                      "(0, 0.01); with the default extrapolation the COR's error falls about as step_tol^1.5: the "
+                      "default 4e-4 keeps COR and t0 within 1e-7 of independent references on every preset at "
+                      "0.001..300 m/s (docs: solver options, accuracy table)", bounds=("float", 0.0, 1e-2, "(0, 0.01)"),
+                      unit="1"),
     "richardson": _spec(True, ("adaptive",), "adaptive only: march again on the accepted grid with every step "
-                        "halved and quartered and Richardson-extrapolate the results (eliminates the h^2 and h^2.5 "
-                        "error terms; 7 times the steps of the grid, error order ~3 instead of 2)"),
+                        "divided by 2, 4 and 8 and Richardson-extrapolate the results (eliminates the h^2, h^2.5 and "
+                        "h^3 error terms; 15 times the steps of the grid)"),
     "max_adaptive_steps": _spec(1_000_000, ("adaptive",), "adaptive only: step budget (integer >= 100); a run that "
                                 "reaches it without separating ends with status step-budget",
                                 bounds=("int", 100, math.inf, "an integer >= 100"), unit="1"),
@@ -134,7 +137,7 @@ class SolverOptions:
     ...
     ValueError: solver option rtol is not used by method 'direct' (it needs method ive); remove it
     >>> opts.replace(method="adaptive").step_tol
-    0.0003
+    0.0004
     """
 
     method: str = _SPEC["method"]["default"]

@@ -253,7 +253,7 @@ def _outcome(impact, nodes, n_sep, rule):
     out = nodes.arrays()
     out["n_sep"] = n_sep
     out.update(separation_reference(out["t"], out["s"], out["g"], out["F"], out["J"], n_sep, rule,
-                                    impact.m, impact.v0))
+                                    impact.m, impact.v0, impact.mobility_is_constant))
     return out
 
 
@@ -539,10 +539,11 @@ def paper_reference(impact, dt, n_steps, rule="force"):
 class AdaptiveGrid:
     """The adaptive method's constants for one impact (``vcor.solvers.adaptive``).
 
-    Steps are h_base 2^(level - split), split 0 for the accepted grid (1, 2: halved, quartered);
-    levels ``floor`` .. ``top``; the first step on ``start_level``. ``horizon`` (s) is the first time
-    horizon; ``representation`` the exponential sum (a Prony material) of the kernel on
-    [h_base / 4, 2 horizon]; a separation is located on a step <= ``sep_frac`` t.
+    Steps are h_base 2^(level - split), split 0 for the accepted grid (1, 2, ...: every step divided by
+    2, 4, ...); levels ``floor`` .. ``top``; the first step on ``start_level``. ``horizon`` (s) is the
+    first time horizon; ``representation`` the exponential sum (a Prony series, or a fitted
+    exponential sum) of the kernel on ``window`` = (h_base / 2^SPLIT_LEVELS, 2 horizon, soe_tol); a
+    separation is located on a step <= ``sep_frac`` t.
     """
 
     h_base: float
@@ -552,6 +553,7 @@ class AdaptiveGrid:
     horizon: float
     sep_frac: float
     representation: object
+    window: tuple
 
     @classmethod
     def of(cls, impact, tc, soe_tol=1e-10):
@@ -561,8 +563,9 @@ class AdaptiveGrid:
         h_base = top_power * 2.0**-a.FLOOR_BITS
         horizon = a.HORIZON_START * 2.0 * top_power
         n_levels = round(math.log2(a.MAX_STEP_FRACTION * horizon / h_base)) + 1
-        rep = soe(impact.material, h_base * 2.0**-a.SPLIT_LEVELS, 2.0 * horizon, soe_tol).material
-        return cls(h_base, a.START_LEVEL, 0, n_levels - 1, horizon, 1.0 / a.SEP_STEPS, rep)
+        window = (h_base * 2.0**-a.SPLIT_LEVELS, 2.0 * horizon, soe_tol)
+        rep = soe(impact.material, *window).material
+        return cls(h_base, a.START_LEVEL, 0, n_levels - 1, horizon, 1.0 / a.SEP_STEPS, rep, window)
 
 
 class ExponentialSumHistory:
@@ -636,19 +639,24 @@ class ExponentialSumHistory:
         self.slope, self.h_last = d, h
 
 
-def _adaptive_mobility(impact, representation):
-    """(alpha, alpha') as the adaptive march evaluates them: 0 or constant (rigid target, case 4), the
-    exact law for a fractional plate, else from the plate modulus of the exponential sum,
-    E_b = (E~_inf + sum_k E_k e^{-b_k t}) / (1 - nu^2): alpha = S / sqrt(E_b), alpha' = -S E_b' / (2 E_b^1.5)."""
+def _adaptive_mobility(impact, representation, window):
+    """(alpha, alpha') as the adaptive march evaluates them: 0 or constant (rigid target, case 4, an
+    elastic plate of its own material), the exact law for a fractional or CERF plate, else from the plate
+    modulus of an exponential sum, E_b = (E~_inf + sum_k E_k e^{-b_k t}) / (1 - nu^2): alpha =
+    S / sqrt(E_b), alpha' = -S E_b' / (2 E_b^1.5). The sum is the kernel's ``representation`` when the
+    plate is of the contact's material, else the plate material's own (exact for Prony, its
+    exponential sum on ``window`` = (t_min, t_max, tol) otherwise)."""
     g = impact.geometry
-    if g.plate_material is not None:
-        raise NotImplementedError("adaptive_reference: plates of their own material are not implemented")
-    if g.rigid or g.case == 4:
+    own = g.plate_material is not None
+    if g.rigid or g.case == 4 or (own and g.plate_material.is_elastic):
         alpha = 0.0 if g.rigid else float(impact.alpha(0.0))
         return lambda t: (alpha, 0.0)
-    if impact.material.sqrt_law() is not None:
+    plate = g.plate_material if own else impact.material
+    if plate.sqrt_law() is not None or plate.erfcx_law() is not None:
         return lambda t: _mobility(impact, t)
-    factor, scale = 1.0 / (1.0 - g.nu**2), impact.mobility_scale
+    if own:
+        representation = soe(plate, *window).material
+    factor, scale = 1.0 / (1.0 - (g.nu_plate if own else g.nu) ** 2), impact.mobility_scale
 
     def mobility(t):
         e_b = factor * float(representation.relaxation_modulus(t))
@@ -707,7 +715,7 @@ class StepControl:
         return None
 
 
-def adaptive_reference(impact, tc, step_tol=3e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
+def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
     """The ``adaptive`` method's march (``_adaptive_kernels.march_adaptive``): :class:`ExponentialSumHistory`
     in the trapezoidal step, steps h_base 2^(level - split) (:class:`AdaptiveGrid`), the levels chosen
     by :class:`StepControl` on every step not in ``plan`` and before the separation node (after it the
@@ -724,7 +732,7 @@ def adaptive_reference(impact, tc, step_tol=3e-4, rule="force", plan=None, split
         Levels of the first len(plan) steps (a replay: no error control, no separation refinement);
         after the plan the control resumes from its last level.
     split : int
-        0: steps h_base 2^level; 1, 2: halved, quartered (the Richardson grids).
+        0: steps h_base 2^level; 1, 2, ...: every step divided by 2, 4, ... (the Richardson grids).
     soe_tol : float
 
     Returns
@@ -735,7 +743,7 @@ def adaptive_reference(impact, tc, step_tol=3e-4, rule="force", plan=None, split
     """
     grid = AdaptiveGrid.of(impact, tc, soe_tol)
     history = ExponentialSumHistory(impact, grid.representation)
-    mobility = _adaptive_mobility(impact, grid.representation)
+    mobility = _adaptive_mobility(impact, grid.representation, grid.window)
     body = Body.of(impact)
     control = StepControl(grid, step_tol, tc, body.v0)
     nodes = Nodes.at_impact(body.v0)
@@ -773,29 +781,32 @@ def adaptive_reference(impact, tc, step_tol=3e-4, rule="force", plan=None, split
 
 
 #: the Richardson grids' error exponents (vcor.solvers.adaptive.RICHARDSON_EXPONENTS)
-RICHARDSON_EXPONENTS = (2.0, 2.5)
+RICHARDSON_EXPONENTS = (2.0, 2.5, 3.0)
 
 
 def richardson_weights(exponents=RICHARDSON_EXPONENTS):
-    """Weights w of the values on grids h, h/2, h/4 with sum_j w_j x_j = x when
-    x_j = x + a h_j^p1 + b h_j^p2: the solution of sum_j w_j (1, 2^{-p1 j}, 2^{-p2 j}) = (1, 0, 0)."""
-    rows = np.array([[1.0] + [2.0 ** (-p * j) for p in exponents] for j in range(3)])
-    return np.linalg.solve(rows.T, np.array([1.0, 0.0, 0.0]))
+    """Weights w of the values on grids h, h/2, h/4, ... (one more grid than exponents) with
+    sum_j w_j x_j = x when x_j = x + sum_p a_p h_j^p: the solution of
+    sum_j w_j (1, 2^{-p1 j}, 2^{-p2 j}, ...) = (1, 0, 0, ...)."""
+    n = len(exponents) + 1
+    rows = np.array([[1.0] + [2.0 ** (-p * j) for p in exponents] for j in range(n)])
+    return np.linalg.solve(rows.T, np.eye(n)[0])
 
 
-def adaptive_richardson_reference(impact, tc, step_tol=3e-4, rule="force", soe_tol=1e-10):
+def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_tol=1e-10):
     """The ``adaptive`` method with Richardson extrapolation (its default): the controlled grid, its
-    replay with every step halved and quartered (the levels of steps 1..n_sep + N_EXTRA, each repeated
-    2 and 4 times) and the scalars extrapolated with :func:`richardson_weights`.
+    replays with every step divided by 2, 4, ... (the levels of steps 1..n_sep + N_EXTRA, each repeated
+    2, 4, ... times; vcor.solvers.adaptive.SPLIT_LEVELS replays) and the scalars extrapolated with
+    :func:`richardson_weights`.
 
-    Returns {"grids": [the three dicts of :func:`adaptive_reference`], and each name of OUTCOME: the
+    Returns {"grids": [the dicts of :func:`adaptive_reference`], and each name of OUTCOME: the
     extrapolated value}. The method's guards (extrapolate only in the asymptotic range, never to a
     negative COR) are not reproduced.
     """
     first = adaptive_reference(impact, tc, step_tol, rule, soe_tol=soe_tol)
     plan = first["levels"][: first["n_sep"] + N_EXTRA]
     grids = [first] + [adaptive_reference(impact, tc, step_tol, rule, np.repeat(plan, 2**k), k, soe_tol)
-                       for k in (1, 2)]
+                       for k in range(1, _adaptive.SPLIT_LEVELS + 1)]
     weights = richardson_weights()
     out = {"grids": grids}
     out.update({key: float(weights @ [grid[key] for grid in grids]) for key in OUTCOME})
@@ -805,7 +816,7 @@ def adaptive_richardson_reference(impact, tc, step_tol=3e-4, rule="force", soe_t
 # ---------------------------------------------------------------------------------------------------
 # separation
 # ---------------------------------------------------------------------------------------------------
-def separation_reference(t, s, g, F, J, n, rule, m, v0):
+def separation_reference(t, s, g, F, J, n, rule, m, v0, still_plate=False):
     """Separation inside [t_{n-1}, t_n] and the outcome there (``_separation.separation_point``).
 
     Parameters
@@ -824,7 +835,10 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
         t0 (s), the root in [t_{n-1}, t_n] of the cubic through the nodes lo..lo + 3
         (lo = max(0, min(n - 2, len(t) - 4))) of F, or of s for rule "overlap" or when s too
         crossed zero in step n; s_residual = s(t0) (m), g0 = s'(t0) and J0 = J(t0) by the same
-        cubics; ``cor = |g0| / v0``; sphere_velocity z'0 = v0 - J0/m (m/s);
+        cubics, except g0 when s crossed zero with F proportional to u = sgn(s)|s|^{3/2} on the
+        nodes (an elastic kernel, to 1e-9) on a plate of constant mobility (``still_plate``):
+        g0 = v0 - J0/m, the model's s' at F = 0;
+        ``cor = |g0| / v0``; sphere_velocity z'0 = v0 - J0/m (m/s);
         w_h = int_0^t0 F s' dt and W_z = int_0^t0 F z' dt (J) by the trapezoid rule on nodes
         0..n-1 plus [t_{n-1}, t0] (F(t0) = 0 for rule "force", else its cubic); w_plate = W_z - w_h;
         energy_residual = (m v0^2/2 - m z'0^2/2 - W_z) / (m v0^2/2); s_max, f_max (m, N): the
@@ -844,6 +858,11 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0):
         raise RuntimeError(f"separation step {n}: the target does not change sign")
     t0 = b if target(b) == 0.0 else brentq(target, a, b, xtol=1e-18 * b, rtol=_RTOL, maxiter=500)
     s0, g0, J0 = (float(cubic(y)(t0)) for y in (s, g, J))
+    u = np.sign(s[window]) * np.abs(s[window]) ** 1.5
+    ref = int(np.argmax(np.abs(u)))
+    if (by_overlap and still_plate and u[ref] != 0.0
+            and np.max(np.abs(F[window] - F[window][ref] / u[ref] * u)) <= 1e-9 * abs(F[window][ref])):
+        g0 = v0 - J0 / m
     F0 = 0.0 if rule == "force" else float(cubic(F)(t0))
     z0 = v0 - J0 / m
     zdot = v0 - J / m

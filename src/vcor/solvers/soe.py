@@ -35,10 +35,12 @@ def solve(impact, options, tc, history):
 
 
 def mode_weights(material, kappa, dt, tol, t_max):
-    """(c, vc, r) of the exponential sum of ``material`` on [(N_LOCAL + 1) dt, t_max]: per mode its
-    folded weights at lag N_LOCAL + 1 (as in ``direct.folded_weights``) and r = exp(-beta dt). The
-    constant E(inf) is a mode with r = 1. Modes decayed before that lag are wholly local: dropped."""
-    rep = soe(material, (N_LOCAL + 1) * dt, max(t_max, 2 * (N_LOCAL + 1) * dt), tol).material
+    """(c, vc, r, error) of the exponential sum of ``material`` on [(N_LOCAL + 1) dt, t_max]: per mode its
+    folded weights at lag N_LOCAL + 1 (as in ``direct.folded_weights``) and r = exp(-beta dt), and the
+    sum's checked relative error. The constant E(inf) is a mode with r = 1. Modes decayed before that
+    lag are wholly local: dropped."""
+    built = soe(material, (N_LOCAL + 1) * dt, max(t_max, 2 * (N_LOCAL + 1) * dt), tol)
+    rep = built.material
     lag = N_LOCAL + 1
     w = kappa * rep.term_step_integrals(dt, lag + 1)[lag - 1 :] / dt  # lags L, L + 1
     v = -kappa * rep.term_step_moments(dt, lag + 1)[lag - 1 :] / dt**2
@@ -46,7 +48,7 @@ def mode_weights(material, kappa, dt, tol, t_max):
     vc = np.concatenate(([0.0], v[1]))
     r = np.concatenate(([1.0], np.exp(-np.asarray(rep.beta, dtype=float) * dt)))
     keep = (c != 0.0) | (vc != 0.0)
-    return c[keep], vc[keep], r[keep]
+    return c[keep], vc[keep], r[keep], built.checked_error
 
 
 def run_soe(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10):
@@ -56,7 +58,7 @@ def run_soe(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghos
     t_start = time.perf_counter()
     wt, v = folded_weights(mat, impact.kappa, dt, N_LOCAL + 1)
     horizon = (max_steps + 8) * dt * (1.0 + max(ghost, 0.0) if history else 1.0)
-    c, vc, r = mode_weights(mat, impact.kappa, dt, tol, horizon)
+    c, vc, r, soe_error = mode_weights(mat, impact.kappa, dt, tol, horizon)
     modes = tuple(ExponentialModes(c, vc, r, np.zeros(c.size), np.zeros(c.size)))
     body = tuple(Body(float(eta), float(impact.m), float(impact.v0)))
 
@@ -66,4 +68,5 @@ def run_soe(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghos
 
     march = drive(impact, dt, n_steps, max_steps, ghost if history else 0.0, step_fn)
     march.wall = time.perf_counter() - t_start
+    march.soe_error = soe_error
     return finish(impact, march, rule=rule, history=history, method="soe")

@@ -39,10 +39,10 @@ __all__ = [
 JOB_SECONDS = 15.0
 #: estimated seconds per point by method for a preset material, runner included (measured with
 #: ``vcor.simulate`` and ``vcor.study.runner.run_points`` on the reference machine, rounded up; for
-#: ``adaptive``: 0.08-0.15 ms per point over the presets, ``benchmarks/bench_scaling.py`` prints the
-#: estimate beside the measured SLS cost)
+#: ``adaptive``, four Richardson grids: 0.13-0.25 ms per point over the presets,
+#: ``benchmarks/bench_scaling.py`` prints the estimate beside the measured SLS cost)
 POINT_SECONDS = {
-    "adaptive": 1.5e-4,
+    "adaptive": 2.5e-4,
     "direct": 1.5e-3,
     "paper": 1.5e-3,
     "soe": 8e-4,

@@ -29,7 +29,7 @@ __all__ = ["ERRORS", "SCALARS", "rows_dataset", "run_points", "solve_point", "so
 
 #: scalar outputs stored per point
 SCALARS = ("cor", "t0", "s_max", "f_max", "s_residual", "w_h", "w_plate", "omega_min", "sphere_velocity",
-           "energy_residual", "steps", "dt", "wall_time")
+           "energy_residual", "steps", "dt", "wall_time", "soe_error")
 ERRORS = ("cor_err", "t0_err")
 
 

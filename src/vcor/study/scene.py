@@ -187,11 +187,6 @@ def _check_corners(where, scene, grid: Grid, catalogue):
                 make_impact(material, v0, geometry)
             except ValueError as exc:
                 raise ValueError(f"{where}: point {point}: {exc}") from None
-            method = settings["solver"]["method"]
-            if _needs_direct(material, geometry) and method not in ("direct", "paper"):
-                raise ValueError(f"{where}.solver.method: {method!r} cannot solve two deformable bodies combined "
-                                 f"by Eq. 1 (contact modulus {material.kind!r}, a viscoelastic body on a "
-                                 f"deformable one): set solver: {{method: direct}}")
 
 
 def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None, grid: Grid | None = None) -> Grid:
@@ -305,13 +300,6 @@ def _point_material(point, settings, catalogue: Catalogue):
     if "bodies" in settings:
         return impact_inputs(*scene_bodies(_body_materials(settings["bodies"], catalogue), material))
     return material, None
-
-
-def _needs_direct(material, geometry) -> bool:
-    """A contact modulus only ``direct`` solves: Eq. 1's pointwise combination, or a viscoelastic plate
-    whose modulus differs from the contact modulus."""
-    plate = geometry.get("plate_material")
-    return material.kind == "eq1" or (plate is not None and not plate.is_elastic)
 
 
 def material_params(names, catalogue: Catalogue | None = None) -> dict:
