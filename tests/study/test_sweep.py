@@ -115,6 +115,24 @@ def _alive(pid):
     return stat.rsplit(")", 1)[1].split()[0] != "Z"
 
 
+def test_a_worker_that_dies_stops_the_sweep_with_an_error_not_a_wait(monkeypatch):
+    parent = os.getpid()
+    solve_rows = pool.solve_rows
+
+    def dying(*args, **kwargs):  # a worker killed mid-sweep (out of memory, say): its chunk never comes back
+        if os.getpid() != parent:
+            time.sleep(1.0)  # dies while the calling process waits for this chunk
+            os._exit(9)
+        return solve_rows(*args, **kwargs)
+
+    monkeypatch.setattr(pool, "solve_rows", dying)
+    points = scene.grid_of({"materials": ["sls"], "grid": {"v0": list(np.linspace(0.5, 10.0, 40))}}).points()
+    start = time.perf_counter()
+    with pytest.raises(RuntimeError, match="ended with exit code"):
+        pool.solve(points, scene.settings_of({}), workers=2)
+    assert time.perf_counter() - start < 30.0
+
+
 def test_ctrl_c_stops_the_sweep_and_its_processes_within_a_second():
     with subprocess.Popen([sys.executable, "-c", LONG_SWEEP % (400, 2, "False")], env=ENV, stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, text=True) as proc:

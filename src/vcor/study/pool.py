@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 import multiprocessing
 import os
+import queue
 import signal
 from collections.abc import Callable, Sequence
 
@@ -39,6 +40,8 @@ __all__ = ["CHUNK_SECONDS", "CHUNKS_PER_WORKER", "available_cores", "check_worke
 
 #: estimated work of a chunk at most (s): progress and Ctrl-C are seen at least this often per process
 CHUNK_SECONDS = 0.25
+#: the calling process checks this often (s) that no worker has died while it waits for their chunks
+WAIT_SECONDS = 1.0
 #: chunks per worker at least (when there are points enough): the last chunks even out the cores' loads
 CHUNKS_PER_WORKER = 8
 
@@ -141,7 +144,11 @@ def _in_processes(points, settings, catalogue, chunks, processes, put) -> None:
                 put(*board.done.get())
                 received += 1
         while received < len(chunks):
-            put(*board.done.get(timeout=_wait_for(workers)))
+            try:
+                put(*board.done.get(timeout=WAIT_SECONDS))
+            except queue.Empty:
+                _check_alive(workers)
+                continue
             received += 1
     except BaseException:
         for w in workers:
@@ -153,11 +160,12 @@ def _in_processes(points, settings, catalogue, chunks, processes, put) -> None:
         board.done.close()
 
 
-def _wait_for(workers) -> float:
-    """Seconds to wait for a solved chunk: long, unless a worker has died (then its chunk never comes)."""
+def _check_alive(workers) -> None:
+    """RuntimeError when a worker has ended before its chunks came back (killed, or out of memory): its
+    chunk would never come."""
     if any(w.exitcode not in (None, 0) for w in workers):
-        raise RuntimeError(f"a worker process ended with exit code {[w.exitcode for w in workers]}")
-    return 3600.0
+        raise RuntimeError(f"a worker process ended with exit code {[w.exitcode for w in workers]} before its "
+                           f"points were solved")
 
 
 def solve(points: Sequence[dict], settings: dict, catalogue: Catalogue | None = None, *, workers: int = 1,
