@@ -38,9 +38,10 @@ def test_step_budget_is_not_no_separation():
 
 def test_solve_ivp_has_a_step_budget_too():
     """ive (scipy's solve_ivp) on a 10 um plate, whose contact creeps for hours: its steps are budgeted
-    (max_steps, over all its horizons; 20000 by default, which ends this run in about 20 s where it
-    ran on past 30 s with no end in sight) and the run ends with status step-budget and a message that
-    says why and what to change. Here with a budget of 300 steps (the same path, cheaper)."""
+    (max_steps, over all its horizons; 60000 by default, enough for the 1 mm plates that
+    tests/solvers/test_soe.py and test_adaptive.py solve by ive) and the run ends with status
+    step-budget and a message that says why and what to change. Here with a budget of 300 steps (the
+    same path, cheaper)."""
     r = vcor.simulate("sls", 1.0, method="ive", h=1e-5, max_steps=300)
     assert r.status == "step-budget" and math.isnan(r.cor) and r.steps == 300
     for words in ("max_steps = 300", "without the contact force returning to zero", "raise max_steps",

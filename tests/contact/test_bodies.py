@@ -243,11 +243,10 @@ def test_a_scene_and_a_dem_entry_with_an_elastic_config_sphere_run_by_default():
 def test_workflow_scene_and_dem_entry_with_an_elastic_config_sphere(make_project, smk, tmp_path):
     """The same config through Snakemake: the sweep and the DEM dataset hold adaptive's numbers (the sweep
     records the method), within 1e-6 of direct at 16000 steps per contact time."""
-    import xarray as xr
 
     path = make_project(tmp_path, {**BALL_CONFIG, "shard_size": 100})
     smk(path, "-j2", "results/ball/sweep.nc")
-    ds = xr.open_dataset(path / "results/ball/sweep.nc")
+    ds = read_dataset(path / "results/ball/sweep.nc")
     for m in ("sls", "butyl-prony3"):
         for v0 in (1.0, 10.0):
             ref = _direct_fine(m, v0)

@@ -20,7 +20,7 @@ from vcor.materials.specs import from_spec, spec_models
 ROOT = Path(__file__).resolve().parents[2]
 FAMILIES = {"prony": models.Prony, "sls": models.SLS, "elastic": models.Elastic,
             "fractional": models.FractionalPower, "cerf": models.Cerf, "kelvin-voigt": models.KelvinVoigt,
-            "eq1": models.EqOne}
+            "eq1": models.EqOne, "exponential-sum": models.ExponentialSum}
 #: one spec per model a config may name
 SPECS = {
     "sls": {"model": "sls", "E_glassy": 2e7, "alpha": 50.0, "beta": 5000.0},

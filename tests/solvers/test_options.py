@@ -111,7 +111,7 @@ def test_defaults_are_filled_for_the_method_and_unused_options_stay_unset():
     assert d["rtol"] is None and d["ive_method"] is None and d["c2"] is None and d["step_tol"] is None
     i = SolverOptions(method="ive").to_dict()
     assert i["rtol"] == 1e-10 and i["ive_method"] == "Radau" and i["steps_per_contact"] is None and i["form"] is None
-    assert i["max_steps"] == 20_000  # solve_ivp's steps: its work is bounded like the other methods'
+    assert i["max_steps"] == 60_000  # solve_ivp's steps: its work is bounded like the other methods'
     assert SolverOptions(method="direct", volterra=True).c2 == 1.0
     # the O(N) methods get a larger step budget (their cost is linear in the steps)
     assert SolverOptions(method="soe").max_steps == SolverOptions(method="ive-numba").max_steps == 4_000_000

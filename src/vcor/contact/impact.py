@@ -276,7 +276,10 @@ class Impact:
         if g.rigid or g.case == 4:
             return True
         plate = g.plate_material if g.plate_material is not None else self.material
-        return plate.is_prony and not np.any(plate.prony_terms()[1])
+        if not plate.is_prony:
+            return False
+        _, e, b = plate.prony_terms()
+        return not np.any(e * b)  # a term of rate 0 (SLS(E, 0, 0)) is a constant too
 
     def unbounded_mobility(self, t: float) -> str:
         """Why the plate's mobility is not finite at time t (s), or "" when it is: the plate's modulus has

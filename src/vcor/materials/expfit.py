@@ -41,6 +41,7 @@ from typing import ClassVar
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from .base import Parameter
 from .prony import Prony
 
 __all__ = ["ATTEMPTS", "ExponentialSum", "fit_exponential_sum", "summed_rates"]
@@ -62,7 +63,7 @@ MAX_COMBINED = 400
 
 
 @dataclass(frozen=True)
-class ExponentialSum(Prony):
+class ExponentialSum(Prony, kind="exponential-sum"):
     """E(t) = E_inf + sum_i E_i exp(-beta_i t) with terms of either sign (Pa; rates beta_i in 1/s): a
     fitted representation of a modulus over a time window, used by the solvers like a Prony series
     (its step integrals and moments are the Prony closed forms, which hold for any sign). It is not a
@@ -77,7 +78,14 @@ class ExponentialSum(Prony):
     2.5
     """
 
-    kind: ClassVar[str] = "exponential-sum"
+    TITLE: ClassVar[str] = "exponential sum with terms of either sign (a fitted modulus, not a material)"
+    FORMULA: ClassVar[str] = "E(t) = E_inf + sum_i E_i exp(-beta_i t), E_inf and E_i of either sign"
+    PARAMETERS: ClassVar[tuple] = (Parameter(name="E_inf", unit="Pa", meaning="constant term"),
+                                   Parameter(name="E", unit="Pa", meaning="term weights (either sign)",
+                                             shape="terms"),
+                                   Parameter(name="beta", unit="s-1", meaning="rates", shape="terms"))
+    #: fitted by the solvers, never named by a config spec
+    CONFIGURABLE: ClassVar[bool] = False
 
     def __post_init__(self):
         e = tuple(float(x) for x in self.E)

@@ -10,7 +10,9 @@ model family:
 * :class:`~vcor.materials.fractional.FractionalPower` (``fractional``): :mod:`vcor.materials.fractional`;
 * :class:`~vcor.materials.cerf.Cerf` (``cerf``): :mod:`vcor.materials.cerf`;
 * :class:`~vcor.materials.kelvin_voigt.KelvinVoigt` (``kelvin-voigt``): :mod:`vcor.materials.kelvin_voigt`;
-* :class:`~vcor.materials.eq_one.EqOne` (``eq1``, two bodies, Green 2026 Eq. 1): :mod:`vcor.materials.eq_one`.
+* :class:`~vcor.materials.eq_one.EqOne` (``eq1``, two bodies, Green 2026 Eq. 1): :mod:`vcor.materials.eq_one`;
+* :class:`~vcor.materials.expfit.ExponentialSum` (``exponential-sum``, the solvers' fit of a modulus with
+  terms of either sign, not a material): :mod:`vcor.materials.expfit`.
 
 Importing this module registers them all; :data:`~vcor.materials.base.REGISTRY` then maps each kind to its
 :class:`~vcor.materials.base.Family` (class, title, formula, parameters with units).
@@ -33,6 +35,7 @@ from .base import REGISTRY, Family, Material, Parameter, from_dict
 from .cerf import Cerf
 from .elastic import Elastic
 from .eq_one import EqOne
+from .expfit import ExponentialSum
 from .fractional import FractionalPower
 from .kelvin_voigt import KelvinVoigt
 from .prony import Prony
@@ -44,6 +47,7 @@ __all__ = [
     "Cerf",
     "Elastic",
     "EqOne",
+    "ExponentialSum",
     "Family",
     "FractionalPower",
     "KelvinVoigt",

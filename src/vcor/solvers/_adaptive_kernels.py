@@ -312,21 +312,18 @@ def _closed_form_mobility(t, plate):
     alpha' = alpha factor coef / (4 D t) (one division, two roots).
 
     Kind 3, the CERF law, E_b = factor (e_inf + coef erfcx(x)), x = rate t^1/2: with
-    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi) and dx/dt = x / (2 t), alpha = scale E_b^-1/2 and
-    alpha' = -alpha E_b' / (2 E_b)."""
+    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi) (:func:`_erfcx_slope`, without its cancellation at large x)
+    and dx/dt = x / (2 t), alpha = scale E_b^-1/2 and alpha' = -alpha E_b' / (2 E_b)."""
     rt = math.sqrt(t)
     if plate.kind == 2:
         y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.coef) * t)
         a = plate.scale * math.sqrt(rt * y * t)
         return a, 0.25 * a * plate.factor * plate.coef * y
     x = plate.rate * rt
-    ex = _erfcx(x)
+    ex, slope = _erfcx_slope(x)
     eb = plate.factor * (plate.e_inf + plate.coef * ex)
     a = plate.scale / math.sqrt(eb)
-    if t > 0.0:
-        rate_eb = plate.factor * plate.coef * (2.0 * x * ex - _TWO_OVER_SQRT_PI) * plate.rate / (2.0 * rt)
-    else:
-        rate_eb = 0.0
+    rate_eb = plate.factor * plate.coef * slope * plate.rate / (2.0 * rt) if t > 0.0 else 0.0
     return a, -0.5 * a * rate_eb / eb
 
 
@@ -339,17 +336,22 @@ ERFCX_TERMS = 8
 
 
 @jit_inline
-def _erfcx(x):
-    """The scaled complementary error function exp(x^2) erfc(x), x >= 0 (see ERFCX_SWITCH)."""
+def _erfcx_slope(x):
+    """(erfcx(x), erfcx'(x)) for x >= 0, erfcx(x) = exp(x^2) erfc(x) (see ERFCX_SWITCH) and
+    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi). Above the switch the slope is 2 / sqrt(pi) times the series'
+    terms after the first (about -1 / (sqrt(pi) x^2)): subtracting the two O(1) numbers there would leave
+    rounding, relative 2 x^2 eps, and nothing at all from x ~ 1e8 on (the CERF law of a fitted material
+    with b1 ~ 1e10 1/s reaches x ~ 1e8 within the contact)."""
     if x < ERFCX_SWITCH:
-        return math.exp(x * x) * math.erfc(x)
+        ex = math.exp(x * x) * math.erfc(x)
+        return ex, 2.0 * x * ex - _TWO_OVER_SQRT_PI
     inv = 1.0 / (2.0 * x * x)
     term = 1.0
-    total = 1.0
+    tail = 0.0
     for n in range(1, ERFCX_TERMS):
         term *= -(2.0 * n - 1.0) * inv
-        total += term
-    return total / (x * math.sqrt(math.pi))
+        tail += term
+    return (1.0 + tail) / (x * math.sqrt(math.pi)), _TWO_OVER_SQRT_PI * tail
 
 
 @jit_sum
@@ -407,7 +409,8 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
     nk = LevelTables(*tables).mode_decay.shape[1]
     n_extra, rule, v0 = Stop(*stop).n_extra, Stop(*stop).rule, Body(*body).v0
     pr = Plate(*plate)
-    still = pr.kind == 0 or (pr.kind == 1 and not np.any(pr.moduli != 0.0))  # a constant mobility
+    # a constant mobility: no mode changes in time (a mode of rate 0, as in SLS(E, 0, 0), is a constant)
+    still = pr.kind == 0 or (pr.kind == 1 and not np.any(pr.rate_moduli != 0.0))
     n_plan = 0
     # the march writes node n before anything reads it, and reads nothing beyond the last node: the
     # arrays need only their first node set; the replays reuse the first grid's node arrays when they

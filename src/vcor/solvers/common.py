@@ -173,8 +173,8 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0, still_plate=False):
     The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
     is found as the root of the cubic interpolant (Newton form) through the four nodes around it
     (third-order interpolation, error O(dt^4)); s, s', J are interpolated the same way, except s' of an
-    elastic kernel (F = k u, u = sgn(s)|s|^{3/2}) crossing s = 0 on a plate of constant mobility
-    (``still_plate``): s'(t0) = v0 - J(t0)/m there, exactly (its F ~ |t - t0|^{3/2} is not smooth).
+    elastic kernel (``F = k u``, ``u = sgn(s) |s|^(3/2)``) crossing s = 0 on a plate of constant mobility
+    (``still_plate``): s'(t0) = v0 - J(t0)/m there, exactly (its ``F ~ |t - t0|^(3/2)`` is not smooth).
     The interpolant equals the nodes, so the root is always bracketed in a march's separation step;
     anything else raises (no silent guess).
     Returns a dict of the scalars and ``message`` (empty).

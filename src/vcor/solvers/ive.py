@@ -290,7 +290,7 @@ def _history(res, system, sol, settings, ghost, alpha):
 
 
 def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, history=False, ghost=0.0, rule="force",
-                  volterra=False, c2=1.0, max_steps=20_000):
+                  volterra=False, c2=1.0, max_steps=60_000):
     """Internal-variable solver with ``solve_ivp`` (options validated by ``SolverOptions``). With
     ``volterra`` the second-order term for the Prony kernel is separable,
     c2 int int k(t1 + t2) u' u' = c2 (G_inf u^2 + sum_k Q_k^2 / G_k), so it costs nothing and is an

@@ -66,10 +66,11 @@ _SPEC = {
                                bounds=("int", 10, math.inf, "an integer >= 10"), unit="1"),
     "max_steps": _spec(200_000, FIXED_STEP_METHODS + ("ive",), "step budget (integer >= 100): of the fixed-step "
                        "march (4000000 for soe and ive-numba, whose cost is linear in the steps), and of solve_ivp's "
-                       "steps for ive (20000, each a Python right-hand side: about a minute); a run that reaches it "
+                       "steps for ive (60000, counted as calls of its event over every horizon, a doubled horizon "
+                       "restarting from t = 0: enough for a 1 mm plate); a run that reaches it "
                        "without separating ends with status step-budget",
                        bounds=("int", 100, math.inf, "an integer >= 100"),
-                       method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000, "ive": 20_000}, unit="1"),
+                       method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000, "ive": 60_000}, unit="1"),
     "step_tol": _spec(4e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
                       "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in "
                       "(0, 0.01); with the default extrapolation the COR's error falls about as step_tol^1.5: the "
