@@ -119,7 +119,8 @@ class Tables:
 @functools.lru_cache(maxsize=64)
 def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: float, tol: float) -> Tables:
     """(Cached: a sweep's points share them.) Per level l (step h_l = h_base 2^l): the newest step's
-    exact weights int_0^h k and int_0^h k(x) (h/2 - x) dx (N m^-1.5 s, N m^-1.5 s^2), and per
+    exact weights int_0^h k, int_0^h k(x) (h/2 - x) dx and int_0^h k(x) ((x - h/2)^2 - h^2/12) dx
+    (N m^-1.5 s, N m^-1.5 s^2, N m^-1.5 s^3), and per
     exponential mode k of the kernel's sum on [h_base, t_max] (column 0: the constant E(inf) plus the
     slow modes, rate 0) the step weights kappa E_k int_0^h e^{-b x} dx, kappa E_k int_0^h e^{-b x}
     (h/2 - x) dx and the decay e^{-b h}, and the number of modes alive on the level (every later mode
@@ -146,7 +147,8 @@ def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: fl
         i0, m0 = e_inf * hl + ti.sum(axis=-1), tm.sum(axis=-1)
     else:
         i0, m0 = mat.first_step(hl)
-    levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live)
+    q0 = mat.first_step_second_moment(hl)
+    levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live, kappa * q0)
     return Tables(levels=levels, e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
                   rate_moduli=np.concatenate(([0.0], b * e)), n_terms=rep.n_terms, soe_error=rep.checked_error,
                   t_max=t_max, tol=tol)
@@ -316,7 +318,7 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
 #: interpolation of u), and all three are eliminated. Measured on the presets at 0.001..300 m/s
 #: against independent references (benchmarks/bench_accuracy.py): the three-grid extrapolation
 #: (h^2, h^2.5) leaves the h^3 term, 1e-7..5e-7 at the former default; the fourth grid removes it
-RICHARDSON_EXPONENTS = (2.0, 2.5, 3.0)
+RICHARDSON_EXPONENTS = (2.0, 3.0, 4.0)
 #: weights of the grids' values (coarse to fine): w with sum_j w_j 2^(-p j) = 0 for every exponent p
 #: and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
 RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
