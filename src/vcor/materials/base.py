@@ -34,8 +34,8 @@ import numpy as np
 
 from ..checks import positive as _positive
 
-__all__ = ["GL_NODES", "GL_WEIGHTS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES", "SECOND_MOMENT_PANELS", "Family", "Material", "Parameter", "from_dict",
-           "unregister"]
+__all__ = ["GL_NODES", "GL_WEIGHTS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES", "SECOND_MOMENT_PANELS",
+           "Family", "Material", "Parameter", "from_dict", "unregister"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
 #: the only singularity, t = 0, is at least one step away, so 12 nodes are exact to rounding)
@@ -43,11 +43,13 @@ GL_NODES, GL_WEIGHTS = np.polynomial.legendre.leggauss(12)
 
 #: the newest step's second moment (``Material.first_step_second_moment``) of a kernel without a closed
 #: form: Gauss-Legendre in y = sqrt(t / dt), SECOND_MOMENT_NODES nodes on each of the panels
-#: [4^-(k+1), 4^-k] of y, k = 0..SECOND_MOMENT_PANELS - 2, and [0, 4^-(SECOND_MOMENT_PANELS - 1)]: exact
+#: [2^-(k+1), 2^-k] of y, k = 0..SECOND_MOMENT_PANELS - 2, and [0, 2^-(SECOND_MOMENT_PANELS - 1)]: exact
 #: for E(t) polynomial in sqrt(t) and 1/sqrt(t), and the panels follow a change of E(t) on any time scale
-#: down to dt / 4^(2 SECOND_MOMENT_PANELS) (the CERF law's 1/b1^2)
+#: down to dt / 4^(SECOND_MOMENT_PANELS - 1) (the CERF law's 1/b1^2, an exponential's 1/beta: to 1e-15 of
+#: the result's scale against scipy's quad, tests/materials/test_second_moment.py)
 SECOND_MOMENT_NODES = 12
-SECOND_MOMENT_PANELS = 10
+SECOND_MOMENT_PANELS = 20
+
 
 #: what a parameter's value is: one number, one number per Prony term, or a material (``to_dict`` form)
 PARAMETER_SHAPES = ("scalar", "terms", "material")
@@ -57,7 +59,7 @@ PARAMETER_SHAPES = ("scalar", "terms", "material")
 def _second_moment_rule():
     """Nodes and weights in y on [0, 1] of :meth:`Material.first_step_second_moment` (SECOND_MOMENT_NODES)."""
     x, w = np.polynomial.legendre.leggauss(SECOND_MOMENT_NODES)
-    edges = np.concatenate(([0.0], 4.0 ** -np.arange(SECOND_MOMENT_PANELS - 1, -1, -1.0)))
+    edges = np.concatenate(([0.0], 2.0 ** -np.arange(SECOND_MOMENT_PANELS - 1, -1, -1.0)))
     lo, hi = edges[:-1, None], edges[1:, None]
     return (0.5 * (lo + hi) + 0.5 * (hi - lo) * x).ravel(), (0.5 * (hi - lo) * w).ravel()
 
