@@ -1,5 +1,5 @@
 """The adaptive march in numba: variable power-of-two steps, the history as exponential modes, local
-error control; and :func:`adaptive_grids`, the march and its two Richardson replays in one call. A
+error control; and :func:`adaptive_grids`, the march and its Richardson replays in one call. A
 plain NumPy reference is :func:`vcor.solvers.reference.adaptive_reference`.
 
 Step n spans [t_{n-1}, t_n] with size h_n = h_base 2^l (level l, one row of the level tables per
@@ -17,11 +17,10 @@ decayed by R_{l,k} = e^{-beta_k h_l} to the new node. A trial step changes nothi
 accepted, so a rejection needs no roll-back.
 
 Why these terms: with first-order slopes (the direct scheme's c_n = 2 (d_n - d_{n-1}) / (h_n + h_{n-1}))
-the error expands in h^2 (the trapezoidal rule), h^2.5 (the slope's O(h) error and the parabola's
-remainder against a t^-1/2 kernel near lag 0) and h^3; the second-order slope removes the h^3 term and
-the slope's h^2.5 term, the newest step's curvature term the remainder's, and the error of the march on
-the method's graded grids is h^2 + h^3 + h^4 to within 1e-8 (``vcor.solvers.adaptive.RICHARDSON_EXPONENTS``;
-docs/theory.md).
+the error expands in h^2 (the trapezoidal rule), h^2.5 and h^3 (the slope's O(h) error, and the
+parabola's remainder against a t^-1/2 kernel near lag 0); the second-order slope and the newest step's
+curvature term remove them, and on the method's graded grids the error is h^2 + h^3.5 + h^4
+(``vcor.solvers.adaptive.RICHARDSON_EXPONENTS``; docs/theory.md).
 """
 
 from __future__ import annotations

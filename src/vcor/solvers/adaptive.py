@@ -1,4 +1,4 @@
-"""The ``adaptive`` method: the direct scheme on a variable time grid, history as internal variables.
+"""The ``adaptive`` method: product integration on a variable time grid, history as internal variables.
 
 Every kernel is split into its newest step (exact product integration, which holds the t^-1/2
 singularity of the fractional law) and older history carried by the exponential sum of
@@ -26,7 +26,7 @@ the time horizon starts at HORIZON_START t_c and grows by 32 up to MAX_HORIZON t
 restarted with an exponential sum for the longer horizon) before the run ends as ``step-budget``.
 
 By default (``extrapolate``, option ``richardson``) the accepted grid is replayed with every step
-divided by 2, 4 and 8 and the results are Richardson-extrapolated (errors h^2, h^2.5 and h^3
+divided by 2, 4 and 8 and the results are Richardson-extrapolated (errors h^2, h^3.5 and h^4
 eliminated, see ``RICHARDSON_EXPONENTS``); the four marches share one set of level tables (exponential
 sum on [h_base / 8, 2 horizon]).
 """
@@ -312,13 +312,16 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
 
 
 #: Richardson extrapolation from GRIDS nested grids (the accepted grid, every step divided by 2, 4, 8):
-#: the scheme's error expands in h^2, h^2.5 and h^3 (the trapezoidal rule's h^2; half-integer powers
-#: from u = s^{3/2}, with s ~ t at impact, and from the t^-1/2 kernels near lag 0: measured on uniform
-#: grids, the two-grid extrapolation leaves order 2.5 for every preset; h^3 from the quadratic
-#: interpolation of u), and all three are eliminated. Measured on the presets at 0.001..300 m/s
-#: against independent references (benchmarks/bench_accuracy.py): the three-grid extrapolation
-#: (h^2, h^2.5) leaves the h^3 term, 1e-7..5e-7 at the former default; the fourth grid removes it
-RICHARDSON_EXPONENTS = (2.0, 3.0, 4.0)
+#: on the method's graded grids the error expands in h^2 (the trapezoidal rule), then h^3.5 (the
+#: t^-1/2 kernel of the fractional law near lag 0 against the quadratic u' of the newest step) and h^4
+#: (every kernel). The second-order slopes and the newest step's curvature term
+#: (``_adaptive_kernels``) leave no h^3 term, and the grading near t = 0 (steps of h_base where
+#: u = s^{3/2} is not smooth) leaves the h^2.5 term of uniform grids below the others. Measured: the
+#: differences of the grids h .. h/32 with the h^2 term removed converge as h^3.4..h^3.6 (fractional)
+#: and h^3.9..h^4.1 (the other presets) (``tests/solvers/test_adaptive.py::
+#: test_graded_grids_error_expansion``); against independent references at 0.001..300 m/s
+#: (benchmarks/bench_accuracy.py) the exponents (2, 3.5, 4) leave half the error of (2, 3, 4) at equal steps
+RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
 #: weights of the grids' values (coarse to fine): w with sum_j w_j 2^(-p j) = 0 for every exponent p
 #: and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
 RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
@@ -327,10 +330,9 @@ RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
 #: ... only where t0 and the COR each show that the grids are in the asymptotic range: either the
 #: coarse and the finest grid agree to RICHARDSON_GAP (t0 relative; COR relative plus COR_FLOOR
 #: absolute), or the ratio of successive differences of the three finest grids,
-#: (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for h^2 errors, 5.7 for h^2.5; measured
+#: (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for the leading h^2 error; measured
 #: 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two error terms of opposite sign the
-#: ratio alone can leave the band, e.g. 8.5 for t0 of the fractional law at 50 m/s, where the grids
-#: agree to 1e-7). Otherwise (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens
+#: ratio alone can leave the band where the grids agree closely, which the gap test covers). Otherwise (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens
 #: of per cent apart, erratic ratios) the values of the finest grid are kept and the message says so
 RICHARDSON_GAP = 1e-3
 COR_FLOOR = 1e-9
@@ -404,7 +406,7 @@ def grid_outcomes(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
     declines."""
     h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
     rows, _ = _grid_rows(impact, tc, plate_kind(impact), h_base, n_grids, step_tol, max_steps, rule, tol)
-    return None if rows is None else np.array(rows)
+    return rows
 
 
 def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
@@ -415,15 +417,15 @@ def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol
     if not adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, _STOPS[rule],
                           max_steps, START_LEVEL, INITIAL_SIZE, out):
         return None, soe_error
-    return out[:n_grids].tolist(), soe_error
+    return out[:n_grids], soe_error
 
 
 def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
     rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
     if rows is None:
         return None
-    values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1], "")
-    res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
+    values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1].tolist(), "")
+    res = Result(**separation_scalars(values), steps=int(rows[:, 9].sum()), dt=float(rows[-1, 10]),
                  method="adaptive", soe_error=soe_error)
     res.message = message
     return res
@@ -431,33 +433,35 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
 
 def richardson_outcome(runs):
     """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (GRIDS rows, per grid,
-    coarse to fine, its OUTCOME values in that order; further values ignored) and "", or, where the
-    grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR
-    is negative, the finest grid's values and a message saying why."""
-    first, last = runs[0], runs[-1]
-    gap_t0, gap_cor = abs(last[_T0] - first[_T0]) / last[_T0], abs(last[_COR] - first[_COR])
+    coarse to fine, its OUTCOME values in that order; further values ignored; a list of lists or an
+    array) and "", or, where the grids are not in the asymptotic range (RICHARDSON_GAP,
+    RICHARDSON_RATIO) or the extrapolated COR is negative, the finest grid's values and a message saying
+    why (values: a list)."""
+    grids = np.asarray(runs, dtype=float)[:, : len(OUTCOME)]
+    t0s, cors = grids[:, _T0].tolist(), grids[:, _COR].tolist()
+    gap_t0, gap_cor = abs(t0s[-1] - t0s[0]) / t0s[-1], abs(cors[-1] - cors[0])
     lo, hi = RICHARDSON_RATIO
-    extrapolated = (np.asarray(RICHARDSON_WEIGHTS) @ np.asarray([r[: len(first)] for r in runs], dtype=float)).tolist()
-    cor = extrapolated[_COR]
+    extrapolated = np.asarray(RICHARDSON_WEIGHTS) @ grids
+    cor = float(extrapolated[_COR])
     if cor < 0.0:
         # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
         # may leave the physical range; keep the finest grid's value rather than store a negative COR
-        return last, (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
-                      f"{', '.join(f'{r[_COR]:.3g}' for r in runs)}); values of the finest grid")
-    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(runs, _T0) <= hi)
-            and (gap_cor <= RICHARDSON_GAP * last[_COR] + COR_FLOOR or lo <= _difference_ratio(runs, _COR) <= hi)):
+        return grids[-1].tolist(), (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative "
+                                    f"(grids {', '.join(f'{c:.3g}' for c in cors)}); values of the finest grid")
+    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(t0s) <= hi)
+            and (gap_cor <= RICHARDSON_GAP * cors[-1] + COR_FLOOR or lo <= _difference_ratio(cors) <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
-        return last, (f"not Richardson-extrapolated: the grid and the finest grid (every step divided by "
-                      f"{2**SPLIT_LEVELS}) differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} (COR), and the "
-                      f"differences between the three finest grids do not shrink as h^2..h^2.5 (ratios "
-                      f"{_difference_ratio(runs, _T0):.3g} for t0, {_difference_ratio(runs, _COR):.3g} for the "
-                      f"COR; asymptotically 4..5.7); values of the finest grid")
-    return extrapolated, ""
+        return grids[-1].tolist(), (
+            f"not Richardson-extrapolated: the grid and the finest grid (every step divided by "
+            f"{2**SPLIT_LEVELS}) differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} (COR), and the "
+            f"differences between the three finest grids do not shrink as h^2 (ratios "
+            f"{_difference_ratio(t0s):.3g} for t0, {_difference_ratio(cors):.3g} for the COR; asymptotically "
+            f"4); values of the finest grid")
+    return extrapolated.tolist(), ""
 
 
-def _difference_ratio(runs, i):
-    """(x0 - x1) / (x1 - x2) of the values ``runs[j][i]`` on the three finest grids h, h/2, h/4 (4 for h^2
-    errors, 5.7 for h^2.5)."""
-    a, b, c = (r[i] for r in runs[-3:])
+def _difference_ratio(values):
+    """(x0 - x1) / (x1 - x2) of the last three ``values``, on the grids h, h/2, h/4 (4 for h^2 errors)."""
+    a, b, c = values[-3:]
     d1, d2 = a - b, b - c
     return d1 / d2 if d2 != 0.0 else math.inf

@@ -806,7 +806,7 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
 
 
 #: the Richardson grids' error exponents (vcor.solvers.adaptive.RICHARDSON_EXPONENTS)
-RICHARDSON_EXPONENTS = (2.0, 3.0, 4.0)
+RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
 
 
 def richardson_weights(exponents=RICHARDSON_EXPONENTS):
