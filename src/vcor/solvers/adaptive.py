@@ -332,8 +332,9 @@ RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
 #: absolute), or the ratio of successive differences of the three finest grids,
 #: (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for the leading h^2 error; measured
 #: 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two error terms of opposite sign the
-#: ratio alone can leave the band where the grids agree closely, which the gap test covers). Otherwise (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens
-#: of per cent apart, erratic ratios) the values of the finest grid are kept and the message says so
+#: ratio alone can leave the band where the grids agree closely, which the gap test covers). Otherwise
+#: (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens of per cent apart, erratic
+#: ratios) the values of the finest grid are kept and the message says so
 RICHARDSON_GAP = 1e-3
 COR_FLOOR = 1e-9
 RICHARDSON_RATIO = (2.5, 8.0)
