@@ -313,14 +313,15 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
 
 #: Richardson extrapolation from GRIDS nested grids (the accepted grid, every step divided by 2, 4, 8):
 #: on the method's graded grids the error expands in h^2 (the trapezoidal rule), then h^3.5 (the
-#: t^-1/2 kernel of the fractional law near lag 0 against the quadratic u' of the newest step) and h^4
-#: (every kernel). The second-order slopes and the newest step's curvature term
-#: (``_adaptive_kernels``) leave no h^3 term, and the grading near t = 0 (steps of h_base where
-#: u = s^{3/2} is not smooth) leaves the h^2.5 term of uniform grids below the others. Measured: the
-#: differences of the grids h .. h/32 with the h^2 term removed converge as h^3.4..h^3.6 (fractional)
-#: and h^3.9..h^4.1 (the other presets) (``tests/solvers/test_adaptive.py::
-#: test_graded_grids_error_expansion``); against independent references at 0.001..300 m/s
-#: (benchmarks/bench_accuracy.py) the exponents (2, 3.5, 4) leave half the error of (2, 3, 4) at equal steps
+#: fractional law's t^-1/2 kernel near lag 0, and a Kelvin-Voigt Dirac term eta u' with u' ~ t^1/2 at
+#: impact, against the quadratic u' of the newest step) and h^4 (every kernel). The second-order slopes
+#: and the newest step's curvature term (``_adaptive_kernels``) leave no h^3 term, and the grading near
+#: t = 0 (steps of h_base where u = s^{3/2} is not smooth) leaves the h^2.5 term of uniform grids below
+#: the others. Measured at 1 m/s: the differences of the grids h .. h/32 with the h^2 term removed fall
+#: as h^3.2..h^3.6 (fractional, Kelvin-Voigt) and h^3.9..h^4.4 (the other presets)
+#: (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``); against independent
+#: references at 0.001..300 m/s (benchmarks/bench_accuracy.py) the exponents (2, 3.5, 4) leave half the
+#: error of (2, 3, 4) at equal steps
 RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
 #: weights of the grids' values (coarse to fine): w with sum_j w_j 2^(-p j) = 0 for every exponent p
 #: and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
