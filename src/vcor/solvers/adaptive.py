@@ -427,8 +427,9 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
     if rows is None:
         return None
     values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1].tolist(), "")
-    res = Result(**separation_scalars(values), steps=int(rows[:, 9].sum()), dt=float(rows[-1, 10]),
-                 method="adaptive", soe_error=soe_error)
+    steps, dt = rows[:, 9:].tolist(), float(rows[-1, 10])
+    res = Result(**separation_scalars(values), steps=int(sum(row[0] for row in steps)), dt=dt, method="adaptive",
+                 soe_error=soe_error)
     res.message = message
     return res
 
@@ -439,31 +440,41 @@ def richardson_outcome(runs):
     array) and "", or, where the grids are not in the asymptotic range (RICHARDSON_GAP,
     RICHARDSON_RATIO) or the extrapolated COR is negative, the finest grid's values and a message saying
     why (values: a list)."""
-    grids = np.asarray(runs, dtype=float)[:, : len(OUTCOME)]
-    t0s, cors = grids[:, _T0].tolist(), grids[:, _COR].tolist()
-    gap_t0, gap_cor = abs(t0s[-1] - t0s[0]) / t0s[-1], abs(cors[-1] - cors[0])
-    lo, hi = RICHARDSON_RATIO
-    extrapolated = np.asarray(RICHARDSON_WEIGHTS) @ grids
-    cor = float(extrapolated[_COR])
+    grids = np.asarray(runs, dtype=float)
+    rows = grids.tolist()
+    first, last = rows[0], rows[-1]
+    n = len(OUTCOME)
+    weights = _WEIGHTS.get(RICHARDSON_WEIGHTS)
+    if weights is None:
+        weights = _WEIGHTS[RICHARDSON_WEIGHTS] = np.array(RICHARDSON_WEIGHTS)
+    extrapolated = (weights @ grids).tolist()[:n]
+    cor = extrapolated[_COR]
     if cor < 0.0:
         # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
         # may leave the physical range; keep the finest grid's value rather than store a negative COR
-        return grids[-1].tolist(), (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative "
-                                    f"(grids {', '.join(f'{c:.3g}' for c in cors)}); values of the finest grid")
-    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(t0s) <= hi)
-            and (gap_cor <= RICHARDSON_GAP * cors[-1] + COR_FLOOR or lo <= _difference_ratio(cors) <= hi)):
+        return last[:n], (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
+                          f"{', '.join(f'{r[_COR]:.3g}' for r in rows)}); values of the finest grid")
+    gap_t0, gap_cor = abs(last[_T0] - first[_T0]) / last[_T0], abs(last[_COR] - first[_COR])
+    lo, hi = RICHARDSON_RATIO
+    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(rows, _T0) <= hi)
+            and (gap_cor <= RICHARDSON_GAP * last[_COR] + COR_FLOOR or lo <= _difference_ratio(rows, _COR) <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
-        return grids[-1].tolist(), (
+        return last[:n], (
             f"not Richardson-extrapolated: the grid and the finest grid (every step divided by "
             f"{2**SPLIT_LEVELS}) differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} (COR), and the "
             f"differences between the three finest grids do not shrink as h^2 (ratios "
-            f"{_difference_ratio(t0s):.3g} for t0, {_difference_ratio(cors):.3g} for the COR; asymptotically "
-            f"4); values of the finest grid")
-    return extrapolated.tolist(), ""
+            f"{_difference_ratio(rows, _T0):.3g} for t0, {_difference_ratio(rows, _COR):.3g} for the COR; "
+            f"asymptotically 4); values of the finest grid")
+    return extrapolated, ""
 
 
-def _difference_ratio(values):
-    """(x0 - x1) / (x1 - x2) of the last three ``values``, on the grids h, h/2, h/4 (4 for h^2 errors)."""
-    a, b, c = values[-3:]
+#: RICHARDSON_WEIGHTS as an array, per weights tuple (the benchmarks set other weights)
+_WEIGHTS = {}
+
+
+def _difference_ratio(rows, i):
+    """(x0 - x1) / (x1 - x2) of the values ``rows[j][i]`` on the three finest grids h, h/2, h/4 (4 for h^2
+    errors)."""
+    a, b, c = (r[i] for r in rows[-3:])
     d1, d2 = a - b, b - c
     return d1 / d2 if d2 != 0.0 else math.inf
