@@ -317,8 +317,8 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
 #: impact, against the quadratic u' of the newest step) and h^4 (every kernel). The second-order slopes
 #: and the newest step's curvature term (``_adaptive_kernels``) leave no h^3 term, and the grading near
 #: t = 0 (steps of h_base where u = s^{3/2} is not smooth) leaves the h^2.5 term of uniform grids below
-#: the others. Measured at 1 m/s: the differences of the grids h .. h/32 with the h^2 term removed fall
-#: as h^3.2..h^3.6 (fractional, Kelvin-Voigt) and h^3.9..h^4.4 (the other presets)
+#: the others. Measured at 1 m/s and step_tol 2e-3: the differences of the grids h .. h/32 with the h^2
+#: term removed fall as h^3.2..h^3.8 (fractional, Kelvin-Voigt) and h^3.8..h^4.2 (the other presets)
 #: (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``); against independent
 #: references at 0.001..300 m/s (benchmarks/bench_accuracy.py) the exponents (2, 3.5, 4) leave half the
 #: error of (2, 3, 4) at equal steps
