@@ -12,7 +12,6 @@ import vcor
 from vcor.contact.impact import make_impact
 from vcor.solvers import adaptive
 from vcor.solvers import reference as R
-from vcor.solvers._adaptive_kernels import slope_weights
 
 PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
 
@@ -38,7 +37,7 @@ def test_slope_weights_exact_on_a_parabola(scale, r1, r2, a, b, c, any_sizes, po
 
     r = 0.5 * h0
     d0, d1, d2 = mean(-r, r), mean(-r - h1, -r), mean(-r - h1 - h2, -r - h1)
-    c1, c2, q1, q2 = slope_weights(h0, h1, h2)
+    c1, c2, q1, q2 = adaptive.slope_weights(h0, h1, h2)
     got_c, got_q = c1 * (d1 - d0) + c2 * (d2 - d0), q1 * (d1 - d0) + q2 * (d2 - d0)
     # rounding of the means (~eps) divided by the steps, amplified by the step ratios
     tol = 1e-12 * (max(h1, h2) / h0 + h0 / min(h1, h2)) ** 2

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials.expsums import soe
-from ._adaptive_kernels import adaptive_grids, march_adaptive
+from ._adaptive_kernels import adaptive_grids, march_adaptive, slope_weights
 from ._records import (
     DECAYED,
     LAST,
@@ -63,7 +63,7 @@ from .march import N_EXTRA, Arrays, March, finish
 
 __all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_HORIZON", "RICHARDSON_WEIGHTS", "SEP_STEPS", "PlateTables",
            "Tables", "grid_outcomes", "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables",
-           "richardson_outcome", "run_adaptive", "solve"]
+           "richardson_outcome", "run_adaptive", "slope_weights", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
