@@ -11,16 +11,15 @@ References (not computed by adaptive), per preset at v0 = 0.001, 1, 10, 50, 300 
 Sections:
 
 * ``accuracy``: per setting (rows: the default; step_tol; soe_tol; no extrapolation; the separation
-  located on a step 8 times finer (the constant SEP_STEPS, not an option); the former default, three
-  grids eliminating h^2 and h^2.5 at step_tol 3e-4, reproduced by setting the module constants), the
-  largest relative error of the COR and of t0 per preset over the speeds, the steps per impact, and
+  located on a step 8 times finer (the constant SEP_STEPS, not an option); other Richardson exponents:
+  four grids eliminating h^2, h^3, h^4, and three grids eliminating h^2, h^4, set through the module
+  constants), the largest relative error of the COR and of t0 per preset over the speeds, the steps per impact, and
   the time per impact (warm median of ``vcor.simulate`` at 10 m/s, mean over sls, butyl-fc, butyl-cerf,
   butyl-prony3);
 * ``equal_accuracy``: per preset at 10 m/s, adaptive's COR error and time, and the time of ``direct``
   (numba, O(N^2)) at the steps that give the same COR error: plain (error ~ N^-2, N from two runs, then
-  run), and Richardson-extrapolated from N, 2N, 4N steps (the same three-grid scheme as adaptive's
-  former default; its N the smallest power-of-two multiple of 125 steps per contact time that reaches
-  the error); the ratios adaptive / direct.
+  run), and Richardson-extrapolated from N, 2N, 4N steps (h^2 and h^2.5 eliminated; its N the smallest
+  power-of-two multiple of 125 steps per contact time that reaches the error); the ratios adaptive / direct.
 
 Every run is a fresh process with an empty numba cache; timings are warm medians; cells give the median
 over runs (min–max); errors are the same in every run.
@@ -46,17 +45,20 @@ TIMED = ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3")
 SPEEDS = (0.001, 1.0, 10.0, 50.0, 300.0)
 #: rows of the accuracy table: label, simulate keywords, module constants to set (name: value)
 SETTINGS = (
-    ("default (four grids, step_tol 4e-4)", {}, {}),
+    ("default (four grids h^2, h^3.5, h^4; step_tol 8e-4)", {}, {}),
+    ("step_tol 1.5e-3", {"step_tol": 1.5e-3}, {}),
     ("step_tol 1e-3", {"step_tol": 1e-3}, {}),
     ("step_tol 6e-4", {"step_tol": 6e-4}, {}),
-    ("step_tol 2e-4", {"step_tol": 2e-4}, {}),
+    ("step_tol 3e-4", {"step_tol": 3e-4}, {}),
     ("step_tol 1e-4", {"step_tol": 1e-4}, {}),
     ("soe_tol 1e-8", {"soe_tol": 1e-8}, {}),
     ("soe_tol 1e-12", {"soe_tol": 1e-12}, {}),
     ("separation step 8x finer", {}, {"SEP_STEPS": 8192}),
     ("no extrapolation (one grid)", {"richardson": False}, {}),
-    ("three grids (h^2, h^2.5), step_tol 3e-4: the former default", {"step_tol": 3e-4}, {"grids": 3}),
-    ("three grids (h^2, h^2.5), step_tol 1e-4", {"step_tol": 1e-4}, {"grids": 3}),
+    ("four grids (h^2, h^3, h^4)", {}, {"exponents": (2.0, 3.0, 4.0)}),
+    ("four grids (h^2, h^3, h^4), step_tol 1e-3", {"step_tol": 1e-3}, {"exponents": (2.0, 3.0, 4.0)}),
+    ("three grids (h^2, h^4), step_tol 3e-4", {"step_tol": 3e-4}, {"exponents": (2.0, 4.0)}),
+    ("three grids (h^2, h^4), step_tol 1.5e-4", {"step_tol": 1.5e-4}, {"exponents": (2.0, 4.0)}),
 )
 
 
@@ -99,9 +101,10 @@ def _set_constants(constants: dict):
     old = {k: getattr(adaptive, k) for k in ("SEP_STEPS", "SPLIT_LEVELS", "GRIDS", "RICHARDSON_WEIGHTS")}
     if "SEP_STEPS" in constants:
         adaptive.SEP_STEPS = constants["SEP_STEPS"]
-    if "grids" in constants:
-        adaptive.SPLIT_LEVELS, adaptive.GRIDS = constants["grids"] - 1, constants["grids"]
-        adaptive.RICHARDSON_WEIGHTS = tuple(float(w) for w in _weights((2.0, 2.5, 3.0)[: constants["grids"] - 1]))
+    if "exponents" in constants:
+        grids = len(constants["exponents"]) + 1
+        adaptive.SPLIT_LEVELS, adaptive.GRIDS = grids - 1, grids
+        adaptive.RICHARDSON_WEIGHTS = tuple(float(w) for w in _weights(constants["exponents"]))
     return old
 
 

@@ -34,15 +34,34 @@ import numpy as np
 
 from ..checks import positive as _positive
 
-__all__ = ["GL_NODES", "GL_WEIGHTS", "PARAMETER_SHAPES", "REGISTRY", "Family", "Material", "Parameter", "from_dict",
-           "unregister"]
+__all__ = ["GL_NODES", "GL_WEIGHTS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES", "SECOND_MOMENT_PANELS",
+           "Family", "Material", "Parameter", "from_dict", "unregister"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
 #: the only singularity, t = 0, is at least one step away, so 12 nodes are exact to rounding)
 GL_NODES, GL_WEIGHTS = np.polynomial.legendre.leggauss(12)
 
+#: the newest step's second moment (``Material.first_step_second_moment``) of a kernel without a closed
+#: form: Gauss-Legendre in y = sqrt(t / dt), SECOND_MOMENT_NODES nodes on each of the panels
+#: [2^-(k+1), 2^-k] of y, k = 0..SECOND_MOMENT_PANELS - 2, and [0, 2^-(SECOND_MOMENT_PANELS - 1)]: exact
+#: for E(t) polynomial in sqrt(t) and 1/sqrt(t), and the panels follow a change of E(t) on any time scale
+#: down to dt / 4^(SECOND_MOMENT_PANELS - 1) (the CERF law's 1/b1^2, an exponential's 1/beta: to 1e-15 of
+#: the result's scale against scipy's quad, tests/materials/test_second_moment.py)
+SECOND_MOMENT_NODES = 12
+SECOND_MOMENT_PANELS = 20
+
+
 #: what a parameter's value is: one number, one number per Prony term, or a material (``to_dict`` form)
 PARAMETER_SHAPES = ("scalar", "terms", "material")
+
+
+@functools.cache
+def _second_moment_rule():
+    """Nodes and weights in y on [0, 1] of :meth:`Material.first_step_second_moment` (SECOND_MOMENT_NODES)."""
+    x, w = np.polynomial.legendre.leggauss(SECOND_MOMENT_NODES)
+    edges = np.concatenate(([0.0], 2.0 ** -np.arange(SECOND_MOMENT_PANELS - 1, -1, -1.0)))
+    lo, hi = edges[:-1, None], edges[1:, None]
+    return (0.5 * (lo + hi) + 0.5 * (hi - lo) * x).ravel(), (0.5 * (hi - lo) * w).ravel()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -290,6 +309,19 @@ class Material:
         dt = np.asarray(dt, dtype=float)
         k1 = self.antiderivative(dt, 1)
         return k1, 0.5 * dt * k1 - self.antiderivative(dt, 2)
+
+    def first_step_second_moment(self, dt):
+        """int_0^dt E_reg(t) ((t - dt/2)^2 - dt^2/12) dt in Pa s^3, for a step size or an array of them: the
+        weight of the curvature of u' over the newest step in the adaptive method's product integration
+        (the polynomial has zero mean on the step, so a constant modulus gives 0). Here by Gauss-Legendre
+        in y = sqrt(t / dt) (see SECOND_MOMENT_NODES), where a t^-1/2 or sqrt(t) behaviour at t = 0 is
+        smooth; models with a closed form override it."""
+        dt = np.asarray(dt, dtype=float)
+        y, w = _second_moment_rule()
+        # t = dt y^2, dt_t = 2 dt y dy; (t - dt/2)^2 - dt^2/12 = dt^2 ((y^2 - 1/2)^2 - 1/12)
+        poly = 2.0 * y * ((y * y - 0.5) ** 2 - 1.0 / 12.0) * w
+        e = self.relaxation_modulus(np.multiply.outer(dt, y * y))
+        return dt**3 * (e @ poly)
 
     def step_moments(self, dt: float, n: int) -> np.ndarray:
         """V_i = int_{i dt}^{(i+1) dt} E_reg(t) (t - (i + 1/2) dt) dt for i = 0..n-1, in Pa s^2.

@@ -109,6 +109,11 @@ class FractionalPower(Material, kind="fractional"):
         sq = dt / np.sqrt(dt)
         return self.E0 * dt + 2.0 * self.E1 / _SQRT_PI * sq, -self.E1 / (3.0 * _SQRT_PI) * sq**3
 
+    def first_step_second_moment(self, dt):
+        # int_0^dt ((t - dt/2)^2 - dt^2/12) t^-1/2 dt = dt^2.5 (2/5 - 2/3 + 1/3) = dt^2.5 / 15; E0 gives 0
+        dt = np.asarray(dt, dtype=float)
+        return self.E1 / (15.0 * _SQRT_PI) * dt**2 * np.sqrt(dt)
+
     def params(self) -> dict:
         return {"E0": self.E0, "E1": self.E1}
 

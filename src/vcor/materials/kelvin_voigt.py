@@ -76,6 +76,10 @@ class KelvinVoigt(Material, kind="kelvin-voigt"):
             return 0.5 * self.E * t**2
         raise ValueError(f"order must be 1 or 2, got {order}")
 
+    def first_step_second_moment(self, dt):
+        # a constant regular part: the zero-mean polynomial integrates to 0
+        return np.zeros_like(np.asarray(dt, dtype=float))
+
     def params(self) -> dict:
         return {"E": self.E, "tau": self.tau}
 

@@ -17,7 +17,7 @@ import numpy as np
 from ..checks import positive as _positive
 from .base import Material, Parameter
 
-__all__ = ["MOMENT_SERIES", "SERIES_SWITCH", "Prony"]
+__all__ = ["MOMENT_SERIES", "SECOND_MOMENT_SERIES", "SECOND_SERIES_SWITCH", "SERIES_SWITCH", "Prony"]
 
 #: b dt at and below which a step moment is summed from its series: the closed form subtracts terms of
 #: size 1/(b dt) to leave one of size b dt, losing ~ eps / (b dt)^2 relative (4e-13 here)
@@ -25,6 +25,13 @@ SERIES_SWITCH = 0.05
 #: int_0^dt e^{-b x} (x - dt/2) dx / dt^2 = sum_{k >= 1} c_k (-b dt)^k, c_k = k / (2 k! (k + 1)(k + 2)),
 #: k = 1..15 (used for b dt <= SERIES_SWITCH: the truncation is below 1e-30 relative)
 MOMENT_SERIES = np.array([k / (2.0 * math.factorial(k) * (k + 1) * (k + 2)) for k in range(1, 16)])
+#: b dt at and below which the step's second moment is summed from its series: the closed form's terms
+#: are 1/(6 b dt) in size for a result of (b dt)^2 / 360 (its loss, ~60 eps / (b dt)^3, is 7.5 eps here)
+SECOND_SERIES_SWITCH = 2.0
+#: int_0^dt e^{-b x} ((x - dt/2)^2 - dt^2/12) dx / dt^3 = sum_{k >= 2} s_k (-b dt)^k,
+#: s_k = (1/(k+3) - 1/(k+2) + 1/(6 (k+1))) / k!, k = 2..35 (truncation below 1e-25 at the switch)
+SECOND_MOMENT_SERIES = np.array([(1.0 / (k + 3) - 1.0 / (k + 2) + 1.0 / (6.0 * (k + 1))) / math.factorial(k)
+                                 for k in range(2, 36)])
 
 
 def _rows(first, x, n):
@@ -164,6 +171,25 @@ class Prony(Material, kind="prony"):
         col = dt[..., None]
         return (self.E_inf * dt + self.term_step_integrals(col, 1)[0].sum(axis=-1),
                 self.term_step_moments(col, 1)[0].sum(axis=-1))
+
+    def first_step_second_moment(self, dt):
+        # per term, dt^3 phi(b dt) with phi(x) = int_0^1 e^{-x y} ((y - 1/2)^2 - 1/12) dy =
+        # 1/(6x) - 1/x^2 + 2/x^3 - e^{-x} (1/(6x) + 1/x^2 + 2/x^3), or its series (SECOND_SERIES_SWITCH);
+        # E_inf gives 0
+        dt = np.asarray(dt, dtype=float)
+        e, b = self._arrays()
+        x = np.multiply.outer(dt, b)
+        safe = np.where(x > SECOND_SERIES_SWITCH, x, 1.0)
+        inv = 1.0 / safe
+        phi = inv / 6.0 - inv**2 + 2.0 * inv**3 - np.exp(-safe) * (inv / 6.0 + inv**2 + 2.0 * inv**3)
+        small = ~(x > SECOND_SERIES_SWITCH)
+        if small.any():
+            minus_x = -x[small]
+            series = np.zeros_like(minus_x)
+            for coef in SECOND_MOMENT_SERIES[::-1]:  # Horner in -x, from the x^2 term
+                series = series * minus_x + coef
+            phi[small] = series * minus_x**2
+        return dt**3 * (phi @ e)
 
     def term_step_integrals(self, dt: float, n: int) -> np.ndarray:
         """Per term k (last axis): int_{i dt}^{(i+1) dt} E_k e^{-beta_k t} dt, i = 0..n-1, Pa s."""

@@ -1,17 +1,26 @@
 """The adaptive march in numba: variable power-of-two steps, the history as exponential modes, local
-error control; and :func:`adaptive_grids`, the march and its two Richardson replays in one call. A
+error control; and :func:`adaptive_grids`, the march and its Richardson replays in one call. A
 plain NumPy reference is :func:`vcor.solvers.reference.adaptive_reference`.
 
 Step n spans [t_{n-1}, t_n] with size h_n = h_base 2^l (level l, one row of the level tables per
-level); on it u' = d_n + c_n (tau - mid), d_n = (u_n - u_{n-1}) / h_n and
-c_n = 2 (d_n - d_{n-1}) / (h_n + h_{n-1}) (c_1 = 0): the direct scheme's quadratic product
-integration on an arbitrary grid. The newest step uses the exact kernel (its weights
-int_0^h k and int_0^h k(x) (h/2 - x) dx); older steps live in one variable per exponential mode,
+level); on it u' = d_n + c_n (tau - mid_n) + q_n ((tau - mid_n)^2 - h_n^2/12), d_n = (u_n - u_{n-1}) / h_n
+the mean of u' over the step, and c_n, q_n the slope and half the curvature at mid_n of the parabola
+whose means over steps n, n-1, n-2 are d_n, d_{n-1}, d_{n-2} (:func:`slope_weights`; c_n second-order
+accurate, one-sided; step 2: c_2 = 2 (d_2 - d_1) / (h_2 + h_1), step 1: c_1 = 0; q_n = 0 on steps 1, 2).
+The newest step uses the exact kernel with all three terms (weights int_0^h k, int_0^h k(x) (h/2 - x) dx
+and int_0^h k(x) ((x - h/2)^2 - h^2/12) dx); older steps, with the linear part d_j + c_j (tau - mid_j),
+live in one variable per exponential mode,
 
 .. math:: P_k(t_{n-1}) = \\sum_{j<n} e^{-\\beta_k (t_{n-1} - t_j)} (d_j G^A_{l_j,k} + c_j G^B_{l_j,k}),
 
 decayed by R_{l,k} = e^{-beta_k h_l} to the new node. A trial step changes nothing until it is
 accepted, so a rejection needs no roll-back.
+
+Why these terms: with first-order slopes (the direct scheme's c_n = 2 (d_n - d_{n-1}) / (h_n + h_{n-1}))
+the error expands in h^2 (the trapezoidal rule), h^2.5 and h^3 (the slope's O(h) error, and the
+parabola's remainder against a t^-1/2 kernel near lag 0); the second-order slope and the newest step's
+curvature term remove them, and on the method's graded grids the error is h^2 + h^3.5 + h^4
+(``vcor.solvers.adaptive.RICHARDSON_EXPONENTS``; docs/theory.md).
 """
 
 from __future__ import annotations
@@ -45,7 +54,7 @@ from ._records import (
 from ._separation import locate_separation
 from ._step import advance, implicit_step_inline, separated
 
-__all__ = ["FEW_MODES", "adaptive_grids", "march_adaptive"]
+__all__ = ["FEW_MODES", "adaptive_grids", "march_adaptive", "slope_weights"]
 
 #: sums over more modes than this go through the helpers below, whose additions may be reassociated
 #: (``_jit.jit_sum``: numba then vectorises them); shorter sums stay in the march (a call costs more
@@ -112,7 +121,8 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     control, stop, modes = AdaptiveControl(*control), Stop(*stop), Modes(*modes)
     t, s, g, F, J, u = nodes
     step, inv_step = tables.step, tables.inv_step
-    newest_integral, newest_moment = tables.newest_integral, tables.newest_moment
+    newest_integral, newest_moment, newest_curvature = (tables.newest_integral, tables.newest_moment,
+                                                        tables.newest_curvature)
     mode_integral, mode_moment, mode_decay, live_modes = (tables.mode_integral, tables.mode_moment,
                                                           tables.mode_decay, tables.live_modes)
     P, X = modes.history, modes.plate
@@ -144,9 +154,20 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     if n >= 2:
         last_d = (u[n - 1] - u[n - 2]) / (t[n - 1] - t[n - 2])
         last_dg = (g[n - 1] - g[n - 2]) / (t[n - 1] - t[n - 2])
+    # mean of u' over the step before the last one, and the weights of (d_n, d_{n-1}, d_{n-2}) in c_n
+    # and q_n for the last three steps' sizes (recomputed only when the sizes change)
+    prev_d = 0.0
+    w_h0 = -1.0
+    w_h1 = -1.0
+    w_h2 = -1.0
+    c1 = 0.0
+    c2 = 0.0
+    q1 = 0.0
+    q2 = 0.0
     if n >= 3:
         prev_dg = (g[n - 2] - g[n - 3]) / (t[n - 2] - t[n - 3])
         last_r2 = 2.0 / (t[n - 1] - t[n - 3])
+        prev_d = (u[n - 2] - u[n - 3]) / (t[n - 2] - t[n - 3])
     frozen = state[FROZEN] == 1
     state[STATUS] = STATUS_RUNNING
     tol_abs = step_tol * v0
@@ -176,15 +197,32 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
                 Hh += v
         hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
         inv_h = inv_step[row]
-        if n >= 2:
+        # the newest step's force: I d_n + M c_n + Q q_n with c_n = cs d_n + c0, q_n = qs d_n + q0
+        # (cs, qs: the weights of d_n; c0, q0: of the older means), d_n = (u_n - u_{n-1}) / h
+        if n >= 3:
+            h2 = t[n - 2] - t[n - 3]
+            if h != w_h0 or hp != w_h1 or h2 != w_h2:
+                w_h0, w_h1, w_h2 = h, hp, h2
+                c1, c2, q1, q2 = slope_weights(h, hp, h2)
             r2 = 2.0 / (h + hp)
-            w0 = (newest_integral[row] + r2 * newest_moment[row]) * inv_h
-            dprev = last_d
-            H = Hh - w0 * u[n - 1] - r2 * newest_moment[row] * dprev
+            cs = -(c1 + c2)
+            c0 = c1 * last_d + c2 * prev_d
+            qs = -(q1 + q2)
+            q0 = q1 * last_d + q2 * prev_d
+        elif n == 2:
+            r2 = 2.0 / (h + hp)
+            cs = r2
+            c0 = -r2 * last_d
+            qs = 0.0
+            q0 = 0.0
         else:
             r2 = 0.0
-            w0 = newest_integral[row] * inv_h
-            H = Hh - w0 * u[n - 1]
+            cs = 0.0
+            c0 = 0.0
+            qs = 0.0
+            q0 = 0.0
+        w0 = (newest_integral[row] + cs * newest_moment[row] + qs * newest_curvature[row]) * inv_h
+        H = Hh - w0 * u[n - 1] + c0 * newest_moment[row] + q0 * newest_curvature[row]
         if plate.kind == 1:
             if n_plate > FEW_MODES:
                 eb, ebd = _plate_sums(plate_decay, row, X, trial_plate, pe, pbe, n_plate)
@@ -263,13 +301,14 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         J[n] = Jn
         levels[n] = lev
         d = (un - u[n - 1]) * inv_h
-        c = (d - dprev) * r2 if n >= 2 else 0.0
+        c = cs * d + c0
         prev_dg = last_dg
         last_dg = (gn - g[n - 1]) * inv_h
         last_r2 = r2
         for k in range(n_live):
             P[k] = trial_history[k] + d * mode_integral[row, k] + c * mode_moment[row, k]
         n_explicit = n_live
+        prev_d = last_d
         last_d = d
         last_c = c
         last_row = row
@@ -301,6 +340,25 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         n += 1
     state[STATUS] = STATUS_FULL
     _fill(P, n_explicit, nk, last_d, last_c, mode_integral, mode_moment, last_row)
+
+
+@jit_inline
+def slope_weights(h0, h1, h2):
+    """(c1, c2, q1, q2): the slope c and half the curvature q, at the middle of the newest of three
+    consecutive steps of sizes h2, h1, h0 (oldest first, s), of the parabola p(tau) = d0 + c (tau - mid)
+    + q ((tau - mid)^2 - h0^2/12) whose means over the three steps are d0, d1, d2:
+    c = c1 (d1 - d0) + c2 (d2 - d0), q = q1 (d1 - d0) + q2 (d2 - d0) (1/s and 1/s^2).
+
+    The mean of p over a step of size h_j whose middle is e_j before mid is d0 - c e_j + q a_j with
+    a_j = e_j^2 + (h_j^2 - h0^2) / 12; e_1 = (h0 + h1) / 2, e_2 = e_1 + (h1 + h2) / 2. Equal steps h:
+    c = (3 d0 - 4 d1 + d2) / (2 h), q = (d0 - 2 d1 + d2) / (2 h^2)."""
+    e1 = 0.5 * (h0 + h1)
+    e2 = e1 + 0.5 * (h1 + h2)
+    a1 = e1 * e1 + (h1 * h1 - h0 * h0) * (1.0 / 12.0)
+    a2 = e2 * e2 + (h2 * h2 - h0 * h0) * (1.0 / 12.0)
+    # d_j - d0 = -c e_j + q a_j (j = 1, 2), solved for c and q
+    inv = 1.0 / (e1 * a2 - e2 * a1)
+    return -a2 * inv, a1 * inv, -e2 * inv, e1 * inv
 
 
 @jit_inline

@@ -83,9 +83,10 @@ Nodes = namedtuple("Nodes", "t s g F J u")
 #: per level l (step h_l = h_base 2^l, one row per level): h_l (s), 1 / h_l (1/s), the newest step's
 #: exact weights int_0^h k (N m^-1.5 s) and int_0^h k(x) (h/2 - x) dx (N m^-1.5 s^2), per mode k the
 #: step weights kappa E_k int_0^h e^{-b x} dx and kappa E_k int_0^h e^{-b x} (h/2 - x) dx, the decay
-#: e^{-b_k h}, and the number of modes still alive on the level (the rest decay below DECAYED)
+#: e^{-b_k h}, the number of modes still alive on the level (the rest decay below DECAYED), and the
+#: newest step's exact weight int_0^h k(x) ((x - h/2)^2 - h^2/12) dx (N m^-1.5 s^3) of the curvature of u'
 LevelTables = namedtuple("LevelTables", "step inv_step newest_integral newest_moment mode_integral mode_moment "
-                         "mode_decay live_modes")
+                         "mode_decay live_modes newest_curvature")
 #: the plate's mobility in the adaptive march: kind 0 (rigid target, or a constant mobility: const),
 #: 1 (E_b on exponential modes), 2 (E_b = factor (e_inf + coef t^-1/2), the fractional law, in closed
 #: form; coef in Pa s^0.5), 3 (E_b = factor (e_inf + coef erfcx(rate sqrt(t))), the CERF law, in closed

@@ -71,15 +71,14 @@ _SPEC = {
                        "without separating ends with status step-budget",
                        bounds=("int", 100, math.inf, "an integer >= 100"),
                        method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000, "ive": 60_000}, unit="1"),
-    "step_tol": _spec(4e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
+    "step_tol": _spec(8e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
                       "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in "
-                      "(0, 0.01); with the default extrapolation the COR's error falls about as step_tol^1.5: the "
-                      "default 4e-4 keeps COR and t0 within 1e-7 of independent references on every preset at "
-                      "0.001..300 m/s (docs: solver options, accuracy table)", bounds=("float", 0.0, 1e-2, "(0, 0.01)"),
-                      unit="1"),
+                      "(0, 0.01); the default 8e-4 keeps COR and t0 within 1e-7 of independent references on every "
+                      "preset at 0.001..300 m/s with the default extrapolation (docs: solver options, accuracy "
+                      "table)", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
     "richardson": _spec(True, ("adaptive",), "adaptive only: march again on the accepted grid with every step "
-                        "divided by 2, 4 and 8 and Richardson-extrapolate the results (eliminates the h^2, h^2.5 and "
-                        "h^3 error terms; 15 times the steps of the grid)"),
+                        "divided by 2, 4 and 8 and Richardson-extrapolate the results (eliminates the h^2, h^3.5 and "
+                        "h^4 error terms; 15 times the steps of the grid)"),
     "max_adaptive_steps": _spec(1_000_000, ("adaptive",), "adaptive only: step budget (integer >= 100); a run that "
                                 "reaches it without separating ends with status step-budget",
                                 bounds=("int", 100, math.inf, "an integer >= 100"), unit="1"),
@@ -138,7 +137,7 @@ class SolverOptions:
     ...
     ValueError: solver option rtol is not used by method 'direct' (it needs method ive); remove it
     >>> opts.replace(method="adaptive").step_tol
-    0.0004
+    0.0008
     """
 
     method: str = _SPEC["method"]["default"]

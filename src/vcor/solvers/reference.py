@@ -27,7 +27,7 @@ Contents (reference: numba kernel)
     soe_reference                  march_soe
     paper_reference                march_paper
     adaptive_reference             march_adaptive (a controlled grid, or the replay of a level plan)
-    adaptive_richardson_reference  adaptive_grids (three grids, Richardson extrapolation)
+    adaptive_richardson_reference  adaptive_grids (four grids, Richardson extrapolation)
     separation_reference           separation_point / locate_separation
 
 Units (SI)
@@ -91,6 +91,7 @@ __all__ = [
     "adaptive_reference",
     "adaptive_richardson_reference",
     "direct_reference",
+    "mean_parabola",
     "paper_reference",
     "parabola_peak",
     "prony_reference",
@@ -569,16 +570,20 @@ class AdaptiveGrid:
 
 
 class ExponentialSumHistory:
-    """Quadratic product integration on a variable grid (``_adaptive_kernels.march_adaptive``).
+    """Product integration on a variable grid (``_adaptive_kernels.march_adaptive``).
 
-    Step j spans [t_{j-1}, t_j], h_j = t_j - t_{j-1}; on it u' = d_j + c_j (tau - tau_j), tau_j its
-    middle, d_j = (u_j - u_{j-1}) / h_j (m^1.5/s), c_j = 2 (d_j - d_{j-1}) / (h_j + h_{j-1}) (c_1 = 0):
-    the parabola through three nodes. The newest step n uses the exact kernel, the older ones the
-    exponential sum k~(x) = kappa (E~_inf + sum_k E_k e^{-b_k x}) (exact for Prony kernels)::
+    Step j spans [t_{j-1}, t_j], h_j = t_j - t_{j-1}, middle tau_j; d_j = (u_j - u_{j-1}) / h_j
+    (m^1.5/s) is the mean of u' over it. On the newest step n, u' is the parabola
+    d_n + c_n (tau - tau_n) + q_n ((tau - tau_n)^2 - h_n^2/12) whose means over steps n, n-1, n-2 are
+    d_n, d_{n-1}, d_{n-2} (solved here as a 3 x 3 linear system, :func:`mean_parabola`); on step 2 the
+    line through the means of steps 1 and 2, c_2 = 2 (d_2 - d_1) / (h_2 + h_1), q_2 = 0; on step 1
+    c_1 = q_1 = 0. Once older, a step keeps d_j + c_j (tau - tau_j). The newest step uses the exact
+    kernel, the older ones the exponential sum k~(x) = kappa (E~_inf + sum_k E_k e^{-b_k x}) (exact
+    for Prony kernels)::
 
-        A_n = d_n I0(h_n) + c_n M(h_n)
+        A_n = d_n I0(h_n) + c_n M(h_n) + q_n Q(h_n)
               + sum_{j<n} sum_k e^{-b_k (t_n - t_j)} (d_j GA_k(h_j) + c_j GB_k(h_j)),
-        I0(h) = int_0^h k,  M(h) = int_0^h k(x) (h/2 - x) dx,
+        I0(h) = int_0^h k,  M(h) = int_0^h k(x) (h/2 - x) dx,  Q(h) = int_0^h k(x) ((x - h/2)^2 - h^2/12) dx,
         GA_k(h) = kappa E_k int_0^h e^{-b_k x} dx,  GB_k(h) = kappa E_k int_0^h e^{-b_k x} (h/2 - x) dx,
 
     (mode 0: b = 0, E~_inf). Here the double sum is evaluated in full at every trial step.
@@ -593,8 +598,7 @@ class ExponentialSumHistory:
         self.rates = np.concatenate(([0.0], b))
         self.t_end = []  # t_j of the accepted steps
         self.parts = []  # per accepted step, d_j GA(h_j) + c_j GB(h_j) per mode
-        self.slope = 0.0  # d of the last accepted step
-        self.h_last = 0.0
+        self.means = []  # (h_j, d_j) of the accepted steps
 
     def _mode_weights(self, h):
         """(GA, GB) per mode for a step h (N m^-1.5 s, N m^-1.5 s^2)."""
@@ -603,15 +607,21 @@ class ExponentialSumHistory:
         return ga, gb
 
     def _newest_weights(self, h):
-        """(I0, M) of the exact kernel for a step h (N m^-1.5 s, N m^-1.5 s^2)."""
+        """(I0, M, Q) of the exact kernel for a step h (N m^-1.5 s, N m^-1.5 s^2, N m^-1.5 s^3)."""
         integral, moment = self.material.first_step(h)
-        return self.kappa * float(integral), -self.kappa * float(moment)
+        curvature = self.material.first_step_second_moment(h)
+        return self.kappa * float(integral), -self.kappa * float(moment), self.kappa * float(curvature)
 
     def slopes(self, h, u_prev, u_n):
-        """(d_n, c_n) of a step h from u_{n-1} to u_n."""
+        """(d_n, c_n, q_n) of a step h from u_{n-1} to u_n."""
         d = (u_n - u_prev) / h
-        c = 2.0 * (d - self.slope) / (h + self.h_last) if self.t_end else 0.0
-        return d, c
+        if not self.means:
+            return d, 0.0, 0.0
+        h1, d1 = self.means[-1]
+        if len(self.means) == 1:
+            return d, 2.0 * (d - d1) / (h + h1), 0.0
+        h2, d2 = self.means[-2]
+        return (d, *mean_parabola((h, h1, h2), (d, d1, d2))[1:])
 
     def older_steps(self, t_n):
         """sum_{j<n} sum_k e^{-b_k (t_n - t_j)} (d_j GA_k + c_j GB_k), N."""
@@ -623,20 +633,35 @@ class ExponentialSumHistory:
     def convolution(self, t_n, h, u_prev):
         """A_n(u_n) for a trial step h ending at t_n (u_prev = u_{n-1})."""
         older = self.older_steps(t_n)
-        i0, moment = self._newest_weights(h)
+        i0, moment, curvature = self._newest_weights(h)
 
         def force(u_n):
-            d, c = self.slopes(h, u_prev, u_n)
-            return older + d * i0 + c * moment
+            d, c, q = self.slopes(h, u_prev, u_n)
+            return older + d * i0 + c * moment + q * curvature
 
         return force
 
     def accept(self, t_n, h, u_prev, u_n):
-        d, c = self.slopes(h, u_prev, u_n)
+        d, c, _ = self.slopes(h, u_prev, u_n)
         ga, gb = self._mode_weights(h)
         self.t_end.append(t_n)
         self.parts.append(d * ga + c * gb)
-        self.slope, self.h_last = d, h
+        self.means.append((h, d))
+
+
+def mean_parabola(sizes, means):
+    """(a, c, q) of p(x) = a + c x + q (x^2 - h_0^2/12), x the time from the middle of the newest of
+    consecutive steps of ``sizes`` (h_0, h_1, h_2: newest first, s), whose means over the steps are
+    ``means`` (d_0, d_1, d_2): the 3 x 3 system of the exact means of 1, x and x^2 over each step,
+    solved in units of h_0 (``_adaptive_kernels.slope_weights`` in closed form)."""
+    h = np.asarray(sizes, dtype=float) / sizes[0]
+    right = 0.5 - np.concatenate(([0.0], np.cumsum(h[:-1])))  # each step's right end, x / h_0
+    left = right - h
+    mean_x = 0.5 * (left + right)
+    mean_x2 = (right**3 - left**3) / (3.0 * h)
+    rows = np.column_stack([np.ones(3), mean_x, mean_x2 - 1.0 / 12.0])
+    a, c, q = np.linalg.solve(rows, np.asarray(means, dtype=float))
+    return float(a), float(c) / sizes[0], float(q) / sizes[0] ** 2
 
 
 def _adaptive_mobility(impact, representation, window):
@@ -715,7 +740,7 @@ class StepControl:
         return None
 
 
-def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
+def adaptive_reference(impact, tc, step_tol=8e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
     """The ``adaptive`` method's march (``_adaptive_kernels.march_adaptive``): :class:`ExponentialSumHistory`
     in the trapezoidal step, steps h_base 2^(level - split) (:class:`AdaptiveGrid`), the levels chosen
     by :class:`StepControl` on every step not in ``plan`` and before the separation node (after it the
@@ -781,7 +806,7 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
 
 
 #: the Richardson grids' error exponents (vcor.solvers.adaptive.RICHARDSON_EXPONENTS)
-RICHARDSON_EXPONENTS = (2.0, 2.5, 3.0)
+RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
 
 
 def richardson_weights(exponents=RICHARDSON_EXPONENTS):
@@ -793,7 +818,7 @@ def richardson_weights(exponents=RICHARDSON_EXPONENTS):
     return np.linalg.solve(rows.T, np.eye(n)[0])
 
 
-def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_tol=1e-10):
+def adaptive_richardson_reference(impact, tc, step_tol=8e-4, rule="force", soe_tol=1e-10):
     """The ``adaptive`` method with Richardson extrapolation (its default): the controlled grid, its
     replays with every step divided by 2, 4, ... (the levels of steps 1..n_sep + N_EXTRA, each repeated
     2, 4, ... times; vcor.solvers.adaptive.SPLIT_LEVELS replays) and the scalars extrapolated with

@@ -38,6 +38,8 @@ def split_keywords(kwargs: dict) -> tuple[dict, dict]:
     >>> split_keywords({"r": 0.005, "method": "direct"})
     ({'method': 'direct'}, {'r': 0.005})
     """
+    if not kwargs:
+        return {}, {}
     solver = {k: v for k, v in kwargs.items() if k in SolverOptions.names()}
     geometry = {k: v for k, v in kwargs.items() if k in GEOMETRY_DEFAULTS}
     unknown = set(kwargs) - set(solver) - set(geometry)
