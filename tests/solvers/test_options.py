@@ -104,7 +104,7 @@ def test_an_option_the_method_ignores_is_an_error_naming_it(method, option, valu
 
 def test_defaults_are_filled_for_the_method_and_unused_options_stay_unset():
     d = SolverOptions().to_dict()  # the default method, adaptive
-    assert d["method"] == "adaptive" and d["step_tol"] == 8e-4 and d["richardson"] is True and d["soe_tol"] == 1e-10
+    assert d["method"] == "adaptive" and d["step_tol"] == 4e-4 and d["richardson"] is True and d["soe_tol"] == 1e-10
     assert d["dt"] is None and d["steps_per_contact"] is None and d["form"] is None and d["rtol"] is None
     d = SolverOptions(method="direct").to_dict()
     assert d["dt"] is None and d["steps_per_contact"] == 2000 and d["max_steps"] == 200_000 and d["form"] == "a"

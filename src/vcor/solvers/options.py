@@ -71,9 +71,9 @@ _SPEC = {
                        "without separating ends with status step-budget",
                        bounds=("int", 100, math.inf, "an integer >= 100"),
                        method_defaults={"soe": 4_000_000, "ive-numba": 4_000_000, "ive": 60_000}, unit="1"),
-    "step_tol": _spec(8e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
+    "step_tol": _spec(4e-4, ("adaptive",), "adaptive only: local error per unit step of s' (the trapezoidal "
                       "error h^2 |g''|/12, g = s') relative to the motion's scale min(v0, |s'| + s / t_c), in "
-                      "(0, 0.01); the default 8e-4 keeps COR and t0 within 1e-7 of independent references on every "
+                      "(0, 0.01); the default 4e-4 keeps COR and t0 within 1e-7 of independent references on every "
                       "preset at 0.001..300 m/s with the default extrapolation (docs: solver options, accuracy "
                       "table)", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
     "richardson": _spec(True, ("adaptive",), "adaptive only: march again on the accepted grid with every step "
@@ -137,7 +137,7 @@ class SolverOptions:
     ...
     ValueError: solver option rtol is not used by method 'direct' (it needs method ive); remove it
     >>> opts.replace(method="adaptive").step_tol
-    0.0008
+    0.0004
     """
 
     method: str = _SPEC["method"]["default"]

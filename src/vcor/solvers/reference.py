@@ -740,7 +740,7 @@ class StepControl:
         return None
 
 
-def adaptive_reference(impact, tc, step_tol=8e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
+def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
     """The ``adaptive`` method's march (``_adaptive_kernels.march_adaptive``): :class:`ExponentialSumHistory`
     in the trapezoidal step, steps h_base 2^(level - split) (:class:`AdaptiveGrid`), the levels chosen
     by :class:`StepControl` on every step not in ``plan`` and before the separation node (after it the
@@ -818,7 +818,7 @@ def richardson_weights(exponents=RICHARDSON_EXPONENTS):
     return np.linalg.solve(rows.T, np.eye(n)[0])
 
 
-def adaptive_richardson_reference(impact, tc, step_tol=8e-4, rule="force", soe_tol=1e-10):
+def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_tol=1e-10):
     """The ``adaptive`` method with Richardson extrapolation (its default): the controlled grid, its
     replays with every step divided by 2, 4, ... (the levels of steps 1..n_sep + N_EXTRA, each repeated
     2, 4, ... times; vcor.solvers.adaptive.SPLIT_LEVELS replays) and the scalars extrapolated with
