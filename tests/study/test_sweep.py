@@ -138,7 +138,7 @@ def test_a_worker_that_dies_stops_the_sweep_with_an_error_not_a_wait(monkeypatch
 
 
 def test_ctrl_c_stops_the_sweep_and_its_processes_within_a_second():
-    with subprocess.Popen([sys.executable, "-c", LONG_SWEEP % (400, 2, "False")], env=ENV, stdout=subprocess.PIPE,
+    with subprocess.Popen([sys.executable, "-c", LONG_SWEEP % (2000, 2, "False")], env=ENV, stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, text=True) as proc:
         try:
             assert proc.stdout.readline().startswith("ready")
@@ -159,7 +159,9 @@ def test_ctrl_c_stops_the_sweep_and_its_processes_within_a_second():
         finally:
             proc.kill()
     print(f"SIGINT to vcor.sweep raising: {took:.3f} s")
-    assert line.startswith("interrupted") and took <= 1.0
+    # 80000 points: several seconds of work on two cores, so the sweep is still solving when SIGINT comes
+    assert line.startswith("interrupted"), f"the sweep printed {line!r} after SIGINT, not 'interrupted'"
+    assert took <= 1.0
     assert not left, "worker processes left behind"
     assert proc.returncode != 0 and "KeyboardInterrupt" in err.splitlines()[-1]
 
