@@ -122,11 +122,15 @@ def _alive(pid):
 def test_a_worker_that_dies_stops_the_sweep_with_an_error_not_a_wait(monkeypatch):
     parent = os.getpid()
     solve_rows = pool.solve_rows
+    first = [True]
 
     def dying(*args, **kwargs):  # a worker killed mid-sweep (out of memory, say): its chunk never comes back
         if os.getpid() != parent:
             time.sleep(1.0)  # dies while the calling process waits for this chunk
             os._exit(9)
+        if first[0]:  # the caller solves chunks too: on a loaded machine it could take them all before the
+            first[0] = False  # worker starts, and no worker would die; this second lets the worker take one
+            time.sleep(1.0)
         return solve_rows(*args, **kwargs)
 
     monkeypatch.setattr(pool, "solve_rows", dying)
