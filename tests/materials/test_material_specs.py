@@ -56,6 +56,8 @@ BAD = [
     ({"model": "sls", "E_glassy": 1e6, "alpha": 10}, ["materials.m", "missing ['beta']"]),
     ({"model": "sls", "E_glassy": 1e6, "alpha": 10, "beta": 20, "eta": 1}, ["unknown ['eta']"]),
     ({"model": "sls", "E_glassy": "soft", "alpha": 10, "beta": 20}, ["materials.m.E_glassy", "number"]),
+    # a modulus written with an unsigned exponent (text to YAML): its real range, and the fix
+    ({"model": "elastic", "E": "7.0e10"}, ["materials.m.E must be in (0, inf) Pa", "write 7.0e+10"]),
     ({"model": "sls", "E_glassy": 1e6, "alpha": 30, "beta": 20}, ["materials.m", "alpha must be in [0, beta]"]),
     ({"model": "prony", "E_inf": 1e6, "E": [-2e6], "beta": [10]}, ["materials.m", "E[0]", "[0, inf) Pa"]),
     ({"model": "prony", "E_inf": 1e6, "E": [2e6, 1e6], "beta": [10]}, ["2 moduli but 1"]),

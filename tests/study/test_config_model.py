@@ -148,6 +148,7 @@ HOSTILE = [
     (_scene(grid={"v0": [1.0], "bta": [600, 1200]}), ["scenes.s.grid.bta", "did you mean 'beta'"]),
     (_scene(grid={"vo": [1.0]}), ["scenes.s.grid", "missing key 'v0'", "'vo' is written: did you mean 'v0'"]),
     ({"shard_size": 0, **_scene()}, ["shard_size", ">= 1"]),
+    ({"scenes": {"s": {"grid": {"v0": [1.0]}}}}, ["scenes.s", "a mapping with 'materials'; or a mapping with 'spheres'"]),
     ({"dem": {"d": {"sphere": {"material": "sls"}}}}, ["dem.d", "missing key 'v0'"]),
     ({"calibrations": {"c": {"data": "x.csv", "material": "sls"}}}, ["calibrations.c", "missing key 'free'"]),
     ({"fits": {"f": {"model": "pronyy"}}}, ["fits.f.model", "did you mean 'prony'"]),

@@ -148,11 +148,14 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
     cls = _materials.REGISTRY[model].cls
     if cls is _materials.Prony:
         return _prony(where, spec, base_dir)
-    params = {k: number(f"{where}.{k}", spec[k], unit="(SI)") for k in required}
+    # the constructor checks each parameter against its own range (and says so for a number written as text);
+    # its message names the parameter, here with the config's path to it
     try:
-        return cls(**params)
+        return cls(**{k: spec[k] for k in required})
     except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+        text = str(exc)
+        named = text.split(" ", 1)[0] in required
+        raise ValueError(f"{where}.{text}" if named else f"{where}: {text}") from None
 
 
 def shift_function(spec: dict, name: str = "material") -> ShiftFunction | None:

@@ -111,6 +111,8 @@ def _form(schema: dict) -> str:
     if "enum" in schema:
         return f"one of {schema['enum']}"
     kind = schema.get("type")
+    if kind is None and set(schema) == {"required"}:  # an alternative that only asks for keys
+        return "a mapping with " + " and ".join(repr(k) for k in schema["required"])
     if kind == "object" and "properties" in schema:
         req = schema.get("required", [])
         opt = [k for k in schema["properties"] if k not in req]
