@@ -40,8 +40,8 @@ import numpy as np
 from .. import provenance as _provenance
 from .receipts import atomic, write_receipt
 
-__all__ = ["NAME_ATTR", "REFERENCES", "cf_name", "decode", "encode", "read_dataset", "scalar_dataset_check",
-           "write_dataset"]
+__all__ = ["NAME_ATTR", "REFERENCES", "archive_form", "cf_name", "decode", "encode", "read_dataset",
+           "scalar_dataset_check", "write_dataset"]
 
 REFERENCES = (
     "Green, I. (2026) The viscoelastic coefficient of restitution: integrating the wave equation with "
@@ -195,15 +195,10 @@ def read_dataset(path):
     return decode(xr.load_dataset(path))
 
 
-def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None,
-                  timestamp: bool = True, identity: str | None = None):
-    """Write ``ds`` as NetCDF4 (float64, zlib level 1, no lossy packing; CF encoding by :func:`encode`)
-    with global attributes Conventions, title, history, source (vcor version, code fingerprint, git
-    commit), ``code_fingerprint``, references and ``extra_attrs`` (dicts become JSON, their keys in the
-    given order: a scene's grid axes keep theirs). ``timestamp=False`` leaves the time out of ``history``
-    so that the same inputs give the same bytes. The file is written atomically and gets a receipt
-    (:mod:`vcor.io.receipts`) for ``identity``. :func:`read_dataset` reads it back."""
-    path = Path(path)
+def archive_form(ds, *, title: str, extra_attrs: dict | None = None, command: str | None = None,
+                 timestamp: bool = True):
+    """``(dataset, encoding)``: ``ds`` as :func:`write_dataset` hands it to the netCDF4 writer (CF encoding by
+    :func:`encode`, global attributes added)."""
     now = _dt.datetime.now(_dt.UTC).replace(microsecond=0).isoformat()
     cmd = command or " ".join(sys.argv[:1])
     attrs = {
@@ -218,6 +213,19 @@ def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, comm
         attrs[k] = v if isinstance(v, (str, int, float)) else json.dumps(v, default=float)
     out, encoding = encode(ds)
     out.attrs.update(attrs)
+    return out, encoding
+
+
+def write_dataset(ds, path, *, title: str, extra_attrs: dict | None = None, command: str | None = None,
+                  timestamp: bool = True, identity: str | None = None):
+    """Write ``ds`` as NetCDF4 (float64, zlib level 1, no lossy packing; CF encoding by :func:`encode`)
+    with global attributes Conventions, title, history, source (vcor version, code fingerprint, git
+    commit), ``code_fingerprint``, references and ``extra_attrs`` (dicts become JSON, their keys in the
+    given order: a scene's grid axes keep theirs). ``timestamp=False`` leaves the time out of ``history``
+    so that the same inputs give the same bytes. The file is written atomically and gets a receipt
+    (:mod:`vcor.io.receipts`) for ``identity``. :func:`read_dataset` reads it back."""
+    path = Path(path)
+    out, encoding = archive_form(ds, title=title, extra_attrs=extra_attrs, command=command, timestamp=timestamp)
     with atomic(path) as tmp:
         out.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=encoding)
     write_receipt(path, identity)

@@ -79,7 +79,8 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
         Dimensions ``material`` and the grid's axes; one variable per result field with ``units`` and
         ``long_name``, ``status`` and ``validity`` as CF flags, the global attributes that make it enough
         to re-run its scene. It equals the workflow's ``sweep.nc`` but for the points' ``wall_time`` and
-        the ``history`` attribute (it is that file's content, read back from the same writer).
+        the ``history`` attribute (it is that file's content: the same writer's encoding, read back in memory,
+        :class:`vcor.io.archived.Archive`).
 
     Raises
     ------
@@ -154,7 +155,8 @@ def fit(fit: dict | str, *, config: Any = None, name: str | None = None) -> Fitt
     Returns
     -------
     Fitted
-        The material and the dataset of ``<material_dir>/<name>.nc`` (read back from the workflow's writer).
+        The material and the dataset of ``<material_dir>/<name>.nc`` (the workflow's writer's encoding, read
+        back in memory).
 
     Examples
     --------
