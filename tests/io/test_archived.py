@@ -5,13 +5,10 @@ included, for every kind of dataset vcor archives."""
 import dataclasses
 
 import numpy as np
-import pytest
 import xarray as xr
 
 import vcor
 from vcor.io.netcdf import read_dataset
-
-pytestmark = pytest.mark.slow
 
 COMMAND = "vcor test"
 V0 = [1.0, 3.0, 10.0]
