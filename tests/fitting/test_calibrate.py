@@ -195,3 +195,16 @@ def test_prony_terms_are_free_parameters():
     assert np.all(np.abs(cal.estimate / np.array([truth.E[0], truth.beta[0]]) - 1) < 1e-4), cal.report()
     with pytest.raises(ValueError, match=r"free.E\[3\]"):
         C.calibrate(C.CorData(v0, cor), start, {"E[3]": [1e6, 1e9]})
+
+
+@pytest.mark.parametrize("free", [{"alpha": [10.0, 5000.0]}, {"beta": [100.0, 1e5]}])
+def test_an_estimate_on_the_materials_own_limit_is_not_identified_and_its_band_is_finite(free):
+    """Elastic-looking data (COR 0.99 at every speed) push an SLS to alpha = beta, beyond which it is no SLS:
+    the fit stops there (the other side refused), the parameter is reported not identified, naming the limit,
+    and the band takes the one side that is a material (a central difference there raised)."""
+    v0 = np.array([0.5, 1.0, 2.0, 5.0, 12.0])
+    cal = C.calibrate(C.CorData(v0, np.full(5, 0.99)), M.SLS(20e6, 900.0, 1000.0), free, geometry={"r": 0.005})
+    assert not cal.identified[0] and "own limit" in cal.notes[0] and "alpha must be in [0, beta]" in cal.notes[0]
+    assert np.isinf(cal.stderr[0])
+    cor, lower, upper = C.band(cal, [1.0, 3.0])
+    assert np.all(np.isfinite(cor)) and np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))

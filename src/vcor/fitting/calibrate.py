@@ -58,6 +58,8 @@ SCALE_PARAMS = ("modulus_scale", "log_aT")
 COND_LIMIT = 1e-6
 #: a parameter whose 1-sigma uncertainty is more than this factor is reported as not identified
 FACTOR_LIMIT = 10.0
+#: relative difference step of the fit's Jacobian (scipy's ``diff_step``, in the fitted coordinates)
+DIFF_STEP = 1e-4
 #: keys of a calibration spec
 SPEC_KEYS = {"data", "material", "free", "geometry", "solver"}
 _UNITS = {"v0": {"m/s": 1.0, "cm/s": 0.01}, "cor": {"-": 1.0, "": 1.0, "1": 1.0},
@@ -304,6 +306,23 @@ def _identified(names, fit, box, sx, linear, svd):
     return identified, notes
 
 
+def _material_limits(model, x) -> list[tuple[int, str]]:
+    """(parameter index, why) for each fitted parameter whose estimate lies within the fit's difference step
+    (``DIFF_STEP``) of an invalid material (SLS alpha > beta, say): the fit refused that side (``_REFUSED``),
+    so its Jacobian there says nothing about the data."""
+    out = []
+    for i in range(x.size):
+        e = np.zeros_like(x)
+        e[i] = DIFF_STEP * max(1.0, abs(float(x[i])))
+        for sign in (1.0, -1.0):
+            try:
+                model.material(x + sign * e)
+            except ValueError as exc:
+                out.append((i, str(exc)))
+                break
+    return out
+
+
 def _intervals(model, x, sx, identified, q):
     """(estimate, stderr, lower95, upper95) in the parameters' own units (inf where not identified)."""
     p = model.params(x)
@@ -335,7 +354,7 @@ def _solve(model, data, box):
         return (model.cor(x, data.v0, mat) - data.cor) * w
 
     t_start = time.perf_counter()
-    fit = least_squares(residual, np.zeros(len(model.names)), bounds=box, jac="3-point", diff_step=1e-4,
+    fit = least_squares(residual, np.zeros(len(model.names)), bounds=box, jac="3-point", diff_step=DIFF_STEP,
                         x_scale=1.0, xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=200)
     return fit, time.perf_counter() - t_start
 
@@ -376,6 +395,10 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
     cov, sv, Vt, small = _covariance(J, r, sigma_known, dof)
     sx = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     identified, notes = _identified(names, fit, box, sx, model.linear, (sv, Vt, small))
+    for i, why in _material_limits(model, x):
+        identified[i], notes[i] = False, (f"the estimate is on the material's own limit (a step of the fit's "
+                                          f"difference beyond it is not a valid material: {why}): the data push "
+                                          f"it beyond what the model allows")
     q = float(norm.ppf(0.975) if sigma_known else (student_t.ppf(0.975, dof) if dof > 0 else math.nan))
     p, stderr, lower, upper = _intervals(model, x, sx, identified, q)
     mat = model.material(x)
@@ -386,6 +409,26 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
                        residual=data.cor - cor_fit, chi2=float(r @ r), dof=dof, sigma_known=sigma_known,
                        singular_values=sv, cov_x=cov, nfev=model.nfev, wall_time=wall, message=str(fit.message),
                        geometry=geometry, options=options, base=base)
+
+
+def _slope(model, x, e, c, v0s):
+    """d COR / d x along ``e`` at x (``c``: the COR there): central, or one-sided where one side leaves the
+    materials' own range (an estimate on a constraint such as an SLS's alpha = beta, whose fit had the other
+    side refused)."""
+    sides = []
+    for sign in (1.0, -1.0):
+        try:
+            sides.append((sign, model.material(x + sign * e)))
+        except ValueError:
+            continue
+    h = float(np.max(np.abs(e)))
+    if len(sides) == 2:
+        return (model.cor(x + e, v0s, sides[0][1]) - model.cor(x - e, v0s, sides[1][1])) / (2 * h)
+    if not sides:
+        raise ValueError(f"calibration: no material within {h:g} (fitted coordinate) of the estimate along one "
+                         f"parameter is valid")
+    sign, mat = sides[0]
+    return sign * (model.cor(x + sign * e, v0s, mat) - c) / h
 
 
 def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -415,7 +458,7 @@ def band(cal: Calibration, v0s) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     for i in range(x.size):
         e = np.zeros_like(x)
         e[i] = h
-        G[:, i] = (model.cor(x + e, v0s) - model.cor(x - e, v0s)) / (2 * h)
+        G[:, i] = _slope(model, x, e, c, v0s)
     cov = np.nan_to_num(cal.cov_x, nan=0.0)
     sd = np.sqrt(np.clip(np.einsum("ij,jk,ik->i", G, cov, G), 0.0, None))
     q = float(norm.ppf(0.975) if cal.sigma_known else (student_t.ppf(0.975, cal.dof) if cal.dof > 0 else math.nan))

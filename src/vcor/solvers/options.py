@@ -15,6 +15,7 @@ identity).
 from __future__ import annotations
 
 import dataclasses
+import difflib
 import math
 import numbers
 from dataclasses import dataclass
@@ -264,9 +265,11 @@ def solver_options(options=None, **kwargs) -> SolverOptions:
     if isinstance(options, SolverOptions):
         return options
     if isinstance(options, dict):
-        unknown = set(options) - set(_SPEC)
+        unknown = sorted(set(options) - set(_SPEC), key=str)
         if unknown:
-            raise ValueError(f"unknown solver option(s) {sorted(unknown)}; allowed: {sorted(_SPEC)}")
+            close = difflib.get_close_matches(str(unknown[0]), list(_SPEC), n=1, cutoff=0.6)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise ValueError(f"unknown solver option(s) {unknown}; allowed: {sorted(_SPEC)}{hint}")
         return _validated(**options)
     raise ValueError(f"options must be a SolverOptions or a dict, got {type(options).__name__}")
 

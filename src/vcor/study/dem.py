@@ -32,7 +32,7 @@ from ..dem.laws import HEREDITARY, MODELS
 from ..materials.catalogue import Catalogue
 from ..materials.shift import at_temperature
 from ..materials.specs import from_spec, shift_function
-from ..solvers.options import DEFAULT_METHOD, SolverOptions
+from ..solvers.options import DEFAULT_METHOD, solver_options
 from .grid import axis_values
 
 __all__ = ["DEM_KEYS", "check_dem", "dem_material", "entry_models", "hereditary_refusal", "run_dem", "solver_method"]
@@ -166,7 +166,7 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
             raise ValueError(f"{where}.models: {HEREDITARY} cannot take this collision: {why}")
     v0 = _speeds(spec, where)
     try:
-        SolverOptions(**(spec.get("solver") or {}))  # checked now, used by the job
+        solver_options(spec.get("solver") or {})  # checked now, used by the job
     except ValueError as exc:
         raise ValueError(f"{where}.solver: {exc}") from None
     temps = [None]
