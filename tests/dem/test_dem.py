@@ -159,7 +159,8 @@ def _with(**changes):
      ["dem.d", "sphere.material (sls) on target.sphere.material (kelvin-voigt)", "no method"]),
     (_with(speed=3), ["dem.d", "speed"]),
     (_with(sphere={"material": {"model": "prony", "file": "../x.nc"}}), ["dem.d.sphere.material.file", "inside"]),
-    (_with(solver={"methd": "direct"}), ["dem.d.solver", "unknown solver option(s) ['methd']", "did you mean 'method'"]),
+    (_with(solver={"methd": "direct"}),
+     ["dem.d.solver", "unknown solver option(s) ['methd']", "did you mean 'method'"]),
 ], ids=["two kinds", "reversed range", "zero speed", "one speed", "T without shift", "unknown model",
         "unknown material", "no material", "Kelvin-Voigt partner", "unknown key", "file outside", "solver key"])
 def test_bad_dem_entries_are_refused_before_any_job(cfg, words):
