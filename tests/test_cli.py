@@ -327,3 +327,18 @@ def test_export_writes_a_tidy_table_with_units(tmp_path, capsys):
                                                               h=float(first["h [m]"])).cor, rel=1e-15)
     assert cli.main(["export", str(tmp_path / "missing.nc")]) == 2
     assert "does not exist" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", [["sweep", "--scene", "s"], ["calibrate", "--name", "c"]])
+def test_an_output_path_that_cannot_be_a_file_is_refused_before_any_work(tmp_path, capsys, monkeypatch, command):
+    """--out naming a folder is refused in one line, exit code 2, and nothing is solved (the rename would fail
+    after all the work; on a device node it would replace the device)."""
+    from vcor.study import api
+
+    config = tmp_path / "c.yaml"
+    config.write_text("scenes:\n  s: {materials: [sls], grid: {v0: [1.0]}}\n")
+    monkeypatch.setattr(api, "resolve_scene", lambda *a, **k: pytest.fail("work started"))
+    monkeypatch.setattr(api, "resolve_entry", lambda *a, **k: pytest.fail("work started"))
+    assert cli.main([command[0], "--config", str(config), *command[1:], "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"--out '{tmp_path}' is a folder" in err

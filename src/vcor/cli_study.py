@@ -56,9 +56,11 @@ def add_commands(sub) -> None:
 
 
 def _sweep(args) -> int:
+    from .io.receipts import writable_file
     from .study.api import sweep_archive
     from .study.summary import outcome_of
 
+    writable_file(args.out, "--out")
     try:
         archive = sweep_archive(args.name, config=args.config, workers=args.workers, progress=args.progress)
     except KeyboardInterrupt:
@@ -71,8 +73,12 @@ def _sweep(args) -> int:
 
 
 def _fit(args) -> int:
+    from .io.receipts import writable_file
     from .study.api import fit
 
+    writable_file(args.out, "--out")
+    if args.table:
+        writable_file(args.table, "--table")
     fitted = fit(args.name, config=args.config)
     fitted.write(args.out, table=args.table)
     print(f"vcor fit: {args.name}: {fitted.material.to_dict()}: {args.out}", file=sys.stderr)
@@ -80,8 +86,10 @@ def _fit(args) -> int:
 
 
 def _calibrate(args) -> int:
+    from .io.receipts import writable_file
     from .study.api import calibrate
 
+    writable_file(args.out, "--out")
     calibrated = calibrate(args.name, config=args.config)
     sys.stderr.write(calibrated.report())
     calibrated.write(args.out)

@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from vcor.io.netcdf import write_dataset
-from vcor.io.receipts import atomic, atomic_text
+from vcor.io.receipts import atomic, atomic_text, writable_file
 
 
 @pytest.fixture(params=[0o022, 0o077, 0o002])
@@ -33,3 +33,17 @@ def test_a_failed_write_leaves_nothing(tmp_path):
         tmp.write_text("half")
         raise RuntimeError("killed")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_folder_a_pipe_or_a_file_as_folder_is_refused_before_writing(tmp_path):
+    pipe = tmp_path / "pipe"
+    os.mkfifo(pipe)
+    (tmp_path / "plain").write_text("x")
+    for target, words in [(tmp_path, "is a folder"), (pipe, "not a regular file"),
+                          (tmp_path / "plain" / "d.nc", "is a file, not a folder")]:
+        with pytest.raises(ValueError, match=words):
+            atomic_text(target, "x")
+    assert stat.S_ISFIFO(pipe.stat().st_mode) and sorted(p.name for p in tmp_path.iterdir()) == ["pipe", "plain"]
+    if os.path.isdir("/proc/self"):
+        with pytest.raises(ValueError, match="cannot write in the folder '/proc'"):
+            writable_file("/proc/x.nc", "--out")

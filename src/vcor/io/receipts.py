@@ -20,17 +20,41 @@ import os
 import tempfile
 from pathlib import Path
 
-__all__ = ["RECEIPTS", "atomic", "atomic_text", "problem", "quarantine", "receipt_path", "verified", "write_receipt"]
+__all__ = ["RECEIPTS", "atomic", "atomic_text", "problem", "quarantine", "receipt_path", "verified", "writable_file",
+           "write_receipt"]
 
 #: the folder of the receipts, beside the files they describe
 RECEIPTS = ".receipts"
 
 
+def writable_file(path, what: str = "output file") -> Path:
+    """``path`` as a file :func:`atomic` may write, checked before any work: not an existing folder, device,
+    pipe or socket (the rename would replace a device node with a regular file, and fails on a folder), in
+    a folder that exists or can be made, and where this process can create a file (tried). ValueError
+    naming ``what``."""
+    path = Path(path)
+    if (path.exists() or path.is_symlink()) and not path.is_file():
+        kind = "a folder" if path.is_dir() else "not a regular file (a device, pipe or socket, or a broken link)"
+        raise ValueError(f"{what} {str(path)!r} is {kind}: give the path of a file to write")
+    folder = path.parent
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    if not folder.is_dir():
+        raise ValueError(f"{what} {str(path)!r}: {str(folder)!r} is a file, not a folder")
+    try:  # the one sure test (permissions, a read-only or virtual file system such as /proc)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as exc:
+        raise ValueError(f"{what} {str(path)!r}: cannot write in the folder {str(folder)!r} ({exc.strerror})") from None
+    return path
+
+
 @contextlib.contextmanager
 def atomic(path):
     """Yield a temporary path in ``path``'s folder; on success it is renamed to ``path`` (atomic on one
-    file system), on an exception it is removed and ``path`` is left as it was."""
-    path = Path(path)
+    file system), on an exception it is removed and ``path`` is left as it was. ``path`` must be a file
+    :func:`writable_file` accepts (else ValueError, before anything is written)."""
+    path = writable_file(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
     os.close(fd)
