@@ -145,6 +145,7 @@ HOSTILE = [
     (_scene(grid={"v0": [1, 1, 1]}), ["scenes.s.grid.v0", "1 listed more than once"]),
     (_scene(grid={"v0": [1.0, 0.1 * 3, 0.3]}), ["scenes.s.grid.v0", "0.3 listed more than once"]),
     (_scene(materials=["sl"]), ["scenes.s.materials", "unknown material 'sl'"]),
+    (_scene(materials=["sls", "sls"]), ["scenes.s.materials", "each value at most once"]),
     (_scene(grid={"v0": [1.0], "bta": [600, 1200]}), ["scenes.s.grid.bta", "did you mean 'beta'"]),
     (_scene(grid={"vo": [1.0]}), ["scenes.s.grid", "missing key 'v0'", "'vo' is written: did you mean 'v0'"]),
     ({"shard_size": 0, **_scene()}, ["shard_size", ">= 1"]),
