@@ -7,6 +7,8 @@ import math
 from pathlib import Path
 
 import numpy as np
+import re
+
 import pytest
 import yaml
 
@@ -306,7 +308,7 @@ def test_cached_geometries_and_options_keep_the_type_of_a_value():
 
 
 def test_a_number_read_as_text_says_why():
-    """PyYAML reads ``3.0e7`` (an exponent without its sign) as text: the refusal says how to write it."""
+    """PyYAML reads ``3.0e7`` (no sign in the exponent) as text: the refusal says how to write it."""
     from vcor.checks import number
     from vcor.materials.specs import from_spec
 
@@ -318,3 +320,19 @@ def test_a_number_read_as_text_says_why():
     with pytest.raises(ValueError) as exc:
         number("x", "abc")
     assert "text, not a number" not in str(exc.value)
+
+
+@pytest.mark.parametrize("written, fix", [("3.0e7", "3.0e+7"), ("3e+7", "3.0e+7"), ("1e-9", "1.0e-9")])
+def test_every_number_yaml_reads_as_text_gets_the_fix_in_material_specs_and_in_the_config(written, fix):
+    """YAML 1.1 reads an exponent as a number only with a dot in the mantissa and a sign in the exponent; the
+    material check and the config schema (grids, solver options) both say how to write it."""
+    from vcor.materials.specs import from_spec
+    from vcor.study.inputs import schema_path
+    from vcor.study.schema import check_schema
+
+    value = yaml.safe_load(f"x: {written}")["x"]
+    assert isinstance(value, str)
+    with pytest.raises(ValueError, match=f"write {re.escape(fix)}"):
+        from_spec({"model": "elastic", "E": value}, name="m")
+    with pytest.raises(ValueError, match=rf"scenes\.s\.grid\.v0\[0\].*write {re.escape(fix)}"):
+        check_schema({"scenes": {"s": {"materials": ["sls"], "grid": {"v0": [value]}}}}, schema_path())

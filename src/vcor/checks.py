@@ -11,7 +11,7 @@ import functools
 import math
 import numbers
 
-__all__ = ["interned", "number", "positive", "shown"]
+__all__ = ["interned", "number", "positive", "shown", "text_hint"]
 
 
 def _interval(lo, hi, lo_open, hi_open) -> str:
@@ -24,7 +24,7 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
     naming ``name`` and the interval (with ``unit``)."""
     if type(value) is not float and (isinstance(value, bool) or not isinstance(value, numbers.Real)):
         raise ValueError(f"{name} must be in {_where(lo, hi, lo_open, hi_open, unit)} (a number), got {shown(value)}"
-                         + _text_hint(value))
+                         + text_hint(value))
     try:
         v = float(value)
     except (OverflowError, ValueError):  # an int beyond the float range, an exotic Real
@@ -36,19 +36,33 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
     return v
 
 
-def _text_hint(value) -> str:
-    """For a number that arrived as text, why: PyYAML (YAML 1.1) reads an exponent without its sign,
-    ``3.0e7``, as text (``3.0e+7`` is a number); else a quoted number. Nothing for other values."""
+def text_hint(value) -> str:
+    """For a number that arrived as text, why, and how to write it: PyYAML (YAML 1.1) reads a number with
+    an exponent as a number only with a dot in the mantissa and a sign in the exponent (``3.0e+7``;
+    ``3.0e7``, ``3e+7`` and ``1e-9`` are text); otherwise a quoted number. "" for any other value.
+
+    Examples
+    --------
+    >>> text_hint("3e7")
+    ': text, not a number (YAML reads a number with an exponent only with a dot and a signed exponent: write 3.0e+7)'
+    >>> text_hint("2.5")
+    ': text, not a number (write it without quotes)'
+    """
     if not isinstance(value, str):
         return ""
     try:
         float(value)
     except ValueError:
         return ""
-    text = value.lower()
-    if "e" in text and "e+" not in text and "e-" not in text:
-        fixed = text.replace("e", "e+")
-        return f": text, not a number (YAML reads an exponent without its sign as text: write {fixed})"
+    text = value.strip().lower()
+    if "e" in text:
+        mantissa, exponent = text.split("e", 1)
+        if "." not in mantissa:
+            mantissa += ".0"
+        if exponent[:1] not in "+-":
+            exponent = "+" + exponent
+        return (f": text, not a number (YAML reads a number with an exponent only with a dot and a signed "
+                f"exponent: write {mantissa}e{exponent})")
     return ": text, not a number (write it without quotes)"
 
 

@@ -19,6 +19,8 @@ import difflib
 import functools
 from pathlib import Path
 
+from ..checks import text_hint
+
 __all__ = ["SchemaError", "check_schema", "explain", "load_schema"]
 
 
@@ -171,7 +173,7 @@ def explain(error, schema: dict) -> str:
     if rule == "const":
         return f"{where}: {_short(given)} is not allowed; allowed: {error.validator_value!r}"
     if rule == "type":
-        return f"{where}: expected {_form({'type': error.validator_value})}, got {_short(given)}"
+        return f"{where}: expected {_form({'type': error.validator_value})}, got {_short(given)}{text_hint(given)}"
     limits = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}
     if rule in limits:
         return f"{where}: must be {limits[rule]} {error.validator_value}, got {_short(given)}"
