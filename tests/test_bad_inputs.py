@@ -4,11 +4,10 @@ allowed range, before any work is done. Rows that a user might expect to fail bu
 (the paper's own elastic limit in case 1, a fit to one domain only) are in ``VALID`` below."""
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
-import re
-
 import pytest
 import yaml
 
