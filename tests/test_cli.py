@@ -342,3 +342,19 @@ def test_an_output_path_that_cannot_be_a_file_is_refused_before_any_work(tmp_pat
     assert cli.main([command[0], "--config", str(config), *command[1:], "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and f"--out '{tmp_path}' is a folder" in err
+
+
+def test_the_getting_started_page_shows_what_vcor_impact_prints(capsys):
+    """docs/getting-started.md quotes `vcor impact --material sls --v0 10`: every line but the two times (which
+    the page says vary) is what the command prints now."""
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "getting-started.md").read_text()
+    block = page.split("machine to machine):\n\n```text\n", 1)[1].split("```", 1)[0]
+    assert cli.main(["impact", "--material", "sls", "--v0", "10"]) == 0
+    printed = capsys.readouterr().out
+
+    def steady(text):
+        return [line for line in text.splitlines() if not line.startswith(("wall_time", "kernel_load_time"))]
+
+    assert steady(block) == steady(printed)
