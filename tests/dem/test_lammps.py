@@ -30,3 +30,28 @@ def test_lammps_reproduces_the_fitted_laws(lmp, tmp_path, material, target):
             worst = max(worst, abs(got - want))
             assert abs(got - want) <= 1e-3, (model, v0, got, want)
     print(f"\n{material}, {target}: largest |LAMMPS - cor_model| {worst:.1e}")
+
+
+def test_the_header_recipe_of_each_temperature_gives_that_temperatures_cor(lmp, tmp_path):
+    """A temperature entry's deck lists, per temperature, the -var values to run it with (the modulus E as
+    well as eta_n0: both change with the temperature); run so, LAMMPS gives that temperature's cor_model."""
+    import re
+
+    from vcor.study import dem
+    from vcor.study.config import load_project
+
+    spec = {"sphere": {"material": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200,
+                                    "shift": {"model": "wlf", "C1": 8.0, "C2": 120.0, "T_ref": 20.0}}, "r": 0.005},
+            "target": {"sphere": {}}, "v0": [0.5, 2.0], "T": [0.0, 40.0], "models": ["lammps-viscoelastic"]}
+    cols, fits, temps = dem.run_dem("hot", spec, load_project({"dem": {"hot": spec}}, ".").catalogue)
+    ds = export.dem_dataset("hot", cols, fits, temps)
+    deck = tmp_path / "in.pair"
+    lammps.write_deck(deck, ds)
+    rows = re.findall(r"^#   T = (\S+) degC: (.*?)   \(E in Pa\)$", deck.read_text(), flags=re.M)
+    assert [float(t) for t, _ in rows] == [0.0, 40.0]
+    for i, (_, recipe) in enumerate(rows):
+        args = recipe.split()
+        assert args[:2] == ["-var", "E"] and "eta_n0" in args
+        got = cor_of(run_lammps(lmp, deck, "-var", "v0", "2.0", *args))
+        want = float(ds["cor_model"].sel(model="lammps-viscoelastic").values[i, 1])
+        assert abs(got - want) <= 1e-3, (temps[i], got, want)

@@ -6,8 +6,9 @@ relative normal speed after the contact over the approach speed v0 (m/s). The de
 dataset's ``hertz/material`` modulus E (Pa), Poisson ratio and the fitted parameters; ``-var model
 viscoelastic`` (the default: ``damping viscoelastic`` with eta_n0 and ``limit_damping``) or ``-var
 model coeff_restitution`` (the constant e, without ``limit_damping``, where its COR is e exactly)
-picks the law, and ``-var eta_n0``, ``-var e`` override the values (a temperature sweep lists them
-per temperature in the header). The time step is the elastic Hertz contact time over ``nsteps``
+picks the law, and ``-var E``, ``-var eta_n0``, ``-var e`` override the values (a temperature sweep lists
+all three per temperature in the header: the deck's defaults are the first temperature's, and the
+modulus changes with the temperature as the damping does). The time step is the elastic Hertz contact time over ``nsteps``
 (default 2000: the COR then agrees with the law's to a few 1e-5; LAMMPS's velocity-Verlet step
 evaluates the dashpot at the half-step velocity, an error about 0.04 / nsteps).
 """
@@ -198,7 +199,7 @@ def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
         pick = (lambda v, i=i: float(ds[v].values[i] if has_t else ds[v].values))
         prefix = f"T = {float(ds['T'].values[i]):g} degC: " if has_t else ""
         coefs = "  ".join(f"-var {_LAWS[m][1]} {pick(_LAWS[m][1]):.10g}" for m in present)
-        rows.append(f"#   {prefix}{coefs}  (E {pick('E_lammps'):.10g} Pa)")
+        rows.append(f"#   {prefix}-var E {pick('E_lammps'):.10g}  {coefs}   (E in Pa)")
     radii, dens = contact["radii_m"], contact["densities_kg_m-3"]
     law_vars = "".join(f"variable {_LAWS[m][1]:<7s} index {first(_LAWS[m][1]):.12g}\n" for m in present)
     values = {"E": first("E_lammps"), "nu": contact["nu"], "model": _LAWS[present[0]][0], "law_vars": law_vars,
