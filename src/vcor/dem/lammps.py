@@ -6,11 +6,12 @@ relative normal speed after the contact over the approach speed v0 (m/s). The de
 dataset's ``hertz/material`` modulus E (Pa), Poisson ratio and the fitted parameters; ``-var model
 viscoelastic`` (the default: ``damping viscoelastic`` with eta_n0 and ``limit_damping``) or ``-var
 model coeff_restitution`` (the constant e, without ``limit_damping``, where its COR is e exactly)
-picks the law, and ``-var E``, ``-var eta_n0``, ``-var e`` override the values (a temperature sweep lists
-all three per temperature in the header: the deck's defaults are the first temperature's, and the
-modulus changes with the temperature as the damping does). The time step is the elastic Hertz contact time over ``nsteps``
-(default 2000: the COR then agrees with the law's to a few 1e-5; LAMMPS's velocity-Verlet step
-evaluates the dashpot at the half-step velocity, an error about 0.04 / nsteps).
+picks the law, and ``-var E``, ``-var eta_n0``, ``-var e`` override the values (a temperature sweep
+lists all three per temperature in the header: the deck's defaults are the first temperature's, and
+the modulus changes with the temperature as the damping does). The time step is the elastic Hertz
+contact time over ``nsteps`` (default 2000: the COR then agrees with the law's to a few 1e-5;
+LAMMPS's velocity-Verlet step evaluates the dashpot at the half-step velocity, an error about
+0.04 / nsteps).
 """
 
 from __future__ import annotations
