@@ -358,3 +358,8 @@ def test_the_getting_started_page_shows_what_vcor_impact_prints(capsys):
         return [line for line in text.splitlines() if not line.startswith(("wall_time", "kernel_load_time"))]
 
     assert steady(block) == steady(printed)
+
+
+def test_a_missing_material_file_is_named_as_a_missing_file(capsys):
+    assert cli.main(["impact", "--material", "no-such-file.nc", "--v0", "2"]) == 2
+    assert "--material 'no-such-file.nc': no such file" in capsys.readouterr().err

@@ -390,6 +390,8 @@ def _impact(args) -> int:
     name = args.material
     if name.endswith((".nc", ".json")) and Path(name).is_file():
         material = from_file(name)
+    elif name.endswith((".nc", ".json")) and name not in _names(catalogue):
+        raise ValueError(f"--material {name!r}: no such file (a material file .nc or .json, or a material name)")
     else:
         catalogue.check(name, "--material")
         material = catalogue.material(name)
@@ -448,11 +450,16 @@ def _material_lines(row: dict) -> list[str]:
     return lines
 
 
-def _materials(args) -> int:
+def _names(catalogue) -> list[str]:
+    """Every material name a command may take: the presets, then the config's materials, fits and calibrations."""
     from .materials.presets import PRESETS
 
+    return [*PRESETS, *catalogue.specs, *catalogue.fits, *catalogue.calibrations]
+
+
+def _materials(args) -> int:
     catalogue = _catalogue(args.config)
-    names = [*PRESETS, *catalogue.specs, *catalogue.fits, *catalogue.calibrations]
+    names = _names(catalogue)
     rows = [_material_row(catalogue, name, args.config) for name in names]
     if args.json:
         print(json.dumps(rows, indent=2))
