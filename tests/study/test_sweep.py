@@ -53,6 +53,8 @@ def test_chunks_hand_out_every_point_once_largest_work_first():
 
 @pytest.mark.parametrize(("kwargs", "words"), [
     ({"scene": {"materials": ["slss"], "grid": {"v0": [1]}}}, "scene.materials: unknown material 'slss'"),
+    ({"scene": {"materials": ["SLS"], "grid": {"v0": [1]}}}, "did you mean 'sls'?"),
+    ({"scene": "my-first"}, "scene: 'my-first' names a scene, but no config was given: pass config="),
     ({"scene": {"materials": ["sls"], "grid": {"v0": [1], "bta": [1]}}}, "scene.grid.bta: "),
     ({"scene": {"materials": ["sls"], "grid": {"v0": [1, 2, 1]}}}, "scene.grid.v0: 1 listed more than once"),
     ({"scene": {"materials": ["sls"], "grid": {"v0": [1]}}, "workers": 0}, "workers must be an integer >= 1"),

@@ -18,6 +18,7 @@ materials by identity, so a changed spec, table, data file or code recomputes ex
 
 from __future__ import annotations
 
+import difflib
 import functools
 import hashlib
 import json
@@ -77,10 +78,13 @@ class Catalogue:
             for source, block in (("config", self.specs), ("fit", self.fits), ("calibration", self.calibrations)):
                 if name in block:
                     return source
+        known = [*PRESETS, *self.specs, *self.fits, *self.calibrations]
+        close = difflib.get_close_matches(str(name).lower(), known, n=1, cutoff=0.6)
         raise ValueError(f"unknown material {name!r}; presets {sorted(PRESETS)}"
                          + "".join(f", {label} {sorted(block)}" for label, block in
                                    (("config materials", self.specs), ("fits", self.fits),
-                                    ("calibrations", self.calibrations)) if block))
+                                    ("calibrations", self.calibrations)) if block)
+                         + (f"; did you mean {close[0]!r}?" if close else ""))
 
     def subset(self, names) -> Catalogue:
         """The catalogue of ``names`` alone, with what they are built from (a calibration's start

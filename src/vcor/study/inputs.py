@@ -191,6 +191,9 @@ def _scene_entry(scene, cfg: dict, config) -> tuple[str, dict, bool]:
     """(name, scene mapping, given by name) of the ``scene`` argument."""
     scenes = cfg.get("scenes") or {}
     if isinstance(scene, str):
+        if config is None:
+            raise ValueError(f"scene: {scene!r} names a scene, but no config was given: pass config= (the config "
+                             f"file, or its mapping, that defines it), or give the scene itself as a mapping")
         if scene not in scenes:
             raise ValueError(f"{_where(config)}scene: {scene!r} is not a scene of the config "
                              f"({sorted(scenes) if scenes else 'it has none'})")

@@ -104,6 +104,11 @@ TYPE_WORDS = {"object": "a mapping", "array": "a list", "number": "a number", "i
               "string": "a text", "boolean": "true or false", "null": "null"}
 
 
+#: the items of a list, in a config writer's words
+_PLURALS = {"object": "mappings", "array": "lists", "number": "numbers", "integer": "integers", "string": "texts",
+            "boolean": "true/false values"}
+
+
 def _form(schema: dict) -> str:
     """A short description of what a (sub)schema accepts."""
     if "description" in schema and len(schema["description"]) <= 120:
@@ -121,7 +126,8 @@ def _form(schema: dict) -> str:
         return "{" + ", ".join(req + [f"{k}?" for k in opt]) + "}"
     if kind == "array":
         item = schema.get("items", {})
-        return f"a list of {item.get('type', 'values')}s" if isinstance(item, dict) else "a list"
+        kind = item.get("type") if isinstance(item, dict) else None
+        return f"a list of {_PLURALS.get(kind, 'values')}" if isinstance(kind, str) else "a list"
     if isinstance(kind, str):
         return TYPE_WORDS.get(kind, kind)
     return " or ".join(TYPE_WORDS.get(k, k) for k in kind) if isinstance(kind, list) else "a value"
