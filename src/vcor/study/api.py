@@ -70,8 +70,9 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
     workers : int, optional
         Processes that solve (default: the cores available); the result does not depend on it.
     progress : bool, optional
-        A progress bar (points done, ok / flagged / failed, time left): None shows it on a terminal or in
-        Jupyter once the work has lasted two seconds, False never, True always.
+        A progress bar (points done, ok / flagged / failed, time left) once the work has lasted two seconds
+        (a shorter solve shows none): None on a terminal or in Jupyter, True also elsewhere (a log, a
+        pipe), False never.
 
     Returns
     -------
