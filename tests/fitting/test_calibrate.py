@@ -208,3 +208,17 @@ def test_an_estimate_on_the_materials_own_limit_is_not_identified_and_its_band_i
     assert np.isinf(cal.stderr[0])
     cor, lower, upper = C.band(cal, [1.0, 3.0])
     assert np.all(np.isfinite(cor)) and np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))
+
+
+def test_data_points_outside_the_models_range_are_flagged_in_the_report_and_the_dataset(clean):
+    """A calibration fits every point; those whose calibrated result lies outside the model's stated range
+    (vcor.solvers.validity: here indentations beyond 0.1 r at the faster speeds) say so, as sweeps do."""
+    cal = C.calibrate(C.CorData(V0, clean), START, FREE)
+    want = np.array([vcor.simulate(cal.material, float(v)).validity for v in V0])
+    assert want.any() and not want.all()
+    np.testing.assert_array_equal(cal.validity, want)
+    assert f"{int(np.count_nonzero(want))} of {V0.size} data points lie outside" in cal.report()
+    ds = C.calibration_dataset(cal)
+    np.testing.assert_array_equal(ds["validity"].values, want)
+    assert ds["validity"].attrs["standard_name"] == "quality_flag"
+    assert all(("s_max / r" in m) == bool(v) for m, v in zip(ds["validity_message"].values, want))

@@ -47,6 +47,7 @@ from ..materials import REGISTRY
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 from ..materials.specs import from_spec
+from ..solvers import validity as _validity
 from ..solvers.common import UNITS
 
 __all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "check_spec",
@@ -207,6 +208,10 @@ class Calibration:
     geometry: dict = field(default_factory=dict)
     options: dict = field(default_factory=dict)
     base: _materials.Material | None = None
+    #: per data point, the validity of the calibrated model's result there (``vcor.solvers.validity``: an ok
+    #: result outside the model's stated range, e.g. an indentation beyond 0.1 r) and why
+    validity: np.ndarray | None = None
+    validity_message: list = field(default_factory=list)
 
     def report(self) -> str:
         """A plain-text table of the estimates (for logs)."""
@@ -217,6 +222,11 @@ class Calibration:
         for i, n in enumerate(self.names):
             lines.append(f"{n:14s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} {self.lower95[i]:13.6g} "
                          f"{self.upper95[i]:13.6g}  {'yes' if self.identified[i] else 'NO: ' + self.notes[i]}")
+        flagged = [i for i, v in enumerate(self.validity if self.validity is not None else []) if v]
+        if flagged:
+            lines.append(f"# {len(flagged)} of {len(self.data.v0)} data points lie outside the model's stated range "
+                         f"at the estimate (the calibration fits them as it fits the others):")
+            lines += [f"#   v0 = {self.data.v0[i]:g} m/s: {self.validity_message[i]}" for i in flagged]
         return "\n".join(lines) + "\n"
 
 
@@ -253,17 +263,21 @@ class _Model:
         return scaled(mat, values.get("modulus_scale", 1.0), values.get("log_aT", 0.0))
 
     def cor(self, x, v0s, mat=None):
+        return np.array([r.cor for r in self.results(x, v0s, mat)])
+
+    def results(self, x, v0s, mat=None) -> list:
+        """The forward model's results (``vcor.simulate``) at the speeds ``v0s``; ValueError when one is not ok."""
         from ..solvers.simulate import simulate  # the kernels load on use: the workflow reads this module
 
         mat = self.material(x) if mat is None else mat
-        out = np.empty(len(v0s))
-        for i, v in enumerate(v0s):
+        out = []
+        for v in v0s:
             r = simulate(mat, float(v), options=self.options, **self.geometry)
             self.nfev += 1
             if r.status != "ok":
                 raise ValueError(f"calibration: the forward model at v0 = {v:g} m/s with "
                                  f"{dict(zip(self.names, self.params(x)))} ended {r.status}: {r.message}")
-            out[i] = r.cor
+            out.append(r)
         return out
 
 
@@ -402,13 +416,16 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
     q = float(norm.ppf(0.975) if sigma_known else (student_t.ppf(0.975, dof) if dof > 0 else math.nan))
     p, stderr, lower, upper = _intervals(model, x, sx, identified, q)
     mat = model.material(x)
-    cor_fit = model.cor(x, data.v0)
+    fitted = model.results(x, data.v0)
+    cor_fit = np.array([r.cor for r in fitted])
     return Calibration(names=names, estimate=p, stderr=stderr, lower95=lower, upper95=upper,
                        correlation=_correlation(cov, sx), identified=identified, notes=notes, start=start,
                        bounds=np.stack([lo, hi], axis=1), material=mat, data=data, cor_fit=cor_fit,
                        residual=data.cor - cor_fit, chi2=float(r @ r), dof=dof, sigma_known=sigma_known,
                        singular_values=sv, cov_x=cov, nfev=model.nfev, wall_time=wall, message=str(fit.message),
-                       geometry=geometry, options=options, base=base)
+                       geometry=geometry, options=options, base=base,
+                       validity=np.array([r.validity for r in fitted], dtype=np.int8),
+                       validity_message=[r.validity_message for r in fitted])
 
 
 def _slope(model, x, e, c, v0s):
@@ -541,6 +558,11 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
         ds["cor_std"] = ("point", cal.data.cor_std, {"units": "1", "long_name": "COR standard deviation, data"})
     ds["cor_fit"] = ("point", cal.cor_fit, {"units": "1", "long_name": "COR, calibrated model"})
     ds["residual"] = ("point", cal.residual, {"units": "1", "long_name": "data - model"})
+    if cal.validity is not None:
+        ds["validity"] = ("point", cal.validity, _validity.cf_attrs())
+        ds["validity_message"] = ("point", np.array(cal.validity_message, dtype=object),
+                                  {"long_name": "why the calibrated model's result at a data point is outside the "
+                                                "model's stated range"})
     lo, hi = cal.data.v0.min(), cal.data.v0.max()
     grid = np.geomspace(lo, hi, n_curve) if hi > lo else np.array([lo])
     c, cl, ch = band(cal, grid)
