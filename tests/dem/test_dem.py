@@ -264,3 +264,25 @@ def test_an_entrys_solver_method_is_its_own_or_the_default():
 
     assert solver_method({"sphere": {}}) == DEFAULT_METHOD == solver_method({"solver": None})
     assert solver_method({"solver": {"method": "direct"}}) == "direct"
+
+
+def test_the_files_a_dem_user_reads_say_how_well_each_law_follows_vcor(tmp_path):
+    """The deck, the Yade script and the parameters file carry, in words, each law's largest error against
+    vcor's COR (the dataset's max_abs_error), the trend warning and the speeds whose vcor result is flagged:
+    a DEM user who reads only them is told what the dataset says."""
+    import vcor
+
+    spec = {"sphere": {"material": {"model": "sls", "E_glassy": 20e6, "alpha": 500, "beta": 2500}, "r": 0.004},
+            "target": {"sphere": {}}, "v0": {"start": 0.2, "stop": 5, "num": 6, "log": True}}
+    export_ = vcor.dem_export(spec, name="rising")
+    files = export_.write(tmp_path)
+    ds = export_.dataset
+    assert ds.attrs["trend_warning"] and int(ds["validity"].max()) > 0
+    for key, laws in (("deck", ["lammps-viscoelastic", "lammps-coeff-restitution"]), ("yade", ["yade-mindlin"]),
+                      ("parameters", [str(m) for m in ds["model"].values])):
+        text = files[key].read_text()
+        assert f"# WARNING: {ds.attrs['trend_warning']}" in text, key
+        assert "is outside the model's stated range" in text, key
+        for law in laws:
+            err = float(ds["max_abs_error"].sel(model=law))
+            assert f"# {law}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds" in text, (key, law)

@@ -37,7 +37,8 @@ from ..status import cf_attrs, code
 from . import trend
 from .laws import HEREDITARY, PARAMETERS, REQUIRES, SOURCES
 
-__all__ = ["TERM_DIM", "WITHIN", "YADE_VERSION", "dem_dataset", "parameters_csv", "table_csv", "within_range"]
+__all__ = ["TERM_DIM", "WITHIN", "YADE_VERSION", "dem_dataset", "parameters_csv", "quality_lines", "table_csv",
+           "within_range"]
 
 #: the oldest Yade whose Ip2_FrictMat_FrictMat_MindlinPhys has vn (the velocity-dependent COR)
 YADE_VERSION = "2024.02a"
@@ -274,6 +275,34 @@ def _parameter_rows(ds) -> list[str]:
     return rows
 
 
+def quality_lines(ds, laws=None) -> list[str]:
+    """How well the dataset's laws (``laws``: these only) follow vcor's COR, in words, for the files a DEM user
+    reads without the dataset (the deck, the script, the parameters file): per law the largest ``abs(error)``
+    over the speeds (and temperatures) and the speeds within ``WITHIN``; the ``trend_warning``; the speeds
+    where vcor's own result is outside the model's stated range (``validity``) or not ok."""
+    models = [str(m) for m in ds["model"].values if laws is None or str(m) in laws]
+    lines = []
+    for m in models:
+        err = float(np.nanmax(ds["max_abs_error"].sel(model=m).values))
+        lo, hi = ds["v0_within_lo"].sel(model=m).values, ds["v0_within_hi"].sel(model=m).values
+        within = (f"within {WITHIN:g} from {float(np.nanmax(lo)):.3g} to {float(np.nanmin(hi)):.3g} m/s"
+                  if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.nanmax(lo) <= np.nanmin(hi)
+                  else f"nowhere within {WITHIN:g} over all temperatures" if "T" in ds.dims
+                  else f"at no speed within {WITHIN:g}")
+        lines.append(f"{m}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds; {within}")
+    if ds.attrs.get("trend_warning"):
+        lines.append(f"WARNING: {ds.attrs['trend_warning']}")
+    flagged = np.atleast_1d(ds["validity"].values != 0)
+    failed = np.atleast_1d(ds["status"].values != 0)
+    v0 = ds["v0"].values
+    for what, mask in (("outside the model's stated range (validity flags; see the dataset's validity_message)",
+                        flagged), ("not solved (status not ok: no law is fitted there)", failed)):
+        speeds = sorted({float(v0[j]) for j in np.argwhere(mask)[:, -1]})
+        if speeds:
+            lines.append(f"vcor's COR at v0 = {', '.join(f'{v:.3g}' for v in speeds)} m/s is {what}")
+    return lines
+
+
 def parameters_csv(path, ds) -> None:
     """Every law's parameters of the DEM dataset ``ds`` (:func:`dem_dataset`) as CSV, written atomically:
     ``#`` lines first (the entry, the code version each law needs), then the header
@@ -282,6 +311,7 @@ def parameters_csv(path, ds) -> None:
     models = json.loads(ds.attrs["models"])
     lines = [f"# vcor DEM parameters of entry {ds.attrs['dem']} (dataset results/dem/{ds.attrs['dem']}.nc)"]
     lines += [f"# {m} requires: {info['requires']}" for m, info in models.items()]
+    lines += [f"# {line}" for line in quality_lines(ds)]
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(["model", "parameter", "T", "value", "unit", "meaning"])

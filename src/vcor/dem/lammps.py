@@ -17,6 +17,7 @@ LAMMPS's velocity-Verlet step evaluates the dashpot at the half-step velocity, a
 from __future__ import annotations
 
 from ..io.receipts import atomic_text
+from .export import quality_lines
 
 __all__ = ["DECK_NAMES", "NSTEPS", "PAIR_ATOMS", "PAIR_MASSES", "PAIR_RUN", "WALL_ATOMS", "WALL_MASSES", "WALL_RUN",
            "deck_name", "write_deck"]
@@ -31,7 +32,7 @@ _HEADER = """\
 #   lmp -in {deck} -var v0 <m/s> -screen none -log none     prints one line: COR = <value>
 {usage}# Parameters fitted by vcor (results/dem/{name}.nc){t_note}:
 {table}
-"""
+{quality}"""
 
 _COMMON = """\
 variable v0      index 1.0
@@ -211,7 +212,8 @@ def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
     usage = "".join(_USAGE[m] for m in present)
     if present[0] != "lammps-viscoelastic":
         usage = usage.replace("limit_damping\n", "limit_damping   [default]\n")
+    quality = "".join(f"# {line}\n" for line in quality_lines(ds, present))
     text = _HEADER.format(name=ds.attrs["dem"], what=what, deck=DECK_NAMES[kind], table="\n".join(rows), usage=usage,
-                          t_note=", per temperature" if has_t else "")
+                          t_note=", per temperature" if has_t else "", quality=quality)
     text += _COMMON.format(**values) + (_PAIR if kind == "pair" else _WALL).format(**values)
     atomic_text(path, text)

@@ -30,7 +30,7 @@ from __future__ import annotations
 import json
 
 from ..io.receipts import atomic_text
-from .export import YADE_VERSION
+from .export import YADE_VERSION, quality_lines
 
 __all__ = ["SCRIPT_NAME", "STEPS", "script_parameters", "write_script"]
 
@@ -49,7 +49,7 @@ _HEADER = '''\
 # Law: Hertz-Mindlin; FrictMat young = 2 (1 - nu^2) E_eff for both bodies (Yade's E* is then vcor's
 # E_eff); en at vn; no friction, no gravity, no numerical damping; a wall with hertzian=True.
 # Time step: the elastic Hertz contact time / steps (default {steps}).
-import math
+{quality}import math
 import sys
 
 from yade import O, Vector3, config
@@ -217,5 +217,6 @@ def write_script(path, ds, *, steps: int = STEPS) -> None:
             else "a sphere on a flat wall, v0 = approach speed")
     text = _HEADER.format(name=ds.attrs["dem"], what=what, script=SCRIPT_NAME, version=YADE_VERSION,
                           kind=p["kind"], nu=p["nu"], radii=p["radii"], densities=p["densities"],
-                          law=_law_literal(p["law"]), steps=int(steps))
+                          law=_law_literal(p["law"]), steps=int(steps),
+                          quality="".join(f"# {line}\n" for line in quality_lines(ds, ["yade-mindlin"])))
     atomic_text(path, text + _BODY)
