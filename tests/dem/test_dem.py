@@ -278,11 +278,11 @@ def test_the_files_a_dem_user_reads_say_how_well_each_law_follows_vcor(tmp_path)
     files = export_.write(tmp_path)
     ds = export_.dataset
     assert ds.attrs["trend_warning"] and int(ds["validity"].max()) > 0
-    for key, laws in (("deck", ["lammps-viscoelastic", "lammps-coeff-restitution"]), ("yade", ["yade-mindlin"]),
+    for key, names in (("deck", ["lammps-viscoelastic", "lammps-coeff-restitution"]), ("yade", ["yade-mindlin"]),
                       ("parameters", [str(m) for m in ds["model"].values])):
         text = files[key].read_text()
         assert f"# WARNING: {ds.attrs['trend_warning']}" in text, key
         assert "is outside the model's stated range" in text, key
-        for law in laws:
+        for law in names:
             err = float(ds["max_abs_error"].sel(model=law))
             assert f"# {law}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds" in text, (key, law)
