@@ -18,6 +18,7 @@ import numpy as np
 import timing
 import vcor
 from vcor.fitting import calibrate as cal
+from vcor.fitting import g_star
 from vcor.materials import SLS
 
 ICE_FITS = (("numeric", "overlap"), ("numeric", "force"), ("pade", "overlap"))
@@ -45,8 +46,8 @@ def measure(args):
         cases = cases[1:]
     for model, rule in (("pade", "overlap"),) if args.quick else ICE_FITS:
         label = f"ice g*, {model}{' ' + rule if model == 'numeric' else ''}, 21 points"
-        cases.append((label,
-                      lambda model=model, rule=rule: cal.fit_g_star(g, cal.bridges_ice(g), model=model, rule=rule)))
+        ice = g_star.bridges_ice(g)
+        cases.append((label, lambda model=model, rule=rule, ice=ice: g_star.fit_g_star(g, ice, model=model, rule=rule)))
     out = {}
     for name, fn in cases:
         t, res = timing.warm_timed(fn, timing.calls(args))

@@ -6,6 +6,7 @@ import pytest
 import vcor
 from vcor import materials as M
 from vcor.fitting import calibrate as C
+from vcor.fitting import g_star as G
 from vcor.io.netcdf import read_dataset
 from vcor.materials import Catalogue
 
@@ -164,9 +165,9 @@ def test_ice_g_star_against_the_paper():
           "(rms misfit)")
     for lo, hi, spacing, n in rows:
         g = np.geomspace(lo, hi, n) if spacing == "log" else np.linspace(lo, hi, n)
-        eps = C.bridges_ice(g)
-        fits = [C.fit_g_star(g, eps, model="pade"), C.fit_g_star(g, eps, rule="overlap"),
-                C.fit_g_star(g, eps, rule="force")]
+        eps = G.bridges_ice(g)
+        fits = [G.fit_g_star(g, eps, model="pade"), G.fit_g_star(g, eps, rule="overlap"),
+                G.fit_g_star(g, eps, rule="force")]
         print(f"{lo:5g} .. {hi:<5g}   {spacing:7s} {n:4d}  "
               + " ".join(f"{f.g_star:6.3f} +- {f.stderr:5.3f} ({f.rms:.3f})" for f in fits))
         assert fits[2].g_star < fits[0].g_star < fits[1].g_star
@@ -179,8 +180,8 @@ def test_spheres_dataset_carries_the_ice_fits():
 
     ds = datasets.spheres_dataset([0.5], rules=("overlap",), ice={"g_min_cm_s": 0.05, "g_max_cm_s": 5.0, "n": 21})
     g = np.geomspace(0.05, 5.0, 21)
-    assert float(ds["ice_g_star"].sel(ice_model="numeric-overlap")) == C.fit_g_star(g, C.bridges_ice(g)).g_star
-    assert float(ds["ice_g_star"].sel(ice_model="pade")) == C.fit_g_star(g, C.bridges_ice(g), model="pade").g_star
+    assert float(ds["ice_g_star"].sel(ice_model="numeric-overlap")) == G.fit_g_star(g, G.bridges_ice(g)).g_star
+    assert float(ds["ice_g_star"].sel(ice_model="pade")) == G.fit_g_star(g, G.bridges_ice(g), model="pade").g_star
     bad = datasets.spheres_dataset([0.5], rules=("overlap",), ice={"g_min_cm_s": 0.05, "g_max_cm_s": 5.0, "n": 1})
     assert np.all(np.isnan(bad["ice_g_star"].values)) and all("fit_g_star" in m for m in bad["ice_message"].values)
 

@@ -353,11 +353,13 @@ def make_impact(material, v0, geometry: dict) -> Impact:
     if not isinstance(mat, _materials.Material):
         raise ValueError(f"material must be a preset name or a vcor.materials.Material, got {material!r}")
     geo = _geometry(**geometry)
-    if "E_plate" in geometry and geo.case != 4:
+    # a value other than the default where it is not used would be ignored (a flat curve over an axis of it);
+    # settings that spell out every keyword at its default pass
+    if geo.E_plate != GEOMETRY_DEFAULTS["E_plate"] and geo.case != 4:
         raise ValueError(f"E_plate is the elastic plate's modulus of case 4 only; this impact is case {geo.case}, "
                          f"whose plate is of the material: give case=4 (a viscoelastic sphere on an elastic "
                          f"plate), or leave E_plate out")
-    if "nu_plate" in geometry and geo.case != 4 and geo.plate_material is None:
+    if geo.nu_plate != GEOMETRY_DEFAULTS["nu_plate"] and geo.case != 4 and geo.plate_material is None:
         raise ValueError(f"nu_plate is the Poisson ratio of a plate of its own material (case 4, or a plate "
                          f"body); this impact is case {geo.case}, whose plate takes nu: give nu, or leave nu_plate "
                          f"out")

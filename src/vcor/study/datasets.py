@@ -8,7 +8,7 @@ import numpy as np
 
 from .. import spheres as S
 from .. import status as _status
-from ..fitting.calibrate import bridges_ice, fit_g_star
+from ..fitting.g_star import bridges_ice, fit_g_star
 from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS
@@ -141,7 +141,7 @@ def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), step
     relaxation time tau = tau_ratio * t_c), the series at orders 1..4, both Pades and the root of
     Ramirez Eq. 27. A failed point is stored as NaN with its message in ``message`` (never raised).
     ``ice`` ({g_min_cm_s, g_max_cm_s, n}): g* fitted to the Bridges ice law on that range
-    (``vcor.fitting.calibrate.fit_g_star``; the numerical eps for each rule, and the Pade) and the fitted curves."""
+    (``vcor.fitting.g_star.fit_g_star``; the numerical eps for each rule, and the Pade) and the fitted curves."""
     import xarray as xr
 
     b = np.array(sorted(float(x) for x in b_values))
