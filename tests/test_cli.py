@@ -363,3 +363,14 @@ def test_the_getting_started_page_shows_what_vcor_impact_prints(capsys):
 def test_a_missing_material_file_is_named_as_a_missing_file(capsys):
     assert cli.main(["impact", "--material", "no-such-file.nc", "--v0", "2"]) == 2
     assert "--material 'no-such-file.nc': no such file" in capsys.readouterr().err
+
+
+def test_every_geometry_option_states_its_range_in_the_help(capsys):
+    """The ranges the refusals name (vcor.contact.impact.RANGES; Poisson ratios (-1, 0.5]) are in --help."""
+    with pytest.raises(SystemExit):
+        cli.main(["impact", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    for key in cli.GEOMETRY_FLAGS:
+        lo, hi = RANGES.get(key, (None, None))
+        want = f"in [{lo:g}, {hi:g}]" if key in RANGES else "in (-1, 0.5]"
+        assert f"{cli.GEOMETRY_FLAGS[key][0]}, {want}" in text, key

@@ -197,8 +197,9 @@ def _add_impact(sub) -> list:
          help=f"impact speed, in [{low:g}, {high:g}] [unit {RANGE_UNITS['v0']}; required]")
     _add_solver_options(actions, imp)
     for key, (text, unit, default) in GEOMETRY_FLAGS.items():
+        where = f"in [{RANGES[key][0]:g}, {RANGES[key][1]:g}]" if key in RANGES else "in (-1, 0.5]"  # Poisson
         _add(actions, imp, *_flags(key), dest=key, type=_numeric(text, unit, _geometry_check(key)), default=None,
-             help=f"{text} [{_unit_text(unit)}; default {default}]")
+             help=f"{text}, {where} [{_unit_text(unit)}; default {default}]")
     _add(actions, imp, "--case", type=_case, default=None, choices=(1, 2, 3, 4),
          help="which body is viscoelastic (Green 2026, Sec. 3): 1 both elastic, 2 sphere and plate of "
               "the material, 3 a stiff sphere on a plate of the material, 4 a sphere of the material on "
