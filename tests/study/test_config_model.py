@@ -135,6 +135,7 @@ HOSTILE = [
     (_scene(grid={"v0": []}), ["scenes.s.grid.v0", "at least 1"]),
     (_scene(grid={"v0": {"start": 1, "stop": 3, "step": 0}}), ["scenes.s.grid.v0.step", "> 0"]),
     (_scene(grid={"v0": {"start": 1, "stop": 3, "num": 0}}), ["scenes.s.grid.v0.num", ">= 1"]),
+    (_scene(grid={"v0": {"start": 1, "stop": 3, "num": 1}}), ["scenes.s.grid.v0", "num 1 gives start (1) alone"]),
     (_scene(grid={"v0": [True, 2.0]}), ["scenes.s.grid.v0", "True"]),
     (_scene(grid={"v0": {"start": 1, "stop": 3, "num": 3, "log": "yes"}}), ["scenes.s.grid.v0.log", "true or false"]),
     (_scene(figure={"fig4": {}}), ["scenes.s.figure", "unknown key", "did you mean 'figures'"]),

@@ -136,6 +136,9 @@ def _range_length(spec: dict) -> int:
         raise ValueError(f"log must be true or false, got {spec['log']!r}")
     if spec.get("log") and not (start > 0 and stop > 0):
         raise ValueError(f"a log range needs start and stop > 0, got {start}, {stop}")
+    if num == 1 and stop != start:
+        raise ValueError(f"num 1 gives start ({start:g}) alone and leaves stop ({stop:g}) out: give num >= 2, or "
+                         f"the one value as a list [{start:g}]")
     return int(num)
 
 
