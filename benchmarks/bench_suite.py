@@ -2,8 +2,8 @@
 an empty numba cache, RUNS times.
 
 The command is the one of the README's ``<!-- test-command: ... -->`` marker (the line .ci/run runs),
-which must also be the line the README shows under it; ``--durations=15`` is appended to its pytest
-call. Each run clones the commit afresh (``git clone`` into a new temporary folder) and runs the
+which must also be the line the README shows under it; ``--durations=15 -rfE`` is appended to its
+pytest call, and a failed or erroring test is named in its run's row. Each run clones the commit afresh (``git clone`` into a new temporary folder) and runs the
 command there in a new virtual environment that sees the machine's installed packages, so that the
 command's editable install of vcor goes into that environment and not over the machine's own; the
 wall time is that of the whole command (install and tests), measured around it. The table gives each
@@ -27,6 +27,8 @@ import timing
 MARKER = re.compile(r"^<!-- test-command: (.*) -->$", re.M)
 QUICK_TESTS = "tests/test_architecture.py"
 SLOWEST = 15
+#: pytest's short summary lines (-rfE): FAILED / ERROR and the test's id
+FAILED = re.compile(r"^(FAILED|ERROR) (\S+)", re.MULTILINE)
 SUMMARY = re.compile(r"^=*\s*(\d+ (?:passed|failed|error|errors|skipped|deselected|xfailed|xpassed)\b.*?) in "
                      r"([\d.]+)s\b", re.M)
 DURATION = re.compile(r"^([\d.]+)s (setup|call|teardown)\s+(\S.*)$", re.M)
@@ -68,7 +70,7 @@ def one_run(rev: str, extra: str) -> dict:
     return {"command": cmd, "exit": proc.returncode, "wall": proc.wall,
             "pytest": float(summary[-1][1]) if summary else None,
             "summary": summary[-1][0] if summary else "no pytest summary: " + " ".join(out.split()[-40:]),
-            "slowest": slowest}
+            "failed": FAILED.findall(out), "slowest": slowest}
 
 
 def main():
@@ -77,10 +79,12 @@ def main():
     p.add_argument("--pytest-args", default="", help="more arguments for pytest, e.g. \"-m slurm\"")
     args = p.parse_args()
     rev = timing.short_rev(args.rev)
-    extra = " ".join(filter(None, [QUICK_TESTS if args.quick else "", args.pytest_args, f"--durations={SLOWEST}"]))
+    extra = " ".join(filter(None, [QUICK_TESTS if args.quick else "", args.pytest_args, f"--durations={SLOWEST}",
+                                   "-rfE"]))
     runs = [one_run(rev, extra) for _ in range(args.runs)]
     c = timing.cell
-    rows = [[i + 1, r["exit"], f"{r['wall']:.1f}", "-" if r["pytest"] is None else f"{r['pytest']:.1f}", r["summary"]]
+    rows = [[i + 1, r["exit"], f"{r['wall']:.1f}", "-" if r["pytest"] is None else f"{r['pytest']:.1f}",
+             r["summary"] + "".join(f"; {kind} {test}" for kind, test in r["failed"])]
             for i, r in enumerate(runs)]
     pytest_times = [r["pytest"] for r in runs if r["pytest"] is not None]
     rows.append(["median (min–max)", "", c(timing.column(runs, "wall"), 1.0, ".1f"), c(pytest_times, 1.0, ".1f"), ""])
