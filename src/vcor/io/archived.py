@@ -1,17 +1,15 @@
 """A dataset with the way vcor archives it: what a workflow job writes to its file, and what a study
-function returns, read back from the same writer.
+function returns, read back from the same writer's encoding.
 
 :meth:`Archive.write` writes the dataset with :func:`vcor.io.netcdf.write_dataset` (global attributes,
-encoding, receipt); :meth:`Archive.loaded` writes it so into a temporary folder and reads it back, so
-that the dataset a study function returns is, value for value and attribute for attribute, the one a
-workflow job archives (the history attribute aside, which records when and by what command it was
-written), and writing it again gives the same file.
-
-The read-back happens in memory: the dataset goes through xarray's encoding for the netCDF4 writer
-into an ``InMemoryDataStore`` and is decoded from there as :func:`vcor.io.netcdf.read_dataset` decodes a
-file, with the attributes as the netCDF4 library returns them (numbers as NumPy scalars, lists as
-arrays). A file's HDF5 write and read cost ~30 ms per call, more than solving a small sweep;
-``tests/io/test_archived.py`` holds the two equal, attribute types included, for every kind of dataset.
+encoding, receipt). :meth:`Archive.loaded` gives the dataset a study function returns: the same
+encoding (:func:`vcor.io.netcdf.archive_form`) goes through xarray's netCDF writing into an
+``InMemoryDataStore`` and is decoded from there as :func:`vcor.io.netcdf.read_dataset` decodes a file,
+with the attributes as the netCDF4 library returns them (numbers as NumPy scalars, lists as arrays). It
+is, value for value and attribute for attribute, the one a workflow job archives (the history
+attribute aside, which records when and by what command it was written), without a file's HDF5 write
+and read, which would cost more than solving a small sweep; ``tests/io/test_archived.py`` holds the two
+equal, dtypes and attribute types included, for every kind of dataset.
 """
 
 from __future__ import annotations
