@@ -2,13 +2,13 @@
 an empty numba cache, RUNS times.
 
 The command is the one of the README's ``<!-- test-command: ... -->`` marker (the line .ci/run runs),
-which must also be the line the README shows under it; ``--durations=15 -rfE`` is appended to its
-pytest call, and a failed or erroring test is named in its run's row. Each run clones the commit
-afresh (``git clone`` into a new temporary folder) and runs the command there in a new virtual
-environment that sees the machine's installed packages, so that the command's editable install of vcor goes into that environment and not over the machine's own; the
-wall time is that of the whole command (install and tests), measured around it. The table gives each
-run's exit code, wall time, pytest's own time and summary line, the median, and pytest's 15 slowest
-tests of the median run.
+which must also be the line the README shows under it; ``--durations=15 -rfE`` is appended to its pytest
+call, and a failed or erroring test is named in its run's row. Each run clones the commit afresh (``git
+clone`` into a new temporary folder) and runs the command there in a new virtual environment that sees
+the machine's installed packages, so that the command's editable install of vcor goes into that
+environment and not over the machine's own; the wall time is that of the whole command (install and
+tests), measured around it. The table gives each run's exit code, wall time, pytest's own time and
+summary line, the median, and pytest's 15 slowest tests of the median run.
 
 Run: python benchmarks/bench_suite.py [--runs 2] [--rev REV] [--pytest-args ARGS] [--quick] [--out FILE]
 """
