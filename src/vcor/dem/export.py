@@ -285,10 +285,11 @@ def quality_lines(ds, laws=None) -> list[str]:
     for m in models:
         err = float(np.nanmax(ds["max_abs_error"].sel(model=m).values))
         lo, hi = ds["v0_within_lo"].sel(model=m).values, ds["v0_within_hi"].sel(model=m).values
-        within = (f"within {WITHIN:g} from {float(np.nanmax(lo)):.3g} to {float(np.nanmin(hi)):.3g} m/s"
-                  if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.nanmax(lo) <= np.nanmin(hi)
-                  else f"nowhere within {WITHIN:g} over all temperatures" if "T" in ds.dims
-                  else f"at no speed within {WITHIN:g}")
+        a, b = float(np.max(lo)), float(np.min(hi))  # the speeds within WITHIN at every temperature
+        within = (f"at no speed within {WITHIN:g}" + (" at every temperature" if "T" in ds.dims else "")
+                  if not (np.isfinite(a) and np.isfinite(b) and a <= b)
+                  else f"within {WITHIN:g} only at {a:.3g} m/s" if a == b
+                  else f"within {WITHIN:g} from {a:.3g} to {b:.3g} m/s")
         lines.append(f"{m}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds; {within}")
     if ds.attrs.get("trend_warning"):
         lines.append(f"WARNING: {ds.attrs['trend_warning']}")
