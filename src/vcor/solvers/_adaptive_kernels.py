@@ -453,16 +453,19 @@ def _node_arrays(n):
 
 
 @jit
-def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_steps, start_level, size0, out):
+def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_steps, start_level, size0, out,
+                   smooth_step):
     """The adaptive march (:func:`march_adaptive`), then (n_grids > 1) its replays with every step
     divided by 2, 4, ... 2^(n_grids - 1), and the separation of each, in one call (no histories).
 
     The records arrive as plain tuples (``_records``) and are passed on so. The tables have
     level_top + 1 + ``splits`` rows from h_base / 2^splits: grid k uses rows from splits - k.
+    ``smooth_step`` (s): when the first grid's largest step is at most this, one grid fewer is
+    marched (``vcor.solvers.adaptive.grid_count``; 0: never).
     Fills out[k] = [the 9 outcome values of ``separation_point``, separation index, largest step (s)]
-    and returns True when every grid separated, the first within ``size0`` steps; False (out undefined)
-    for anything else (more steps, divergence, time horizon, step budget), which the caller then runs
-    through the general path.
+    and returns the number of grids marched when every grid separated, the first within ``size0``
+    steps; 0 (out undefined) for anything else (more steps, divergence, time horizon, step budget),
+    which the caller then runs through the general path.
     """
     nk = LevelTables(*tables).mode_decay.shape[1]
     n_extra, rule, v0 = Stop(*stop).n_extra, Stop(*stop).rule, Body(*body).v0
@@ -479,7 +482,8 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
     P = np.empty(nk)
     X = np.empty(Plate(*plate).moduli.shape[0])
     state = np.empty(8, dtype=np.int64)
-    for k in range(n_grids):
+    k = 0
+    while k < n_grids:
         rep = 2**k
         plan = np.empty(n_plan * rep, dtype=np.int64)
         for j in range(n_plan * rep):
@@ -502,16 +506,19 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
         march_adaptive((t[:e], s[:e], g[:e], F[:e], J[:e], u[:e]), lev[:e], tables, plate, body, control, stop,
                        (P, X), state, plan, splits - k)
         if state[STATUS] != STATUS_SEPARATED:
-            return False
+            return 0
         n_sep = state[SEPARATION]
         n_done = state[LAST]
         if k == 0:
             n_plan = min(n_done, n_sep + n_extra)
         if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, still, out[k]):
-            return False
+            return 0
         out[k, 9] = n_sep
         big = 0.0
         for j in range(1, n_done + 1):
             big = max(big, t[j] - t[j - 1])
         out[k, 10] = big
-    return True
+        if k == 0 and n_grids > 1 and big <= smooth_step:
+            n_grids -= 1
+        k += 1
+    return n_grids

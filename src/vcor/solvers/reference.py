@@ -818,11 +818,33 @@ def richardson_weights(exponents=RICHARDSON_EXPONENTS):
     return np.linalg.solve(rows.T, np.eye(n)[0])
 
 
+#: the exponents of the three grids of a smooth exponential kernel (vcor.solvers.adaptive.SMOOTH_EXPONENTS)
+SMOOTH_EXPONENTS = (2.0, 4.0)
+
+
+def smooth_kernel_rates(impact):
+    """The relaxation rates (1/s) of the kernel's and the plate's exponential terms when both are exact
+    sums of exponentials with no Dirac term (a rigid target, an elastic plate or a plate of constant
+    mobility count as such), else None: the cases in which ``adaptive`` takes three Richardson grids
+    once every rate times its accepted grid's largest step is at most vcor.solvers.adaptive.RESOLVED_DECAY."""
+    g = impact.geometry
+    bodies = [impact.material]
+    if not (g.rigid or g.case == 4):
+        bodies.append(impact.material if g.plate_material is None else g.plate_material)
+    rates = []
+    for body in bodies:
+        if not body.is_prony or body.viscosity != 0.0:
+            return None
+        rates.extend(float(b) for b in body.prony_terms()[2])
+    return rates
+
+
 def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_tol=1e-10):
     """The ``adaptive`` method with Richardson extrapolation (its default): the controlled grid, its
     replays with every step divided by 2, 4, ... (the levels of steps 1..n_sep + N_EXTRA, each repeated
-    2, 4, ... times; vcor.solvers.adaptive.SPLIT_LEVELS replays) and the scalars extrapolated with
-    :func:`richardson_weights`.
+    2, 4, ... times; vcor.solvers.adaptive.SPLIT_LEVELS replays, one fewer where
+    :func:`smooth_kernel_rates` are all resolved on the controlled grid) and the scalars extrapolated
+    with :func:`richardson_weights` (``SMOOTH_EXPONENTS`` on three grids).
 
     Returns {"grids": [the dicts of :func:`adaptive_reference`], and each name of OUTCOME: the
     extrapolated value}. The method's guards (extrapolate only in the asymptotic range, never to a
@@ -830,9 +852,13 @@ def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_t
     """
     first = adaptive_reference(impact, tc, step_tol, rule, soe_tol=soe_tol)
     plan = first["levels"][: first["n_sep"] + N_EXTRA]
+    largest = float(np.max(np.diff(first["t"])))
+    rates = smooth_kernel_rates(impact)
+    smooth = rates is not None and max(rates, default=0.0) * largest <= _adaptive.RESOLVED_DECAY
+    replays = _adaptive.SPLIT_LEVELS - 1 if smooth else _adaptive.SPLIT_LEVELS
     grids = [first] + [adaptive_reference(impact, tc, step_tol, rule, np.repeat(plan, 2**k), k, soe_tol)
-                       for k in range(1, _adaptive.SPLIT_LEVELS + 1)]
-    weights = richardson_weights()
+                       for k in range(1, replays + 1)]
+    weights = richardson_weights(SMOOTH_EXPONENTS if smooth else RICHARDSON_EXPONENTS)
     out = {"grids": grids}
     out.update({key: float(weights @ [grid[key] for grid in grids]) for key in OUTCOME})
     return out
