@@ -10,12 +10,12 @@ References (not computed by adaptive), per preset at v0 = 0.001, 1, 10, 50, 300 
 
 Sections:
 
-* ``accuracy``: per setting (rows: the default; step_tol; soe_tol; no extrapolation; the separation
-  located on a step 8 times finer (the constant SEP_STEPS, not an option); other Richardson exponents:
-  four grids eliminating h^2, h^3, h^4, and three grids eliminating h^2, h^4, set through the module
-  constants), the largest relative error of the COR and of t0 per preset over the speeds, the steps per impact, and
-  the time per impact (warm median of ``vcor.simulate`` at 10 m/s, mean over sls, butyl-fc, butyl-cerf,
-  butyl-prony3);
+* ``accuracy``: per setting (rows: the default; four grids for every kernel (RESOLVED_DECAY 0); step_tol;
+  soe_tol; no extrapolation; the separation located on a step 8 times finer (the constant SEP_STEPS, not
+  an option); other Richardson exponents everywhere: four grids eliminating h^2, h^3, h^4, and three
+  grids eliminating h^2, h^4, set through the module constants), the largest relative error of the COR
+  and of t0 per preset over the speeds, the steps per impact, and the time per impact (warm median of
+  ``vcor.simulate`` at 10 m/s, mean over sls, butyl-fc, butyl-cerf, butyl-prony3);
 * ``equal_accuracy``: per preset at 10 m/s, adaptive's COR error and time, and the time of ``direct``
   (numba, O(N^2)) at the steps that give the same COR error: plain (error ~ N^-2, N from two runs, then
   run), and Richardson-extrapolated from N, 2N, 4N steps (h^2 and h^2.5 eliminated; its N the smallest
@@ -45,7 +45,8 @@ TIMED = ("sls", "butyl-fc", "butyl-cerf", "butyl-prony3")
 SPEEDS = (0.001, 1.0, 10.0, 50.0, 300.0)
 #: rows of the accuracy table: label, simulate keywords, module constants to set (name: value)
 SETTINGS = (
-    ("default (four grids h^2, h^3.5, h^4; step_tol 4e-4)", {}, {}),
+    ("default (four grids h^2, h^3.5, h^4, three grids h^2, h^4 where resolved; step_tol 4e-4)", {}, {}),
+    ("four grids everywhere (RESOLVED_DECAY 0)", {}, {"RESOLVED_DECAY": 0.0}),
     ("step_tol 8e-4", {"step_tol": 8e-4}, {}),
     ("step_tol 1.5e-3", {"step_tol": 1.5e-3}, {}),
     ("step_tol 1e-3", {"step_tol": 1e-3}, {}),
@@ -99,12 +100,15 @@ def _set_constants(constants: dict):
     """Set the adaptive module's constants for a row; returns the previous values."""
     from vcor.solvers import adaptive
 
-    old = {k: getattr(adaptive, k) for k in ("SEP_STEPS", "SPLIT_LEVELS", "GRIDS", "RICHARDSON_WEIGHTS")}
-    if "SEP_STEPS" in constants:
-        adaptive.SEP_STEPS = constants["SEP_STEPS"]
+    old = {k: getattr(adaptive, k) for k in ("SEP_STEPS", "SPLIT_LEVELS", "GRIDS", "RICHARDSON_WEIGHTS",
+                                              "RESOLVED_DECAY")}
+    for name in ("SEP_STEPS", "RESOLVED_DECAY"):
+        if name in constants:
+            setattr(adaptive, name, constants[name])
     if "exponents" in constants:
+        # these grids everywhere: no smaller set where the kernel is resolved
         grids = len(constants["exponents"]) + 1
-        adaptive.SPLIT_LEVELS, adaptive.GRIDS = grids - 1, grids
+        adaptive.SPLIT_LEVELS, adaptive.GRIDS, adaptive.RESOLVED_DECAY = grids - 1, grids, 0.0
         adaptive.RICHARDSON_WEIGHTS = tuple(float(w) for w in _weights(constants["exponents"]))
     return old
 
