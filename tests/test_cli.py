@@ -344,6 +344,26 @@ def test_an_output_path_that_cannot_be_a_file_is_refused_before_any_work(tmp_pat
     assert err.count("\n") == 1 and f"--out '{tmp_path}' is a folder" in err
 
 
+def test_a_sweep_with_no_ok_point_writes_its_dataset_and_exits_1(tmp_path, capsys):
+    """Every point stopped by its step budget: the dataset is written with their statuses, the counts are
+    printed, and the exit code is 1 (0 as soon as one point is ok)."""
+    from vcor.io.netcdf import read_dataset
+
+    config = tmp_path / "c.yaml"
+    config.write_text("scenes:\n"
+                      "  starved: {materials: [sls], grid: {v0: [1.0, 3.0]}, solver: {max_adaptive_steps: 100},\n"
+                      "            geometry: {h: 0.001}}\n"
+                      "  fine: {materials: [sls], grid: {v0: [1.0]}}\n")
+    out = tmp_path / "starved.nc"
+    assert cli.main(["sweep", "--config", str(config), "--scene", "starved", "--out", str(out), "--workers", "1",
+                     "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert "2 points" in err and "no point ended ok (exit code 1)" in err
+    assert (read_dataset(out)["status"].values != 0).all()
+    assert cli.main(["sweep", "--config", str(config), "--scene", "fine", "--out", str(tmp_path / "fine.nc"),
+                     "--workers", "1", "--no-progress"]) == 0
+
+
 def test_the_getting_started_page_shows_what_vcor_impact_prints(capsys):
     """docs/getting-started.md quotes `vcor impact --material sls --v0 10`: every line but the two times (which
     the page says vary) is what the command prints now."""

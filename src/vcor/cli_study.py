@@ -8,7 +8,9 @@
 Each writes what the workflow's rule writes for the entry (the same dataset, by the same function), and
 refuses bad input with the workflow's one-line message naming the key, before any work (exit code 2).
 A sweep's points that did not end ``ok`` are stored with their status, never an error: the command
-prints the counts and exits 0. Ctrl-C stops a sweep at once, its worker processes with it (exit code 130).
+writes the dataset, prints the counts and exits 0, or 1 when no point ended ``ok`` (nothing to use: the
+statuses and messages in the file say why). Ctrl-C stops a sweep at once, its worker processes with it
+(exit code 130).
 """
 
 from __future__ import annotations
@@ -69,6 +71,10 @@ def _sweep(args) -> int:
     archive.write(args.out, command=f"vcor sweep --config {args.config} --scene {args.name}")
     done = outcome_of(archive.dataset)
     print(f"vcor sweep: {done.points} points, {done.text()}: {args.out}", file=sys.stderr)
+    if done.ok + done.flagged == 0:
+        print(f"vcor sweep: no point ended ok (exit code 1); the status and message variables of {args.out} say "
+              f"why", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -79,7 +79,8 @@ _SPEC = {
                       "table)", bounds=("float", 0.0, 1e-2, "(0, 0.01)"), unit="1"),
     "richardson": _spec(True, ("adaptive",), "adaptive only: march again on the accepted grid with every step "
                         "divided by 2, 4 and 8 and Richardson-extrapolate the results (eliminates the h^2, h^3.5 and "
-                        "h^4 error terms; 15 times the steps of the grid)"),
+                        "h^4 error terms; 15 times the steps of the grid), or by 2 and 4 only (h^2 and h^4; 7 times) "
+                        "for an exact exponential-sum kernel with every mode resolved on the grid"),
     "max_adaptive_steps": _spec(1_000_000, ("adaptive",), "adaptive only: step budget (integer >= 100); a run that "
                                 "reaches it without separating ends with status step-budget",
                                 bounds=("int", 100, math.inf, "an integer >= 100"), unit="1"),
