@@ -364,6 +364,26 @@ def test_a_sweep_with_no_ok_point_writes_its_dataset_and_exits_1(tmp_path, capsy
                      "--workers", "1", "--no-progress"]) == 0
 
 
+@pytest.mark.parametrize("value", ["0", "-1", "two"])
+def test_sweep_workers_must_be_a_positive_integer(tmp_path, capsys, value):
+    """--workers 0, a negative or a word: refused by the option's own check, naming the command and the
+    option, before any work (exit code 2), and without Python's None in the text."""
+    config = tmp_path / "c.yaml"
+    config.write_text("scenes:\n  s: {materials: [sls], grid: {v0: [1.0]}}\n")
+    with pytest.raises(SystemExit) as stop:
+        cli.main(["sweep", "--config", str(config), "--scene", "s", "--out", str(tmp_path / "s.nc"),
+                  "--workers", value])
+    assert stop.value.code == 2
+    err = capsys.readouterr().err
+    assert "vcor sweep: error: argument --workers: must be an integer >= 1" in err and "None" not in err
+    assert not (tmp_path / "s.nc").exists()
+
+
+def test_errors_name_the_command(capsys):
+    assert cli.main(["impact", "--material", "slss", "--v0", "1"]) == 2
+    assert capsys.readouterr().err.startswith("vcor impact: error: --material: unknown material 'slss'")
+
+
 def test_the_getting_started_page_shows_what_vcor_impact_prints(capsys):
     """docs/getting-started.md quotes `vcor impact --material sls --v0 10`: every line but the two times (which
     the page says vary) is what the command prints now."""

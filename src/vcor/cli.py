@@ -490,7 +490,7 @@ def main(argv=None) -> int:
     try:
         return run(args)
     except ValueError as exc:
-        print(f"vcor: error: {exc}", file=sys.stderr)
+        print(f"vcor {args.command}: error: {exc}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader stopped early (``vcor materials | head``): not an error
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

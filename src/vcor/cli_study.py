@@ -28,6 +28,18 @@ def _common(parser, what: str, name_flag: str) -> None:
                         f"required]")
 
 
+def _workers(text: str) -> int:
+    """``--workers``: an integer >= 1 (argparse names the option in its error)."""
+    try:
+        n = int(text)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1 (processes; leave --workers out for the cores "
+                                         f"available), got {text!r}")
+    return n
+
+
 def add_commands(sub) -> None:
     """Add the commands of the module docstring to the subparsers ``sub`` of ``vcor``'s parser."""
     sw = sub.add_parser("sweep", help="solve a scene's grid into its sweep dataset (as results/<scene>/sweep.nc)",
@@ -35,8 +47,8 @@ def add_commands(sub) -> None:
                                     "(vcor.sweep): the workflow's results/<scene>/sweep.nc, without Snakemake.")
     _common(sw, "scene (scenes.<name>)", "--scene")
     sw.add_argument("--out", required=True, help="the NetCDF file to write [no unit; required]")
-    sw.add_argument("--workers", type=int, default=None, help="processes that solve [no unit; default: the cores "
-                    "available]")
+    sw.add_argument("--workers", type=_workers, default=None, help="processes that solve, an integer >= 1 [no unit; "
+                    "default: the cores available]")
     sw.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                     help="a progress bar on standard error [no unit; default: when it is a terminal]")
     ft = sub.add_parser("fit", help="fit a material of a config's fits block (as <material_dir>/<name>.nc)",

