@@ -22,10 +22,15 @@ def clean():
 
 
 def test_noise_free_data_recover_the_true_values(clean):
+    """The truth recovered to 1e-4; the report and the dataset give each parameter's unit."""
     cal = C.calibrate(C.CorData(V0, clean), START, FREE)
     print("\n" + cal.report())
     assert cal.identified.all()
     assert np.all(np.abs(cal.estimate / np.array([15e6, 1200.0]) - 1) < 1e-4)
+    assert cal.units() == ["Pa", "s-1"]
+    rows = cal.report().splitlines()
+    assert rows[1].split()[:2] == ["parameter", "unit"] and rows[2].split()[:2] == ["E_glassy", "Pa"]
+    assert C.calibration_dataset(cal)["unit"].values.tolist() == ["Pa", "s-1"]
 
 
 @pytest.mark.parametrize("stated", [False, True])

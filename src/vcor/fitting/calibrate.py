@@ -213,15 +213,23 @@ class Calibration:
     validity: np.ndarray | None = None
     validity_message: list = field(default_factory=list)
 
+    def units(self) -> list[str]:
+        """Per free parameter, the UDUNITS unit of its estimate, stderr, interval, start and bounds."""
+        fixed = {"modulus_scale": "1", "log_aT": "1 (log10 of a_T)"}
+        kind = self.base.kind if self.base else ""
+        return [fixed.get(n, _param_unit(n, kind)) for n in self.names]
+
     def report(self) -> str:
         """A plain-text table of the estimates (for logs)."""
         lines = [(f"# calibration: {len(self.data.v0)} points, {len(self.names)} free, chi2 = {self.chi2:.4g}, "
                   f"dof = {self.dof}, {'stated' if self.sigma_known else 'estimated'} COR errors, "
                   f"{self.nfev} model evaluations, {self.wall_time:.2f} s; {self.message}"),
-                 f"{'parameter':14s} {'estimate':>13s} {'stderr':>11s} {'lower95':>13s} {'upper95':>13s}  identified"]
-        for i, n in enumerate(self.names):
-            lines.append(f"{n:14s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} {self.lower95[i]:13.6g} "
-                         f"{self.upper95[i]:13.6g}  {'yes' if self.identified[i] else 'NO: ' + self.notes[i]}")
+                 f"{'parameter':14s} {'unit':>8s} {'estimate':>13s} {'stderr':>11s} {'lower95':>13s} {'upper95':>13s}"
+                 f"  identified"]
+        for i, (n, unit) in enumerate(zip(self.names, self.units())):
+            lines.append(f"{n:14s} {unit.split(' ')[0]:>8s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} "
+                         f"{self.lower95[i]:13.6g} {self.upper95[i]:13.6g}  "
+                         f"{'yes' if self.identified[i] else 'NO: ' + self.notes[i]}")
         flagged = [i for i, v in enumerate(self.validity if self.validity is not None else []) if v]
         if flagged:
             lines.append(f"# {len(flagged)} of {len(self.data.v0)} data points lie outside the model's stated range "
@@ -535,8 +543,7 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
 
     import xarray as xr
 
-    units = {"modulus_scale": "1", "log_aT": "1 (log10 of a_T)"}
-    param_units = [units.get(n, _param_unit(n, cal.base.kind if cal.base else "")) for n in cal.names]
+    param_units = cal.units()
     label = {"long_name": "free parameter of the calibration"}
     ds = xr.Dataset(coords={d: (d, cal.names, label) for d in ("parameter", "parameter_2")})
     for name, values, long in (("estimate", cal.estimate, "estimate"), ("stderr", cal.stderr, "standard error"),
@@ -547,6 +554,8 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
                                ("upper_bound", cal.bounds[:, 1], "upper bound")):
         ds[name] = ("parameter", np.asarray(values, float), {"long_name": long, "units_by_parameter": json.dumps(
             dict(zip(cal.names, param_units)))})
+    ds["unit"] = ("parameter", np.array(param_units, dtype=str),
+                  {"long_name": "unit (UDUNITS) of the parameter's estimate, stderr, interval, start and bounds"})
     ds["identified"] = ("parameter", cal.identified.astype(np.int8),
                         {"long_name": "1: identified by the data; 0: see note", "units": "1"})
     ds["note"] = ("parameter", np.array(cal.notes, dtype=str), {"long_name": "why a parameter is not identified"})
