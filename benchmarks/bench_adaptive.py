@@ -21,7 +21,7 @@ import timing
 import vcor
 from vcor.contact.impact import make_impact
 from vcor.materials.expsums import soe
-from vcor.solvers.adaptive import GRIDS, level_tables, run_adaptive
+from vcor.solvers.adaptive import GRIDS, SMOOTH_GRIDS, level_tables, run_adaptive
 from vcor.solvers.options import solver_options
 from vcor.study import runner, scene
 
@@ -154,7 +154,8 @@ def per_impact(args):
     opts = vcor.SolverOptions()
     return [f"Per impact at default settings, v0 = 10 m/s, whole simulate call, warm: median of {res[0]['calls']} "
             "calls after one untimed call (direct: 2000 steps per contact-time estimate; adaptive: its defaults, "
-            f"step_tol {opts.step_tol:g} with Richardson extrapolation from {GRIDS} grids).",
+            f"step_tol {opts.step_tol:g} with Richardson extrapolation from {GRIDS} grids, {SMOOTH_GRIDS} where the "
+            "kernel is an exact exponential sum resolved on the grid: sls).",
             timing.table(["material", "direct [ms]", "adaptive [ms]", "adaptive / direct", "steps direct/adaptive"],
                          rows)]
 
@@ -167,9 +168,10 @@ def breakdown(args):
                     + ["/".join(map(str, runs[0]["steps"])), runs[0]["modes"]])
     return [f"Where the time of one adaptive impact goes (v0 = 10 m/s, warm: median of {res[0]['calls']} calls after "
             "one untimed call): set-up = options, impact and contact-time estimate; one march = run_adaptive "
-            f"without extrapolation; {GRIDS} marches = run_adaptive as simulate calls it (the grid and its replays, "
-            "extrapolation); modes: terms of the exponential sum on [t_c / 2^18, 256 t_c].",
-            timing.table(["material", "simulate [µs]", "set-up [µs]", f"{GRIDS} marches [µs]", "one march [µs]",
+            "without extrapolation; all marches = run_adaptive as simulate calls it (the grid and its "
+            f"{SMOOTH_GRIDS - 1} or {GRIDS - 1} replays, extrapolation); modes: terms of the exponential sum on "
+            "[t_c / 2^18, 256 t_c].",
+            timing.table(["material", "simulate [µs]", "set-up [µs]", "all marches [µs]", "one march [µs]",
                           "steps (grid/all)", "modes"], rows)]
 
 
