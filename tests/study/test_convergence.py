@@ -37,7 +37,7 @@ def test_study_records_options_statuses_and_order_two():
         order = convergence.observed_order(ds, name)
         print(f"\nsls v0 = 10, {name}: observed order {order:.3f}")
         assert 1.9 < order < 2.2  # README table: 2.00-2.02 (adaptive-plain, in the steps taken: 1.96)
-    # the sweep default (adaptive, Richardson from four grids), in the steps of all four, over the rungs
+    # the sweep default (adaptive, Richardson from three grids for this SLS), in the steps of all, over the rungs
     # whose error the reference resolves (above 3x its gap to ive at rtol 1e-12: the finer rungs of this
     # ladder reach that floor)
     rungs = ds.sel(solver="adaptive")

@@ -227,7 +227,7 @@ class Calibration:
                  f"{'parameter':14s} {'unit':>8s} {'estimate':>13s} {'stderr':>11s} {'lower95':>13s} {'upper95':>13s}"
                  f"  identified"]
         for i, (n, unit) in enumerate(zip(self.names, self.units())):
-            lines.append(f"{n:14s} {unit.split(' ')[0]:>8s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} "
+            lines.append(f"{n:14s} {unit.split(' (')[0]:>8s} {self.estimate[i]:13.6g} {self.stderr[i]:11.4g} "
                          f"{self.lower95[i]:13.6g} {self.upper95[i]:13.6g}  "
                          f"{'yes' if self.identified[i] else 'NO: ' + self.notes[i]}")
         flagged = [i for i, v in enumerate(self.validity if self.validity is not None else []) if v]

@@ -249,6 +249,8 @@ def smooth_step(impact) -> float:
     rate = mat.fastest_rate
     if kind == 1 and plate is not None:
         rate = max(rate, plate.fastest_rate)
+    if not RESOLVED_DECAY > 0.0:
+        return 0.0
     return RESOLVED_DECAY / rate if rate > 0.0 else math.inf
 
 
@@ -422,7 +424,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         return coarse
     n_plan = min(march.n_done, int(march.state[SEPARATION]) + N_EXTRA)
     runs = [coarse]
-    n_grids = grid_count(march.dt, smooth_step(impact))  # march.dt: its largest step
+    n_grids = grid_count(march.dt, smooth_step(impact) if SMOOTH_GRIDS == GRIDS - 1 else 0.0)  # march.dt: largest step
     for shift in range(1, n_grids):
         last = history and shift == n_grids - 1
         grid = _Grid(h_base=h_base, tc=tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
@@ -478,7 +480,7 @@ def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol
 
 
 def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
-    smooth = smooth_step(impact) if n_grids == GRIDS else 0.0
+    smooth = smooth_step(impact) if n_grids == GRIDS and SMOOTH_GRIDS == GRIDS - 1 else 0.0
     rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth)
     if rows is None:
         return None

@@ -27,7 +27,7 @@ Contents (reference: numba kernel)
     soe_reference                  march_soe
     paper_reference                march_paper
     adaptive_reference             march_adaptive (a controlled grid, or the replay of a level plan)
-    adaptive_richardson_reference  adaptive_grids (four grids, Richardson extrapolation)
+    adaptive_richardson_reference  adaptive_grids (four or three grids, Richardson extrapolation)
     separation_reference           separation_point / locate_separation
 
 Units (SI)
@@ -824,12 +824,14 @@ SMOOTH_EXPONENTS = (2.0, 4.0)
 
 def smooth_kernel_rates(impact):
     """The relaxation rates (1/s) of the kernel's and the plate's exponential terms when both are exact
-    sums of exponentials with no Dirac term (a rigid target, an elastic plate or a plate of constant
-    mobility count as such), else None: the cases in which ``adaptive`` takes three Richardson grids
-    once every rate times its accepted grid's largest step is at most vcor.solvers.adaptive.RESOLVED_DECAY."""
+    sums of exponentials with no Dirac term (a rigid target, a plate of constant mobility or a plate
+    material that does not relax, of any law, count as such), else None: the cases in which
+    ``adaptive`` takes three Richardson grids once every rate times its accepted grid's largest step
+    is at most vcor.solvers.adaptive.RESOLVED_DECAY."""
     g = impact.geometry
     bodies = [impact.material]
-    if not (g.rigid or g.case == 4):
+    constant = g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic)
+    if not constant:
         bodies.append(impact.material if g.plate_material is None else g.plate_material)
     rates = []
     for body in bodies:

@@ -39,7 +39,8 @@ __all__ = [
 JOB_SECONDS = 15.0
 #: estimated seconds per point by method for a preset material, runner included (measured with
 #: ``vcor.simulate`` and ``vcor.study.runner.run_points`` on the reference machine, rounded up; for
-#: ``adaptive``, four Richardson grids: 0.13-0.25 ms per point over the presets,
+#: ``adaptive``, four Richardson grids (three for a resolved exponential kernel: less): 0.13-0.25 ms per
+#: point over the presets,
 #: ``benchmarks/bench_scaling.py`` prints the estimate beside the measured SLS cost)
 POINT_SECONDS = {
     "adaptive": 2.5e-4,
