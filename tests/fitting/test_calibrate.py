@@ -33,6 +33,16 @@ def test_noise_free_data_recover_the_true_values(clean):
     assert C.calibration_dataset(cal)["unit"].values.tolist() == ["Pa", "s-1"]
 
 
+def test_the_report_prints_a_unit_with_a_space_whole():
+    """The fractional law's E1 is in Pa s0.5: the report's unit column says so (not just Pa)."""
+    fc = vcor.materials.get("butyl-fc")
+    v0 = np.geomspace(1.0, 10.0, 5)
+    cor = np.array([vcor.simulate(fc, v).cor for v in v0])
+    cal = C.calibrate(C.CorData(v0, cor), fc, {"E1": [1e4, 1e8]})
+    assert cal.units() == ["Pa s0.5"]
+    assert cal.report().splitlines()[2].split()[:3] == ["E1", "Pa", "s0.5"]
+
+
 @pytest.mark.parametrize("stated", [False, True])
 def test_95_percent_intervals_cover_the_truth(clean, stated):
     """10 speeds 1..30 m/s, 0.5 % noise, E_glassy and beta free, 20 seeds: each parameter's 95 %
