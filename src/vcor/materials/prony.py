@@ -99,6 +99,7 @@ class Prony(Material, kind="prony"):
             raise ValueError("Prony: glassy modulus E_inf + sum(E) must be > 0 Pa")
         # the terms as arrays, built once (not dataclass fields: equality and hashing use E and beta)
         object.__setattr__(self, "_term_arrays", (np.asarray(e, float), np.asarray(b, float)))
+        object.__setattr__(self, "_term_pairs", tuple(zip(e, b)))  # for modulus_at, called per impact
 
     @property
     def is_prony(self) -> bool:
@@ -127,7 +128,7 @@ class Prony(Material, kind="prony"):
 
     def modulus_at(self, t: float) -> float:
         total = self.E_inf
-        for e, b in zip(self.E, self.beta):
+        for e, b in self._term_pairs:
             total += e * math.exp(-b * t)
         return total
 

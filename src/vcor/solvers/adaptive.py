@@ -233,16 +233,17 @@ def plate_record(impact, tables: Tables, kind: int) -> tuple[Plate, float]:
             pt.soe_error)
 
 
-def smooth_step(impact) -> float:
+def smooth_step(impact, kind: int | None = None) -> float:
     """The largest step (s) of an accepted grid on which the error has no h^3.5 term
     (``SMOOTH_EXPONENTS``): RESOLVED_DECAY over the fastest rate (1/s) of the kernel's and the plate's
     exponential modes (inf when no mode relaxes), or 0 where the error may have that term at any step:
     a kernel that is not an exact exponential sum or has a Dirac term (Kelvin-Voigt), a plate whose
-    modulus is in closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum."""
+    modulus is in closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum. ``kind``: the
+    impact's :func:`plate_kind`, where the caller has it."""
     mat = impact.material
     if not mat.is_prony or mat.viscosity != 0.0:
         return 0.0
-    kind = plate_kind(impact)
+    kind = plate_kind(impact) if kind is None else kind
     plate = impact.geometry.plate_material
     if kind >= 2 or (kind == 1 and plate is not None and not (plate.is_prony and plate.viscosity == 0.0)):
         return 0.0
@@ -424,7 +425,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         return coarse
     n_plan = min(march.n_done, int(march.state[SEPARATION]) + N_EXTRA)
     runs = [coarse]
-    n_grids = grid_count(march.dt, smooth_step(impact) if SMOOTH_GRIDS == GRIDS - 1 else 0.0)  # march.dt: largest step
+    n_grids = grid_count(march.dt, smooth_step(impact, kind) if SMOOTH_GRIDS == GRIDS - 1 else 0.0)  # largest step
     for shift in range(1, n_grids):
         last = history and shift == n_grids - 1
         grid = _Grid(h_base=h_base, tc=tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
@@ -480,7 +481,7 @@ def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol
 
 
 def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
-    smooth = smooth_step(impact) if n_grids == GRIDS and SMOOTH_GRIDS == GRIDS - 1 else 0.0
+    smooth = smooth_step(impact, kind) if n_grids == GRIDS and SMOOTH_GRIDS == GRIDS - 1 else 0.0
     rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth)
     if rows is None:
         return None

@@ -25,6 +25,7 @@ A result whose outputs are not finite is never ``ok``: :func:`finalised` gives i
 from __future__ import annotations
 
 import math
+import operator
 
 import numpy as np
 
@@ -64,13 +65,17 @@ def _wave_density(impact) -> float:
     return g.sphere_density if (g.rigid or g.case == 4) else g.plate_density
 
 
+#: a result's OUTCOME values as a tuple
+_outcome_values = operator.attrgetter(*OUTCOME)
+
+
 def finalised(res, impact, options):
     """``res`` with non-finite outputs turned into status ``diverged`` and, for an ok result, its
     validity flags and message (module docstring)."""
     if not res.ok:
         return res
-    bad = [k for k in OUTCOME if not math.isfinite(getattr(res, k))]
-    if bad:
+    if not all(map(math.isfinite, _outcome_values(res))):
+        bad = [k for k in OUTCOME if not math.isfinite(getattr(res, k))]
         res.status = "diverged"
         res.message = (f"the outputs {', '.join(f'{k} = {getattr(res, k)!r}' for k in bad)} are not finite: the "
                        f"impact is outside the range the solver handles (sphere mass {impact.m:.3g} kg, v0 = "
