@@ -485,10 +485,10 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
     rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth)
     if rows is None:
         return None
-    values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1].tolist(), "")
-    steps, dt = rows[:, 9:].tolist(), float(rows[-1, 10])
-    res = Result(**separation_scalars(values), steps=int(sum(row[0] for row in steps)), dt=dt, method="adaptive",
-                 soe_error=soe_error)
+    rows = rows.tolist()
+    values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1], "")
+    res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
+                 method="adaptive", soe_error=soe_error)
     res.message = message
     return res
 
@@ -499,18 +499,14 @@ def richardson_outcome(runs):
     OUTCOME values in that order; further values ignored; a list of lists or an array) and "", or, where
     the grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR
     is negative, the finest grid's values and a message saying why (values: a list)."""
-    grids = np.asarray(runs, dtype=float)
-    rows = grids.tolist()
+    rows = runs.tolist() if isinstance(runs, np.ndarray) else [[float(x) for x in r] for r in runs]
     first, last = rows[0], rows[-1]
     n = len(OUTCOME)
-    chosen = RICHARDSON_WEIGHTS if len(rows) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS
-    if len(rows) != len(chosen):
+    weights = RICHARDSON_WEIGHTS if len(rows) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS
+    if len(rows) != len(weights):
         raise ValueError(f"{len(rows)} grids: Richardson weights are for {len(RICHARDSON_WEIGHTS)} or "
                          f"{len(SMOOTH_WEIGHTS)}")
-    weights = _WEIGHTS.get(chosen)
-    if weights is None:
-        weights = _WEIGHTS[chosen] = np.array(chosen)
-    extrapolated = (weights @ grids).tolist()[:n]
+    extrapolated = _weighted(weights, rows)[:n]
     cor = extrapolated[_COR]
     if cor < 0.0:
         # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
@@ -531,8 +527,17 @@ def richardson_outcome(runs):
     return extrapolated, ""
 
 
-#: RICHARDSON_WEIGHTS as an array, per weights tuple (the benchmarks set other weights)
-_WEIGHTS = {}
+
+def _weighted(weights, rows):
+    """sum_j weights[j] rows[j], element by element (rows: lists of floats; written out for three and four
+    grids, where numpy's call overhead would be most of the work)."""
+    if len(rows) == 3:
+        w0, w1, w2 = weights
+        return [w0 * a + w1 * b + w2 * c for a, b, c in zip(*rows)]
+    if len(rows) == 4:
+        w0, w1, w2, w3 = weights
+        return [w0 * a + w1 * b + w2 * c + w3 * d for a, b, c, d in zip(*rows)]
+    return (np.array(weights) @ np.array(rows)).tolist()
 
 
 def _difference_ratio(rows, i):
