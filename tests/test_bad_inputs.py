@@ -314,7 +314,8 @@ def test_cached_geometries_and_options_keep_the_type_of_a_value():
 
 
 def test_a_number_read_as_text_says_why():
-    """PyYAML reads ``3.0e7`` (no sign in the exponent) as text: the refusal says how to write it."""
+    """PyYAML reads ``3.0e7`` (no sign in the exponent) as text: the refusal says how to write it, in YAML
+    and from Python."""
     from vcor.checks import number
     from vcor.materials.specs import from_spec
 
@@ -326,6 +327,10 @@ def test_a_number_read_as_text_says_why():
     with pytest.raises(ValueError) as exc:
         number("x", "abc")
     assert "text, not a number" not in str(exc.value)
+    # the same text from a Python caller (a scene as a mapping): the hint speaks to Python too
+    with pytest.raises(ValueError, match=r"v0\[0\]: .*got '1e0': text, not a number \(from Python, write it without "
+                       r"quotes; in a YAML file .*write 1.0e\+0\)"):
+        vcor.sweep({"materials": ["sls"], "grid": {"v0": ["1e0"]}}, progress=False)
 
 
 @pytest.mark.parametrize("written, fix", [("3.0e7", "3.0e+7"), ("3e+7", "3.0e+7"), ("1e-9", "1.0e-9")])

@@ -39,12 +39,14 @@ def number(name: str, value, lo: float = -math.inf, hi: float = math.inf, *, lo_
 def text_hint(value) -> str:
     """For a number that arrived as text, why, and how to write it: PyYAML (YAML 1.1) reads a number with
     an exponent as a number only with a dot in the mantissa and a sign in the exponent (``3.0e+7``;
-    ``3.0e7``, ``3e+7`` and ``1e-9`` are text); otherwise a quoted number. "" for any other value.
+    ``3.0e7``, ``3e+7`` and ``1e-9`` are text); otherwise a quoted number. The same text reaches a Python
+    caller who passed a string, so the hint with an exponent speaks to both. "" for any other value.
 
     Examples
     --------
-    >>> text_hint("3e7")
-    ': text, not a number (YAML reads a number with an exponent only with a dot and a signed exponent: write 3.0e+7)'
+    >>> hint = text_hint("3e7")
+    >>> hint.startswith(": text, not a number (from Python, write it without quotes;"), hint.endswith("write 3.0e+7)")
+    (True, True)
     >>> text_hint("2.5")
     ': text, not a number (write it without quotes)'
     """
@@ -61,8 +63,8 @@ def text_hint(value) -> str:
             mantissa += ".0"
         if exponent[:1] not in "+-":
             exponent = "+" + exponent
-        return (f": text, not a number (YAML reads a number with an exponent only with a dot and a signed "
-                f"exponent: write {mantissa}e{exponent})")
+        return (f": text, not a number (from Python, write it without quotes; in a YAML file a number with an "
+                f"exponent needs a dot and a signed exponent: write {mantissa}e{exponent})")
     return ": text, not a number (write it without quotes)"
 
 
