@@ -239,9 +239,10 @@ def smooth_step(impact, kind: int | None = None) -> float:
     exponential modes (inf when no mode relaxes), or 0 where the error may have that term at any step:
     a kernel that is not an exact exponential sum or has a Dirac term (Kelvin-Voigt), a plate whose
     modulus is in closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum. ``kind``: the
-    impact's :func:`plate_kind`, where the caller has it."""
+    impact's :func:`plate_kind`, where the caller has it. Also 0 where RESOLVED_DECAY is 0 or the grid
+    constants have been set to another number of grids (SMOOTH_GRIDS is then not GRIDS - 1: benchmarks)."""
     mat = impact.material
-    if not mat.is_prony or mat.viscosity != 0.0:
+    if not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or not mat.is_prony or mat.viscosity != 0.0:
         return 0.0
     kind = plate_kind(impact) if kind is None else kind
     plate = impact.geometry.plate_material
@@ -250,8 +251,6 @@ def smooth_step(impact, kind: int | None = None) -> float:
     rate = mat.fastest_rate
     if kind == 1 and plate is not None:
         rate = max(rate, plate.fastest_rate)
-    if not RESOLVED_DECAY > 0.0:
-        return 0.0
     return RESOLVED_DECAY / rate if rate > 0.0 else math.inf
 
 
@@ -359,9 +358,15 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
 RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
 #: weights of the grids' values (coarse to fine): w with sum_j w_j 2^(-p j) = 0 for every exponent p
 #: and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
-RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
-    np.array([[1.0] + [2.0 ** (-p * j) for p in RICHARDSON_EXPONENTS] for j in range(GRIDS)]).T,
-    np.eye(GRIDS)[0]))
+def _weights_for(exponents) -> tuple:
+    """Weights of the values on grids h, h/2, h/4, ... (one more grid than exponents) that sum to 1 and
+    remove the error terms h^p of ``exponents`` (solved, not inverted: they sum to 1 to rounding)."""
+    n = len(exponents) + 1
+    rows = np.array([[1.0] + [2.0 ** (-p * j) for p in exponents] for j in range(n)])
+    return tuple(float(w) for w in np.linalg.solve(rows.T, np.eye(n)[0]))
+
+
+RICHARDSON_WEIGHTS = _weights_for(RICHARDSON_EXPONENTS)
 #: Three grids (the accepted grid, every step divided by 2 and 4) eliminating h^2 and h^4, where the error
 #: has no h^3.5 term: a kernel that is an exact exponential sum (Prony, SLS, elastic; no Dirac term, no
 #: t^-1/2 singularity) on a rigid target, a plate of constant mobility or one whose modulus is an exact
@@ -372,9 +377,7 @@ RICHARDSON_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
 #: (``benchmarks/bench_grids.py``: SLS of rates 1e2..1e5 1/s, glassy/rubbery 4 and 50, plate and
 #: sphere pair, 0.001..100 m/s, against scipy Radau at rtol 1e-12)
 SMOOTH_EXPONENTS = (2.0, 4.0)
-SMOOTH_WEIGHTS = tuple(float(w) for w in np.linalg.solve(
-    np.array([[1.0] + [2.0 ** (-p * j) for p in SMOOTH_EXPONENTS] for j in range(SMOOTH_GRIDS)]).T,
-    np.eye(SMOOTH_GRIDS)[0]))
+SMOOTH_WEIGHTS = _weights_for(SMOOTH_EXPONENTS)
 #: a mode of rate b is resolved on a grid whose largest step h has b h <= RESOLVED_DECAY (it decays by at
 #: most 10 % over any step); the three grids' largest COR error on bench_grids.py's SLS family at step_tol
 #: 4e-4 stays below 1e-7 up to b h = 0.1 and reaches 1.5e-7..2.2e-7 at b h = 0.5..1
@@ -425,7 +428,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         return coarse
     n_plan = min(march.n_done, int(march.state[SEPARATION]) + N_EXTRA)
     runs = [coarse]
-    n_grids = grid_count(march.dt, smooth_step(impact, kind) if SMOOTH_GRIDS == GRIDS - 1 else 0.0)  # largest step
+    n_grids = grid_count(march.dt, smooth_step(impact, kind))  # march.dt: its largest step
     for shift in range(1, n_grids):
         last = history and shift == n_grids - 1
         grid = _Grid(h_base=h_base, tc=tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
@@ -481,7 +484,7 @@ def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol
 
 
 def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
-    smooth = smooth_step(impact, kind) if n_grids == GRIDS and SMOOTH_GRIDS == GRIDS - 1 else 0.0
+    smooth = smooth_step(impact, kind) if n_grids == GRIDS else 0.0
     rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth)
     if rows is None:
         return None
