@@ -358,7 +358,7 @@ def test_a_sweep_with_no_ok_point_writes_its_dataset_and_exits_1(tmp_path, capsy
     assert cli.main(["sweep", "--config", str(config), "--scene", "starved", "--out", str(out), "--workers", "1",
                      "--no-progress"]) == 1
     err = capsys.readouterr().err
-    assert "2 points" in err and "no point ended ok (exit code 1)" in err
+    assert "vcor sweep: 2 points, 0 ok" in err and "no point ended ok (exit code 1)" in err
     assert (read_dataset(out)["status"].values != 0).all()
     assert cli.main(["sweep", "--config", str(config), "--scene", "fine", "--out", str(tmp_path / "fine.nc"),
                      "--workers", "1", "--no-progress"]) == 0

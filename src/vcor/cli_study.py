@@ -82,7 +82,8 @@ def _sweep(args) -> int:
         return 130
     archive.write(args.out, command=f"vcor sweep --config {args.config} --scene {args.name}")
     done = outcome_of(archive.dataset)
-    print(f"vcor sweep: {done.points} points, {done.text()}: {args.out}", file=sys.stderr)
+    points = f"{done.points} point" + ("s" if done.points != 1 else "")
+    print(f"vcor sweep: {points}, {done.text()}: {args.out}", file=sys.stderr)
     if done.ok + done.flagged == 0:
         print(f"vcor sweep: no point ended ok (exit code 1); the status and message variables of {args.out} say "
               f"why", file=sys.stderr)
