@@ -1,16 +1,19 @@
 """Measured DMA data: pyvisco's file conventions, bad data, time-temperature
 superposition, WLF. README, "Measured DMA data"."""
 
+import json
 import math
 from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 import vcor
 from vcor.fitting import dma
 from vcor.io.netcdf import read_dataset
 from vcor.materials import shift as tts
+from vcor.materials.catalogue import Catalogue
 
 DATA = Path(__file__).resolve().parents[2] / "data/pyvisco"
 
@@ -95,6 +98,28 @@ def test_synthetic_prony_wlf_material_is_recovered(tmp_path, seed):
     print(f"\nseed {seed}: shift error {np.max(np.abs(fit.log_aT - true)):.3f}, WLF C1 {c1:.2f} C2 {c2:.1f} K, "
           f"COR worst {worst:.2%}, fit rms E' {fit.spectrum.metrics['E_stor_rms']:.2%}")
     assert worst <= 0.01
+
+
+def test_vcor_fit_keeps_the_shift_function_and_gives_the_material_at_a_temperature(tmp_path):
+    """``vcor.fit`` of multi-temperature data returns the shift function it stores in the material file, and
+    ``at(T)`` is the material a sweep over T takes (the catalogue reading the written file); a fit without
+    temperatures has none, and ``at`` then refuses naming the material."""
+    _synthetic(tmp_path / "s.csv", 1)
+    config = {"fits": {"rubber": {"model": "prony", "data": {"file": "s.csv", "T_ref": T_REF, "shift_model": "wlf"}}}}
+    (tmp_path / "config.yaml").write_text(yaml.safe_dump(config))
+    fitted = vcor.fit("rubber", config=tmp_path / "config.yaml")
+    assert fitted.shift is not None and fitted.shift.model == "wlf"
+    assert fitted.shift.to_dict() == json.loads(fitted.dataset.attrs["shift"])
+    assert abs(fitted.shift.log_aT(T_REF)) <= 1e-12 and fitted.shift.log_aT(0.0) > 1.0  # colder: slower
+    fitted.write(tmp_path / "results/materials/rubber.nc")
+    catalogue = Catalogue(fits=config["fits"], material_dir=str(tmp_path / "results/materials"), base_dir=str(tmp_path))
+    for T in (0.0, T_REF, 40.0):
+        assert fitted.at(T) == catalogue.at("rubber", T=T)
+    assert fitted.at(T_REF) == fitted.material
+    plain = vcor.fit({"model": "prony", "n_terms": 2}, name="p2")
+    assert plain.shift is None
+    with pytest.raises(ValueError, match="material 'p2' has no shift function"):
+        plain.at(20.0)
 
 
 def test_method_free_is_refused_naming_its_replacement():

@@ -30,12 +30,14 @@ catalogue) and uses every layer below it (materials, solvers, fitting, DEM); the
 
 from __future__ import annotations
 
+import json
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..io.archived import Archive
+from ..materials.shift import ShiftFunction, at_temperature
 from .computed import DETERMINISTIC, calibration_archive, fit_archive, ready_catalogue
 from .inputs import resolve_entry, resolve_scene
 from .pool import check_workers
@@ -118,16 +120,25 @@ def sweep_archive(scene: dict | str, *, config: Any = None, workers: int | None 
 
 @dataclass(frozen=True, kw_only=True)
 class Fitted:
-    """A fitted material: its ``name``, the ``material``, its ``dataset`` (the file
+    """A fitted material: its ``name``, the ``material`` (at the data's reference temperature), its shift
+    function ``shift`` (:class:`vcor.materials.shift.ShiftFunction`; a fit to multi-temperature DMA data
+    has one, the material file's attribute ``shift``; otherwise None), its ``dataset`` (the file
     ``<material_dir>/<name>.nc``: parameters, residual curves, metrics), its text ``table`` and the fit's
-    ``result`` (:class:`vcor.fitting.prony.FitResult`: metrics, settings, fit time)."""
+    ``result`` (:class:`vcor.fitting.prony.FitResult`: metrics, settings, fit time). :meth:`at` gives the
+    material at another temperature, as a sweep's temperature axis does."""
 
     name: str
     material: Material
+    shift: ShiftFunction | None
     result: FitResult = field(repr=False)
     dataset: xarray.Dataset = field(repr=False)
     table: str = field(repr=False)
     archive: Archive = field(repr=False)
+
+    def at(self, T: float) -> Material:
+        """The material at temperature ``T`` (deg C), time-shifted by ``shift`` (log a_T at T), as a sweep
+        over ``T`` takes it; ValueError when the fit has no shift function or T is outside its range."""
+        return at_temperature(self.material, self.shift, T, self.name)
 
     def write(self, path, *, table=None, identity: str | None = None) -> Path:
         """Write the material file to ``path`` (and the table to ``table``) as the workflow does; a material
@@ -169,8 +180,10 @@ def fit(fit: dict | str, *, config: Any = None, name: str | None = None) -> Fitt
     study = resolve_entry("fits", fit, name, config, "fit")
     spec = study.project.catalogue.fits[study.name]
     archive, result, table = fit_archive(study.name, spec, study.base_dir)
-    return Fitted(name=study.name, material=result.material, result=result, table=table, archive=archive,
-                  dataset=archive.loaded(command=f"vcor.fitting.fits {DETERMINISTIC}"))
+    dataset = archive.loaded(command=f"vcor.fitting.fits {DETERMINISTIC}")
+    text = dataset.attrs.get("shift")
+    return Fitted(name=study.name, material=result.material, shift=ShiftFunction.from_spec(json.loads(text)) if text
+                  else None, result=result, table=table, archive=archive, dataset=dataset)
 
 
 @dataclass(frozen=True, kw_only=True)
