@@ -7,8 +7,10 @@ at v0 = 0.001, 1, 10, 100 m/s (208 impacts). Reference: ``ive`` (scipy Radau) at
 internal variables; not computed by adaptive). For every impact the accepted grid at the default
 step_tol and its replays (``adaptive.grid_outcomes``, four grids) give the COR extrapolated from the
 first three grids (h^2, h^4 eliminated: ``SMOOTH_WEIGHTS``) and from all four (h^2, h^3.5, h^4:
-``RICHARDSON_WEIGHTS``); rows group the impacts by b h_max (the rate times the accepted grid's largest
-step). The errors do not depend on the machine: one process computes them.
+``RICHARDSON_WEIGHTS``), and the four grids again on an accepted grid at LOOSER times the step_tol (what a
+looser tolerance for four-grid impacts would give); rows group the impacts by b h_max (the rate times
+the default accepted grid's largest step). The errors do not depend on the machine: one process
+computes them.
 
 Run: python benchmarks/bench_grids.py [--quick] [--out FILE]
 """
@@ -26,6 +28,8 @@ RATES = tuple(float(b) for b in np.logspace(2.0, 5.0, 13))
 RATIOS = (4.0, 50.0)
 TARGETS = ("plate", "pair")
 SPEEDS = (0.001, 1.0, 10.0, 100.0)
+#: the looser tolerance's factor on step_tol (the last column)
+LOOSER = 2.5
 #: upper edges of the rows' b h_max ranges
 EDGES = (0.01, 0.03, 0.05, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0)
 
@@ -43,7 +47,8 @@ def impact_of(rate, ratio, target, v0):
 
 
 def measure(quick: bool) -> list:
-    """Per case: (b h_max, error of three grids, error of four grids, grids the default takes)."""
+    """Per case: (b h_max, error of three grids, error of four grids, grids the default takes, error of four
+    grids at LOOSER step_tol, steps of the four grids at step_tol and at LOOSER step_tol)."""
     import vcor
     from vcor.solvers import adaptive
 
@@ -64,7 +69,12 @@ def measure(quick: bool) -> list:
                     three = float(np.dot(adaptive.SMOOTH_WEIGHTS, cor[: adaptive.SMOOTH_GRIDS]))
                     four = float(np.dot(adaptive.RICHARDSON_WEIGHTS, cor))
                     default = len(adaptive.grid_outcomes(impact, tc, adaptive.GRIDS, fewer=True, **kw))
-                    out.append((rate * float(rows[0, 10]), abs(three / ref - 1), abs(four / ref - 1), default))
+                    loose = adaptive.grid_outcomes(impact, tc, adaptive.GRIDS,
+                                                   **{**kw, "step_tol": LOOSER * kw["step_tol"]})
+                    four_loose = float(np.dot(adaptive.RICHARDSON_WEIGHTS,
+                                              loose[:, adaptive.EXTRAPOLATED.index("cor")]))
+                    out.append((rate * float(rows[0, 10]), abs(three / ref - 1), abs(four / ref - 1), default,
+                                abs(four_loose / ref - 1), float(rows[:, 9].sum()), float(loose[:, 9].sum())))
     return out
 
 
@@ -77,7 +87,8 @@ def report(cases) -> list:
         if inside:
             takes = sorted({c[3] for c in inside})
             rows.append([f"({lo:g}, {hi:g}]", str(len(inside)), f"{max(c[1] for c in inside):.1e}",
-                         f"{max(c[2] for c in inside):.1e}", " or ".join(map(str, takes))])
+                         f"{max(c[2] for c in inside):.1e}", " or ".join(map(str, takes)),
+                         f"{max(c[4] for c in inside):.1e}"])
         lo = hi
     chosen = [c[1] if c[3] == adaptive.SMOOTH_GRIDS else c[2] for c in cases]
     return [f"COR error of the adaptive method (default step_tol) against scipy Radau at rtol 1e-12, on "
@@ -87,9 +98,11 @@ def report(cases) -> list:
             f"largest step): the largest error from three grids (h^2, h^4) and from four (h^2, h^3.5, h^4), "
             f"and how many the default takes (three where b h_max <= RESOLVED_DECAY = "
             f"{adaptive.RESOLVED_DECAY:g}). Largest error of the default's choice over all cases: "
-            f"{max(chosen):.1e}.",
+            f"{max(chosen):.1e}. Last column: four grids on an accepted grid at {LOOSER:g} times the step_tol "
+            f"(largest error {max(c[4] for c in cases):.1e}; steps of the four grids, mean over the impacts: "
+            f"{np.mean([c[6] for c in cases]):.0f} against {np.mean([c[5] for c in cases]):.0f} at the step_tol).",
             timing.table(["b h_max", "impacts", "three grids: largest error", "four grids: largest error",
-                          "default takes"], rows)]
+                          "default takes", f"four grids at {LOOSER:g} step_tol: largest error"], rows)]
 
 
 def main():
