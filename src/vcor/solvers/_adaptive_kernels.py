@@ -154,9 +154,13 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     if n >= 2:
         last_d = (u[n - 1] - u[n - 2]) / (t[n - 1] - t[n - 2])
         last_dg = (g[n - 1] - g[n - 2]) / (t[n - 1] - t[n - 2])
-    # mean of u' over the step before the last one, and the weights of (d_n, d_{n-1}, d_{n-2}) in c_n
-    # and q_n for the last three steps' sizes (recomputed only when the sizes change)
+    # mean of u' over the step before the last one; the sizes of the last two accepted steps (t_n are
+    # exact, so these are the steps' h); and what depends only on the last three steps' sizes (and so on
+    # the newest step's table row), recomputed only when they change: the weights of (d_n, d_{n-1},
+    # d_{n-2}) in c_n and q_n, 2 / (h_n + h_{n-1}), and the newest step's weight of u_n
     prev_d = 0.0
+    last_h = 0.0
+    prev_h = 0.0
     w_h0 = -1.0
     w_h1 = -1.0
     w_h2 = -1.0
@@ -164,7 +168,16 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     c2 = 0.0
     q1 = 0.0
     q2 = 0.0
+    w_cs = 0.0
+    w_qs = 0.0
+    w_r2 = 0.0
+    w_w0 = 0.0
+    w_moment = 0.0
+    w_curvature = 0.0
+    if n >= 2:
+        last_h = t[n - 1] - t[n - 2]
     if n >= 3:
+        prev_h = t[n - 2] - t[n - 3]
         prev_dg = (g[n - 2] - g[n - 3]) / (t[n - 2] - t[n - 3])
         last_r2 = 2.0 / (t[n - 1] - t[n - 3])
         prev_d = (u[n - 2] - u[n - 3]) / (t[n - 2] - t[n - 3])
@@ -195,34 +208,40 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
                 v = mode_decay[row, k] * P[k]
                 trial_history[k] = v
                 Hh += v
-        hp = t[n - 1] - t[n - 2] if n >= 2 else 0.0
+        hp = last_h
         inv_h = inv_step[row]
         # the newest step's force: I d_n + M c_n + Q q_n with c_n = cs d_n + c0, q_n = qs d_n + q0
         # (cs, qs: the weights of d_n; c0, q0: of the older means), d_n = (u_n - u_{n-1}) / h
         if n >= 3:
-            h2 = t[n - 2] - t[n - 3]
-            if h != w_h0 or hp != w_h1 or h2 != w_h2:
-                w_h0, w_h1, w_h2 = h, hp, h2
-                c1, c2, q1, q2 = slope_weights(h, hp, h2)
-            r2 = 2.0 / (h + hp)
-            cs = -(c1 + c2)
+            if h != w_h0 or hp != w_h1 or prev_h != w_h2:
+                w_h0, w_h1, w_h2 = h, hp, prev_h
+                c1, c2, q1, q2 = slope_weights(h, hp, prev_h)
+                w_r2 = 2.0 / (h + hp)
+                w_cs = -(c1 + c2)
+                w_qs = -(q1 + q2)
+                w_moment = newest_moment[row]
+                w_curvature = newest_curvature[row]
+                w_w0 = (newest_integral[row] + w_cs * w_moment + w_qs * w_curvature) * inv_h
+            r2 = w_r2
+            cs = w_cs
+            qs = w_qs
             c0 = c1 * last_d + c2 * prev_d
-            qs = -(q1 + q2)
             q0 = q1 * last_d + q2 * prev_d
-        elif n == 2:
-            r2 = 2.0 / (h + hp)
-            cs = r2
-            c0 = -r2 * last_d
-            qs = 0.0
-            q0 = 0.0
+            w0 = w_w0
+            H = Hh - w0 * u[n - 1] + c0 * w_moment + q0 * w_curvature
         else:
-            r2 = 0.0
-            cs = 0.0
-            c0 = 0.0
+            if n == 2:
+                r2 = 2.0 / (h + hp)
+                cs = r2
+                c0 = -r2 * last_d
+            else:
+                r2 = 0.0
+                cs = 0.0
+                c0 = 0.0
             qs = 0.0
             q0 = 0.0
-        w0 = (newest_integral[row] + cs * newest_moment[row] + qs * newest_curvature[row]) * inv_h
-        H = Hh - w0 * u[n - 1] + c0 * newest_moment[row] + q0 * newest_curvature[row]
+            w0 = (newest_integral[row] + cs * newest_moment[row] + qs * newest_curvature[row]) * inv_h
+            H = Hh - w0 * u[n - 1] + c0 * newest_moment[row] + q0 * newest_curvature[row]
         if plate.kind == 1:
             if n_plate > FEW_MODES:
                 eb, ebd = _plate_sums(plate_decay, row, X, trial_plate, pe, pbe, n_plate)
@@ -312,6 +331,8 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         last_d = d
         last_c = c
         last_row = row
+        prev_h = last_h
+        last_h = h
         if plate.kind == 1:
             for k in range(n_plate):
                 X[k] = trial_plate[k]

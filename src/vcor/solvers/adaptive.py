@@ -443,7 +443,7 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
         runs.append(run)
     fine = runs[-1]
     fine.steps = sum(r.steps for r in runs)
-    values, message = richardson_outcome([[getattr(r, k) for k in OUTCOME] for r in runs])
+    values, message = richardson_outcome([[float(getattr(r, k)) for k in OUTCOME] for r in runs])
     fine.__dict__.update(separation_scalars(values))
     fine.message = "; ".join(m for m in (fine.message, message) if m)
     return fine
@@ -499,10 +499,10 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
 def richardson_outcome(runs):
     """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (GRIDS rows with
     ``RICHARDSON_WEIGHTS``, or SMOOTH_GRIDS rows with ``SMOOTH_WEIGHTS``; per grid, coarse to fine, its
-    OUTCOME values in that order; further values ignored; a list of lists or an array) and "", or, where
+    OUTCOME values in that order; further values ignored; lists of floats or an array) and "", or, where
     the grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR
     is negative, the finest grid's values and a message saying why (values: a list)."""
-    rows = runs.tolist() if isinstance(runs, np.ndarray) else [[float(x) for x in r] for r in runs]
+    rows = runs.tolist() if isinstance(runs, np.ndarray) else runs
     first, last = rows[0], rows[-1]
     n = len(OUTCOME)
     weights = RICHARDSON_WEIGHTS if len(rows) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS
