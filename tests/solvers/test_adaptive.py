@@ -210,7 +210,7 @@ def _independent_reference(name, v0):
     internal variables; for the elastic kernel it agrees with DOP853 at rtol 1e-14 to 1e-13), and direct
     at 2000, 4000, 8000 steps per contact time, Richardson-extrapolated (h^2, h^2.5), for the fractional
     and CERF laws (the same from 8000 steps differs by at most 1.3e-9)."""
-    if vcor.materials.get(name).is_prony:
+    if (vcor.materials.get(name) if isinstance(name, str) else name).is_prony:
         r = vcor.simulate(name, v0, method="ive", rtol=1e-12)
         return r.cor, r.t0
     runs = [vcor.simulate(name, v0, method="direct", steps_per_contact=2000 * k) for k in (1, 2, 4)]
@@ -232,6 +232,28 @@ def test_default_accuracy_against_independent_references(name):
         worst = max(worst, e_cor, e_t0)
         assert e_cor <= 1e-7 and e_t0 <= 1e-7, (v0, e_cor, e_t0)
     print(f"\n{name}: worst relative error {worst:.2e}")
+
+
+#: fractional and CERF laws other than the presets (E0, E1 in Pa and Pa s^0.5; E0, E1 in Pa and b1 in s^-0.5):
+#: a pure fractional law, a stiff and a soft one; CERF laws whose time scale 1/b1^2 is far longer and far
+#: shorter than the contact
+OTHER_LAWS = [vcor.materials.FractionalPower(0.0, 8.85e5), vcor.materials.FractionalPower(2.28e7, 8.85e5),
+              vcor.materials.FractionalPower(1e5, 1e5), vcor.materials.Cerf(4.42e5, 6.765e8, 70.0),
+              vcor.materials.Cerf(4.42e5, 6.765e7, 7e4)]
+
+
+@pytest.mark.parametrize("material", OTHER_LAWS, ids=lambda m: f"{m.kind}{m.params()}")
+def test_default_accuracy_beyond_the_presets(material):
+    """The default's 1e-7 is not a property of the presets alone: fractional and CERF laws of other
+    parameters (``OTHER_LAWS``), at 0.001, 1 and 300 m/s, against direct's Richardson reference."""
+    worst = 0.0
+    for v0 in (0.001, 1.0, 300.0):
+        res = vcor.simulate(material, v0)
+        cor, _ = _independent_reference(material, v0)
+        assert res.ok and res.message == "", res.message
+        worst = max(worst, abs(res.cor / cor - 1))
+        assert abs(res.cor / cor - 1) <= 1e-7, (v0, res.cor, cor)
+    print(f"\n{material}: worst COR error {worst:.2e}")
 
 
 def _default_grids(impact):
