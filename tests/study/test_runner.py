@@ -17,8 +17,9 @@ def _scene(grid):
 def _solved(grid):
     sc = _scene(grid)
     adaptive.level_tables.cache_clear()
+    adaptive.impact_tables.cache_clear()
     ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
-    return ds, adaptive.level_tables.cache_info().misses
+    return ds, adaptive.impact_tables.cache_info().misses
 
 
 def test_solving_order_groups_points_that_differ_only_in_speed():

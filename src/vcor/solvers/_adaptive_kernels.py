@@ -53,6 +53,7 @@ from ._records import (
 )
 from ._separation import locate_separation
 from ._step import advance, implicit_step_inline, separated
+from .erfcx import erfcx_slope
 
 __all__ = ["FEW_MODES", "adaptive_grids", "march_adaptive", "slope_weights"]
 
@@ -391,46 +392,20 @@ def _closed_form_mobility(t, plate):
     alpha' = alpha factor coef / (4 D t) (one division, two roots).
 
     Kind 3, the CERF law, E_b = factor (e_inf + coef erfcx(x)), x = rate t^1/2: with
-    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi) (:func:`_erfcx_slope`, without its cancellation at large x)
-    and dx/dt = x / (2 t), alpha = scale E_b^-1/2 and alpha' = -alpha E_b' / (2 E_b)."""
+    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi) (:func:`vcor.solvers.erfcx.erfcx_slope`: a piecewise
+    polynomial, without the cancellation at large x) and dx/dt = x / (2 t), alpha = scale E_b^-1/2 and
+    alpha' = -alpha E_b' / (2 E_b)."""
     rt = math.sqrt(t)
     if plate.kind == 2:
         y = 1.0 / (plate.factor * (plate.e_inf * rt + plate.coef) * t)
         a = plate.scale * math.sqrt(rt * y * t)
         return a, 0.25 * a * plate.factor * plate.coef * y
     x = plate.rate * rt
-    ex, slope = _erfcx_slope(x)
+    ex, slope = erfcx_slope(x)
     eb = plate.factor * (plate.e_inf + plate.coef * ex)
     a = plate.scale / math.sqrt(eb)
     rate_eb = plate.factor * plate.coef * slope * plate.rate / (2.0 * rt) if t > 0.0 else 0.0
     return a, -0.5 * a * rate_eb / eb
-
-
-_TWO_OVER_SQRT_PI = 2.0 / math.sqrt(math.pi)
-#: erfcx(x) = exp(x^2) erfc(x) from libm's erfc below ERFCX_SWITCH (relative error ~ x^2 eps, 7e-14 at
-#: the switch), above it the asymptotic series 1 / (x sqrt(pi)) sum_n (-1)^n (2n - 1)!! / (2 x^2)^n,
-#: ERFCX_TERMS terms (truncation below 1e-17 at the switch)
-ERFCX_SWITCH = 25.0
-ERFCX_TERMS = 8
-
-
-@jit_inline
-def _erfcx_slope(x):
-    """(erfcx(x), erfcx'(x)) for x >= 0, erfcx(x) = exp(x^2) erfc(x) (see ERFCX_SWITCH) and
-    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi). Above the switch the slope is 2 / sqrt(pi) times the series'
-    terms after the first (about -1 / (sqrt(pi) x^2)): subtracting the two O(1) numbers there would leave
-    rounding, relative 2 x^2 eps, and nothing at all from x ~ 1e8 on (the CERF law of a fitted material
-    with b1 ~ 1e10 1/s reaches x ~ 1e8 within the contact)."""
-    if x < ERFCX_SWITCH:
-        ex = math.exp(x * x) * math.erfc(x)
-        return ex, 2.0 * x * ex - _TWO_OVER_SQRT_PI
-    inv = 1.0 / (2.0 * x * x)
-    term = 1.0
-    tail = 0.0
-    for n in range(1, ERFCX_TERMS):
-        term *= -(2.0 * n - 1.0) * inv
-        tail += term
-    return (1.0 + tail) / (x * math.sqrt(math.pi)), _TWO_OVER_SQRT_PI * tail
 
 
 @jit_sum

@@ -43,6 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..contact.impact import Impact
 from ..materials.expsums import soe
 from ._adaptive_kernels import adaptive_grids, march_adaptive, slope_weights
 from ._records import (
@@ -65,9 +66,9 @@ from .common import OUTCOME, Result, separation_scalars
 from .march import N_EXTRA, Arrays, March, finish
 
 __all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_HORIZON", "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_STEPS",
-           "SMOOTH_GRIDS", "SMOOTH_WEIGHTS", "PlateTables", "Tables", "grid_count", "grid_outcomes", "level_tables",
-           "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome", "run_adaptive",
-           "slope_weights", "smooth_step", "solve"]
+           "SMOOTH_GRIDS", "SMOOTH_WEIGHTS", "PlateTables", "Tables", "grid_count", "grid_outcomes", "impact_tables",
+           "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome",
+           "run_adaptive", "slope_weights", "smooth_step", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -283,7 +284,21 @@ class _Grid:
 
 def _tables_for(impact, h_base, factor, tol, kind):
     """(horizon (s), number of levels, tables, plate record as a plain tuple, largest relative error of
-    the kernel's and the plate's exponential sums) for the horizon ``factor`` contact-time estimates."""
+    the kernel's and the plate's exponential sums) for the horizon ``factor`` contact-time estimates.
+    They depend on the impact's material and geometry, not on its speed: cached on those (a sweep's points
+    and repeated calls share them). The key also holds the module's grid constants and its
+    :func:`level_tables` as they are at the call, so that a benchmark or test that sets them is never
+    served tables made under others."""
+    return impact_tables(impact.material, impact.geometry, h_base, factor, tol, kind,
+                          (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION))
+
+
+@functools.lru_cache(maxsize=256)
+def impact_tables(material, geometry, h_base, factor, tol, kind, module):
+    """(Cached.) :func:`_tables_for` of an impact of ``material`` and ``geometry`` (any speed); ``module``:
+    (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION) at the call."""
+    impact = Impact(material, 1.0, geometry)  # the speed enters none of the tables
+    level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION = module  # noqa: N806 (the module's, as keyed)
     top = h_base * 2.0**FLOOR_BITS
     horizon = factor * 2.0 * top  # a power of two >= factor t_c: the tables of a sweep's points are shared
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1

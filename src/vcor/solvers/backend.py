@@ -26,12 +26,12 @@ from pathlib import Path
 
 import numba
 
-from . import _adaptive_kernels, _fixed_kernels, _separation, _step
+from . import _adaptive_kernels, _fixed_kernels, _separation, _step, erfcx
 
 __all__ = ["KERNEL_MODULES", "cache_folder", "compiled_signatures", "load_kernels", "lock_name"]
 
 #: the modules that hold numba kernels
-KERNEL_MODULES = (_step, _fixed_kernels, _adaptive_kernels, _separation)
+KERNEL_MODULES = (_step, _fixed_kernels, _adaptive_kernels, _separation, erfcx)
 
 
 def compiled_signatures() -> dict[str, list]:
