@@ -8,7 +8,7 @@ event on F = 0 (direction -1). The method must be stiff-capable (default "Radau"
 
 The two-body contact modulus of Green's Eq. 1 (:class:`vcor.materials.EqOne`) is not a Prony series;
 both methods take it as its exponential-sum fit on [0, the horizon] (:mod:`vcor.materials.expfit`,
-relative error <= ``SUM_TOL``, checked at t = 0 too, reported as ``soe_error``), when its E'(0) is
+relative error <= ``vcor.solvers.options.SUM_TOL``, checked at t = 0 too, reported as ``soe_error``), when its E'(0) is
 finite. ``ive``'s work is bounded by ``max_steps`` solve_ivp steps over all its horizons.
 """
 
@@ -25,12 +25,10 @@ from ._fixed_kernels import march_prony
 from ._records import Body, Internal, Stop
 from .common import Histories, Result, peak
 from .march import LINEAR_MAX_T_FACTOR, T_MAX_START, drive, finish, step_plan
+from .options import SUM_TOL
 
-__all__ = ["SUM_TOL", "kernel_terms", "run_ive_fixed", "run_ive_scipy", "solve_fixed", "solve_scipy"]
+__all__ = ["kernel_terms", "run_ive_fixed", "run_ive_scipy", "solve_fixed", "solve_scipy"]
 
-#: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
-#: methods (below their own error; the same as the default soe_tol of the exponential-sum methods)
-SUM_TOL = 1e-10
 #: the sum's samples run from t = 0 and then log-spaced from this fraction of the horizon (s)
 SUM_WINDOW_START = 2.0**-40
 

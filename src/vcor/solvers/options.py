@@ -23,7 +23,11 @@ from dataclasses import dataclass
 from ..checks import interned, shown
 
 __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES",
-           "OPTION_HELP", "OPTION_UNITS", "SolverOptions", "solver_options"]
+           "OPTION_HELP", "OPTION_UNITS", "SUM_TOL", "SolverOptions", "solver_options"]
+
+#: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
+#: methods, which have no soe_tol option (below their own error; the same as soe_tol's default)
+SUM_TOL = 1e-10
 
 #: solver methods (``vcor.solvers.simulate.METHODS`` maps each to its runner); ``paper`` is the
 #: explicit baseline of the work-precision study

@@ -19,7 +19,9 @@ under_resolved           8     a fixed-step method and a Kelvin-Voigt (Dirac) ke
 =======================  ====  =====================================================================
 
 A result whose outputs are not finite is never ``ok``: :func:`finalised` gives it the status
-``diverged`` and a message naming the outputs.
+``diverged`` and a message naming the outputs. An ok result whose exponential sums are less accurate
+than the method's tolerance (the fitted two-body modulus of a pair no fit reaches it for, taken within
+``vcor.materials.expsums.FIT_ACCEPT``) says so in its message.
 """
 
 from __future__ import annotations
@@ -29,7 +31,9 @@ import operator
 
 import numpy as np
 
+from ..materials.expsums import FIT_ACCEPT
 from .common import OUTCOME
+from .options import SUM_TOL
 
 __all__ = ["FLAGS", "MAX_ENERGY_RESIDUAL", "MAX_INDENTATION", "MAX_SPEED_FRACTION", "MIN_DAMPING_STEPS", "cf_attrs",
            "damping_time", "finalised"]
@@ -81,6 +85,12 @@ def finalised(res, impact, options):
                        f"impact is outside the range the solver handles (sphere mass {impact.m:.3g} kg, v0 = "
                        f"{impact.v0:g} m/s); check the inputs, or try method direct as a reference")
         return res
+    tol = options.soe_tol if options.soe_tol is not None else SUM_TOL
+    if res.soe_error > tol:
+        res.message = "; ".join(m for m in (res.message, (
+            f"the exponential sum of the contact modulus of the two bodies reaches a relative error of "
+            f"{res.soe_error:.2g}, not the tolerance {tol:g}: no fit of this pair does in double precision "
+            f"(the best within {FIT_ACCEPT:g} is taken); the results carry an error of about that size")) if m)
     notes, flags = [], 0
     r = impact.geometry.r
     if res.s_max / r > MAX_INDENTATION:
