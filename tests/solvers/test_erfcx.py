@@ -56,3 +56,15 @@ def test_table_is_the_chebyshev_interpolant():
     xs = np.linspace(0.0, 0.999, 200)
     error = np.max(np.abs(np.polynomial.polynomial.polyval(2 * xs - 1, coarse[0]) / scipy.special.erfcx(xs) - 1))
     assert 1e-9 < error < 1e-4
+
+
+def test_outside_the_domain_and_bad_table_parameters():
+    """x < 0 (never passed by the march) gives NaN, not a wrong number; NaN gives NaN and +inf (0, 0); the
+    table refuses a width, degree or switch outside its range, naming the parameter."""
+    out = _evaluate(np.array([-1e-3, -1.0, math.nan, math.inf]))
+    assert np.all(np.isnan(out[:3])) and list(out[3]) == [0.0, 0.0]
+    for kwargs, name in (({"width": 0.0}, "width"), ({"degree": 0}, "degree"), ({"degree": 2.5}, "degree"),
+                         ({"switch": 25.1}, "switch"), ({"switch": -1.0}, "switch")):
+        with pytest.raises(ValueError, match=f"^{name} must be"):
+            _erfcx.erfcx_table(**kwargs)
+    assert _erfcx.erfcx_table(width=0.5, degree=4, switch=2.0).shape == (4, 5)

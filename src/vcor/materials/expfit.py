@@ -20,7 +20,9 @@ The least-squares problem is solved by QR with column pivoting (LAPACK ``geqp3``
 the numerical rank (1e-15 of the largest pivot) are dropped, which keeps the weights moderate. A fit is
 accepted when its relative error, checked on times ten times denser than the samples, is <= ``tol``
 and the weights lose no more than that to rounding (``(|c_0| + sum |c_j|) / min E' * eps <= tol``); else
-the next, richer rate set is tried (:data:`ATTEMPTS`). The weights may be negative, so the result is an
+the next, richer rate set is tried (:data:`ATTEMPTS`). Where none reaches ``tol``, the caller may take the
+best within a looser ``accept`` (``vcor.materials.expsums.FIT_ACCEPT``), whose error is then the larger of
+the check's and the rounding's. The weights may be negative, so the result is an
 :class:`ExponentialSum` (a Prony with signed terms), not a material.
 
 The fit runs with one BLAS thread (``threadpoolctl``): its linear algebra is a few small QR
@@ -138,9 +140,9 @@ def fit_exponential_sum(modulus, combined, t_min: float, t_max: float, tol: floa
     the window) on [t_min, t_max] (s), with the bodies' summed rates ``combined(order)`` (1/s) as the
     first candidates (module docstring); ``from_zero``: t = 0 is a sample and a check point too (for
     the internal-variable methods, which integrate the kernel from t = 0). The first rate set of
-    :data:`ATTEMPTS` that reaches ``tol`` is taken; when none does, the best of them (error and rounding)
-    if it is within ``accept`` (default: ``tol``), else ValueError (the message gives the best error
-    reached)."""
+    :data:`ATTEMPTS` that reaches ``tol`` is taken; when none does, the best of them if it is within
+    ``accept`` (default: ``tol``), with the larger of its checked error and its rounding loss as its error,
+    else ValueError (the message gives the best error reached)."""
     samples = {}  # per density: (t, E(t), check times, E there)
     best = math.inf
     for step, order in ATTEMPTS:
@@ -159,12 +161,12 @@ def fit_exponential_sum(modulus, combined, t_min: float, t_max: float, tol: floa
         error = float(np.max(np.abs(terms / e_check - 1.0)))
         rounding = float(np.sum(np.abs(weights)) / np.min(e_check) * np.finfo(float).eps)
         if max(error, rounding) < best:
-            best, best_fit = max(error, rounding), (weights, kept_rates, error)
+            best, best_fit = max(error, rounding), (weights, kept_rates)
         if error <= tol and rounding <= tol:
             return _exponential_sum(weights, kept_rates), error
     if best <= (tol if accept is None else accept):
-        weights, kept_rates, error = best_fit
-        return _exponential_sum(weights, kept_rates), error
+        weights, kept_rates = best_fit
+        return _exponential_sum(weights, kept_rates), best
     window = f"[0, {t_max:.3g}]" if from_zero else f"[{t_min:.3g}, {t_max:.3g}]"
     raise ValueError(f"no exponential sum reaches a relative error of {tol:g} on {window} s (best {best:.2g})")
 

@@ -3,15 +3,17 @@ every node of every grid).
 
 Below SWITCH: a piecewise polynomial, one per interval of width WIDTH, of degree DEGREE in
 tau = 2 (x - centre) / WIDTH in [-1, 1]: the interpolant at DEGREE + 1 Chebyshev nodes, in powers of tau
-(Horner). Its relative error against scipy.special.erfcx is below 3e-15 on [0, SWITCH)
-(``tests/solvers/test_erfcx.py``), and it costs about a third of libm's exp(x^2) erfc(x), whose exp
-also carries the rounding of x^2 (relative x^2 eps, 7e-14 at the switch). The node values are
+(evaluated by Estrin's scheme). Its relative error against scipy.special.erfcx is below 3e-15 on
+[0, SWITCH) (``tests/solvers/test_erfcx.py``); libm's exp(x^2) erfc(x), which it replaces in the march,
+is slower and its exp carries the rounding of x^2 (relative x^2 eps, 7e-14 at the switch). The node values are
 exp(x^2) erfc(x) with x^2 split exactly into two doubles (Veltkamp/Dekker), so that only libm's own
 rounding enters. Above SWITCH: the asymptotic series 1 / (x sqrt(pi)) sum_n (-1)^n (2n - 1)!! / (2 x^2)^n,
 TERMS terms (truncation below 1e-17 at the switch).
 
 The table is built at import from the standard library's erfc (no scipy: a Prony-only run does not load
-scipy.special) in well under a millisecond; numba takes it into the compiled march as a constant.
+scipy.special); numba takes it into the compiled march as a constant, so that numba's disk cache, keyed
+on the march's own module, does not see a change of this table: after editing this module, clear the
+cache (``vcor.solvers.backend.cache_folder``).
 """
 
 from __future__ import annotations
@@ -45,8 +47,15 @@ def _erfcx_at(x: float) -> float:
 
 def erfcx_table(width: float = WIDTH, degree: int = DEGREE, switch: float = SWITCH) -> np.ndarray:
     """Coefficients (interval, power of tau) of the piecewise interpolant of erfcx (module docstring): row i
-    on [i width, (i + 1) width], tau = 2 (x - (i + 1/2) width) / width, lowest power first."""
-    n = int(round(switch / width))
+    on [i width, (i + 1) width], tau = 2 (x - (i + 1/2) width) / width, lowest power first. ``switch`` must
+    be a whole number of intervals."""
+    if not (isinstance(width, float | int) and 0.0 < width <= 1.0):
+        raise ValueError(f"width must be in (0, 1], got {width!r}")
+    if not (isinstance(degree, int) and 1 <= degree <= 20):
+        raise ValueError(f"degree must be an integer in [1, 20], got {degree!r}")
+    n = round(switch / width) if isinstance(switch, float | int) and switch > 0 else 0
+    if not (n >= 1 and n * width == switch):
+        raise ValueError(f"switch must be a positive whole multiple of width = {width!r}, got {switch!r}")
     nodes = np.cos(np.pi * (np.arange(degree + 1) + 0.5) / (degree + 1))  # Chebyshev nodes in [-1, 1]
     centres = (np.arange(n) + 0.5) * width
     values = np.array([[_erfcx_at(float(c + 0.5 * width * t)) for t in nodes] for c in centres])
@@ -68,7 +77,8 @@ _SCALE = 2.0 / WIDTH
 
 @jit_inline
 def erfcx_slope(x):
-    """(erfcx(x), erfcx'(x)) for x >= 0, erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi). Above the switch the slope
+    """(erfcx(x), erfcx'(x)) for x >= 0 (NaN for x < 0, which the march never passes),
+    erfcx'(x) = 2 x erfcx(x) - 2 / sqrt(pi). Above the switch the slope
     is 2 / sqrt(pi) times the series' terms after the first (about -1 / (sqrt(pi) x^2)): subtracting the two
     O(1) numbers there would leave rounding, relative 2 x^2 eps, and nothing at all from x ~ 1e8 on (the
     CERF law of a fitted material with b1 ~ 1e10 1/s reaches x ~ 1e8 within the contact)."""
@@ -83,6 +93,8 @@ def erfcx_slope(x):
         q2 = (TABLE[i, 8] + TABLE[i, 9] * tau) + TABLE[i, 10] * t2
         ex = q0 + (q1 + q2 * t4) * t4
         return ex, 2.0 * x * ex - _TWO_OVER_SQRT_PI
+    if x < 0.0:
+        return math.nan, math.nan
     inv = 1.0 / (2.0 * x * x)
     term = 1.0
     tail = 0.0

@@ -26,7 +26,8 @@ __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_
            "OPTION_HELP", "OPTION_UNITS", "SUM_TOL", "SolverOptions", "solver_options"]
 
 #: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
-#: methods, which have no soe_tol option (below their own error; the same as soe_tol's default)
+#: methods, which have no soe_tol option (below their own error; the same as soe_tol's default; where no fit
+#: reaches it, vcor.materials.expsums.FIT_ACCEPT as for soe_tol)
 SUM_TOL = 1e-10
 
 #: solver methods (``vcor.solvers.simulate.METHODS`` maps each to its runner); ``paper`` is the
@@ -99,7 +100,8 @@ _SPEC = {
                   "ones)", bounds=("float", 1e-13, 1.0, "[1e-13, 1)"), unit="1"),
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
     "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's "
-                     "history part (vcor.materials.expsums), in [1e-15, 0.01)",
+                     "history part (vcor.materials.expsums; a two-body modulus no sum fits that closely is "
+                     "taken within FIT_ACCEPT and its error reported), in [1e-15, 0.01)",
                      bounds=("float", 1e-15, 1e-2, "[1e-15, 0.01)"), unit="1"),
     "ghost": _spec(0.5, METHOD_NAMES, "histories only: continue the solution this fraction of t0 past separation, "
                    "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]"), unit="1"),
