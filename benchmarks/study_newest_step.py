@@ -34,6 +34,9 @@ CASES = (("butyl-fc", 1.0, "rigid"), ("butyl-fc", 10.0, "rigid"), ("butyl-cerf",
 #: coarse steps per contact-time estimate, and the number of nested grids (every step divided by 2^k)
 N_PER = 40
 LEVELS = 6
+#: finer coarse grids (steps per contact-time estimate) of the cubic scheme's three grids, for the second
+#: table (the fractional and CERF cases)
+FINER = (48, 56, 64)
 #: the schemes: (newest-step degree, terms every older step keeps beyond its mean: 1, the slope; 2, also
 #: the curvature)
 SCHEMES = ((2, 1), (3, 1), (3, 2))
@@ -148,9 +151,9 @@ def _solve(step, prev):
     return sn
 
 
-def coarse_grid(tc):
-    """Steps (s) of tc / N_PER, graded near t = 0, to 12 tc."""
-    top = tc / N_PER
+def coarse_grid(tc, n_per=N_PER):
+    """Steps (s) of tc / n_per, graded near t = 0, to 12 tc."""
+    top = tc / n_per
     steps, t = [], 0.0
     while t < 12.0 * tc:
         step = top / 64.0
@@ -169,7 +172,8 @@ def weights_for(exponents):
 
 
 def measure(quick):
-    """Per case: (label, {scheme: [(COR, steps) per grid]})."""
+    """Per case: (label, {scheme: [(COR, steps) per grid]}, {n_per in FINER: [(COR, steps) of the cubic
+    scheme on three grids]}, the last empty for the Prony kernels)."""
     from vcor.contact.impact import make_impact
 
     levels = 4 if quick else LEVELS
@@ -180,28 +184,48 @@ def measure(quick):
         base = np.array(coarse_grid(impact.contact_time_estimate()))
         runs = {scheme: [cor_on(impact, np.repeat(base / 2**k, 2**k), scheme) for k in range(levels)]
                 for scheme in SCHEMES}
+        finer = {}
+        if not impact.material.is_prony:
+            for n_per in FINER:
+                grid = np.array(coarse_grid(impact.contact_time_estimate(), n_per))
+                finer[n_per] = [cor_on(impact, np.repeat(grid / 2**k, 2**k), (3, 1)) for k in range(3)]
         where = "rigid target" if target == "rigid" else f"plate h = {target or 'default'}"
-        out.append((f"{name}, {v0:g} m/s, {where}", runs))
+        out.append((f"{name}, {v0:g} m/s, {where}", runs, finer))
     return out
 
 
 def report(results, quick):
     levels = 4 if quick else LEVELS
     header = ["case"] + [label for label, *_ in ROWS]
-    rows = []
-    for label, runs in results:
+    rows, equal = [], []
+    for label, runs, finer in results:
         cubic = np.array([c for c, _ in runs[(3, 1)]])
         ref = weights_for((2.0, 3.0, 4.0)) @ cubic[levels - 4:]
         cells = [label]
         for _, scheme, (first, count), exponents in ROWS:
-            cors = np.array([c for c, _ in runs[scheme][first: first + count]])
-            steps = sum(n for _, n in runs[scheme][:first + count])  # the coarser grids are marched too
-            cells.append(f"{abs(weights_for(exponents) @ cors / ref - 1):.1e} ({steps})")
+            cells.append(_cell(runs[scheme], first, count, exponents, ref))
         rows.append(cells)
-    return [f"COR relative error (steps of all grids marched, the coarse grid and every replay up to the last "
-            f"used) against the extrapolation (h^2, h^3, h^4) of the cubic scheme's {min(levels, 4)} finest of "
-            f"{levels} grids; coarse grid tc / {N_PER}, graded near t = 0.",
-            timing.table(header, rows)]
+        if finer:
+            equal.append([label, cells[1]] + [_cell(finer[n], 0, 3, (2.0, 4.0), ref) for n in FINER])
+    blocks = [f"COR relative error (steps of all grids marched, the coarse grid and every replay up to the last "
+              f"used) against the extrapolation (h^2, h^3, h^4) of the cubic scheme's {min(levels, 4)} finest of "
+              f"{levels} grids; coarse grid tc / {N_PER}, graded near t = 0.",
+              timing.table(header, rows)]
+    if equal:
+        blocks += [f"The fractional and CERF cases again: the quadratic scheme's four grids on the coarse grid "
+                   f"tc / {N_PER}, and the cubic scheme's three grids (h^2, h^4 removed) on finer coarse grids; "
+                   f"error (steps) against the same reference.",
+                   timing.table(["case", f"quadratic, 4 grids, tc / {N_PER}"]
+                                + [f"cubic, 3 grids, tc / {n}" for n in FINER], equal)]
+    return blocks
+
+
+def _cell(runs, first, count, exponents, ref):
+    """'error (steps)' of the extrapolation from ``runs[first: first + count]`` (the coarser grids are marched
+    too: their steps count)."""
+    cors = np.array([c for c, _ in runs[first: first + count]])
+    steps = sum(n for _, n in runs[:first + count])
+    return f"{abs(weights_for(exponents) @ cors / ref - 1):.1e} ({steps})"
 
 
 def main():
