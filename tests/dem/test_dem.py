@@ -124,8 +124,10 @@ def test_dataset_layout_units_and_the_within_range():
     assert ds["cor_model"].dims == ("model", "v0") and ds["cor"].dims == ("v0",)
     for var, unit in [("cor", "1"), ("eta_n0", "m-1 s-1"), ("A", "s"), ("e", "1"), ("vn", "m s-1"), ("E_lammps", "Pa"),
                       ("v0_within_lo", "m s-1"), ("v0", "m s-1"), ("young", "Pa"), ("E_eff", "Pa"),
-                      ("opposite_trend", "1")]:
+                      ("opposite_trend", "1"), ("soe_error", "1")]:
         assert ds[var].attrs["units"] == unit, var
+    # an SLS pair's kernel is its own Prony series: no approximation
+    assert ds["soe_error"].dims == ("v0",) and np.all(ds["soe_error"].values == 0.0)
     # Yade's young: both bodies of this modulus give Yade's E* = E_eff
     young, nu = float(ds["young"]), col.contact.nu
     assert young * young / (2 * (1 - nu**2) * young) == pytest.approx(float(ds["E_eff"]), rel=1e-12)
@@ -134,6 +136,18 @@ def test_dataset_layout_units_and_the_within_range():
     np.testing.assert_array_equal(ds["error"].values, ds["cor_model"].values - ds["cor"].values[None, :])
     assert export.within_range(np.arange(6.0), np.array([0.02, 0.0, 0.005, 0.02, 0.0, 0.0])) == (1.0, 2.0)
     assert all(math.isnan(x) for x in export.within_range(np.arange(2.0), np.array([0.5, 0.5])))
+
+
+def test_a_two_body_entry_stores_its_fitted_modulus_error_per_speed():
+    """An elastic aluminium sphere on an SLS plate (Eq. 1, an exponential sum fitted to soe_tol) with no
+    solver given: every speed ok, and the fit's error stored per speed (0 < soe_error <= 1e-10) and named."""
+    v0 = np.array([0.1, 1.0, 10.0])
+    col = fit.collision({"model": "elastic", "E": 7.0e10}, v0, sphere={"r": 0.005, "rho": 2700.0},
+                        target={"plate": {"material": "sls", "h": 0.01}})
+    ds = export.dem_dataset("alu", [col], [fit.fit_laws(col, ["table"])])
+    assert list(col.status) == ["ok"] * 3
+    assert np.all((ds["soe_error"].values > 0.0) & (ds["soe_error"].values <= 1e-10))
+    assert "exponential sums" in ds["soe_error"].attrs["long_name"]
 
 
 BASE = {"dem": {"d": {"sphere": {"material": "sls", "r": 0.005}, "target": {"sphere": {}},

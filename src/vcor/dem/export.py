@@ -32,6 +32,7 @@ import json
 import numpy as np
 
 from ..io.receipts import atomic_text
+from ..solvers.common import LONG_NAMES
 from ..solvers.validity import cf_attrs as validity_attrs
 from ..status import cf_attrs, code
 from . import trend
@@ -84,13 +85,14 @@ def within_range(v0, error, bound: float = WITHIN) -> tuple[float, float]:
 
 #: units and long names of the dataset's variables other than the laws' parameters
 _UNITS = {"cor": "1", "cor_model": "1", "error": "1", "max_abs_error": "1", "v0_within_lo": "m s-1",
-          "v0_within_hi": "m s-1", "validity": "1", "opposite_trend": "1"}
+          "v0_within_hi": "m s-1", "validity": "1", "opposite_trend": "1", "soe_error": "1"}
 _NAMES = {"cor": "vcor's COR (hereditary contact, the contact ends where the force vanishes)",
           "cor_model": "the DEM law's COR with its fitted parameters", "error": "cor_model - cor",
           "max_abs_error": "largest abs(error) over the speeds",
           "v0_within_lo": f"lowest speed of the widest run of speeds with abs(error) <= {WITHIN}",
           "v0_within_hi": f"highest speed of the widest run of speeds with abs(error) <= {WITHIN}",
           "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)",
+          "soe_error": LONG_NAMES["soe_error"],
           "opposite_trend": "1 where the law's COR changes with speed in the opposite sense to vcor's over the "
                             f"range and misses it by more than {WITHIN} (vcor.dem.trend): no value of its "
                             "parameters follows the curve"}
@@ -175,6 +177,9 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     status = np.array([[code(s) for s in c.status] for c in collisions], dtype=np.int8)
     message = np.array([[str(m) for m in c.message] for c in collisions])
     validity = np.array([c.validity for c in collisions], dtype=np.int8)
+    if any(len(c.soe_error) != len(v0) for c in collisions):
+        raise ValueError("every collision needs its soe_error per speed (vcor.dem.fit.collision gives it)")
+    soe_error = np.array([c.soe_error for c in collisions], dtype=float)
     ok = status == code("ok")
     opposed = np.array([trend.opposite(cor[t], cor_model[t], ok[t], WITHIN) for t in range(nt)], dtype=np.int8)
     prefix = [f"At T = {float(T):g} degC: " if with_t else "" for T in (temperatures if with_t else [None])]
@@ -188,6 +193,7 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
         "status": squeeze(("T", "v0"), status),
         "message": squeeze(("T", "v0"), message),
         "validity": squeeze(("T", "v0"), validity),
+        "soe_error": squeeze(("T", "v0"), soe_error),
         "cor_model": squeeze(("T", "model", "v0"), cor_model),
         "error": squeeze(("T", "model", "v0"), error),
         "max_abs_error": squeeze(("T", "model"), max_err),

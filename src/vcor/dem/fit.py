@@ -43,8 +43,9 @@ B_RANGE = (1e-6, 100.0)
 
 @dataclass(kw_only=True)
 class Collision:
-    """vcor's COR of one collision at the speeds ``v0`` (m/s), with ``status`` and ``message`` per
-    speed, ``t0`` (s), and its DEM :class:`~vcor.dem.laws.Contact` (module docstring); ``v_ref`` is
+    """vcor's COR of one collision at the speeds ``v0`` (m/s), with ``status``, ``message`` and
+    ``soe_error`` (the relative error of the exponential sums the solve carried: ``Result.soe_error``)
+    per speed, ``t0`` (s), and its DEM :class:`~vcor.dem.laws.Contact` (module docstring); ``v_ref`` is
     the reference speed (m/s)."""
 
     v0: np.ndarray
@@ -60,6 +61,7 @@ class Collision:
     material: object = None
     modulus_factor: float = math.nan
     target_kind: str = ""
+    soe_error: list = field(default_factory=list)
 
 
 def _bodies(material, sphere: dict, target):
@@ -114,7 +116,8 @@ def collision(material, v0, *, sphere: dict | None = None, target="rigid", optio
     contact, mat, factor = _contact(a, b, target, float(t0[near]), v_ref)
     return Collision(v0=v0, cor=cor, t0=t0, status=[r.status for r in results], message=[r.message for r in results],
                      contact=contact, v_ref=v_ref, validity=[r.validity for r in results], material=mat,
-                     modulus_factor=factor, target_kind=_target_kind(target))
+                     modulus_factor=factor, target_kind=_target_kind(target),
+                     soe_error=[float(r.soe_error) for r in results])
 
 
 def _fit_dissipation(contact: Contact, v0, cor) -> float:
