@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import timing
+from vcor.solvers.reference import richardson_weights
 
 #: (preset, v0 in m/s, target: "rigid", or a plate half-thickness in m, None for the default plate)
 CASES = (("butyl-fc", 1.0, "rigid"), ("butyl-fc", 10.0, "rigid"), ("butyl-cerf", 1.0, "rigid"),
@@ -164,13 +165,6 @@ def coarse_grid(tc, n_per=N_PER):
     return steps
 
 
-def weights_for(exponents):
-    """Richardson weights of grids h, h/2, ... removing the errors h^p of ``exponents``."""
-    n = len(exponents) + 1
-    rows = np.array([[1.0] + [2.0 ** (-p * j) for p in exponents] for j in range(n)])
-    return np.linalg.solve(rows.T, np.eye(n)[0])
-
-
 def measure(quick):
     """Per case: (label, {scheme: [(COR, steps) per grid]}, {n_per in FINER: [(COR, steps) of the cubic
     scheme on three grids]}, the last empty for the Prony kernels)."""
@@ -200,7 +194,7 @@ def report(results, quick):
     rows, equal = [], []
     for label, runs, finer in results:
         cubic = np.array([c for c, _ in runs[(3, 1)]])
-        ref = weights_for((2.0, 3.0, 4.0)) @ cubic[levels - 4:]
+        ref = richardson_weights((2.0, 3.0, 4.0)) @ cubic[levels - 4:]
         cells = [label]
         for _, scheme, (first, count), exponents in ROWS:
             cells.append(_cell(runs[scheme], first, count, exponents, ref))
@@ -225,7 +219,7 @@ def _cell(runs, first, count, exponents, ref):
     too: their steps count)."""
     cors = np.array([c for c, _ in runs[first: first + count]])
     steps = sum(n for _, n in runs[:first + count])
-    return f"{abs(weights_for(exponents) @ cors / ref - 1):.1e} ({steps})"
+    return f"{abs(richardson_weights(exponents) @ cors / ref - 1):.1e} ({steps})"
 
 
 def main():

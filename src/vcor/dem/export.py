@@ -177,8 +177,6 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     status = np.array([[code(s) for s in c.status] for c in collisions], dtype=np.int8)
     message = np.array([[str(m) for m in c.message] for c in collisions])
     validity = np.array([c.validity for c in collisions], dtype=np.int8)
-    if any(len(c.soe_error) != len(v0) for c in collisions):
-        raise ValueError("every collision needs its soe_error per speed (vcor.dem.fit.collision gives it)")
     soe_error = np.array([c.soe_error for c in collisions], dtype=float)
     ok = status == code("ok")
     opposed = np.array([trend.opposite(cor[t], cor_model[t], ok[t], WITHIN) for t in range(nt)], dtype=np.int8)

@@ -55,13 +55,14 @@ class Collision:
     message: list
     contact: Contact
     v_ref: float
+    #: per speed, as status and message (required: the dataset stores it)
+    soe_error: list
     validity: list = field(default_factory=list)
     #: the contact material, its effective modulus factor (E_c = factor E) and the target's kind
     #: (``sphere``, ``rigid``, ``plate``): what vcor's own law (lammps-hereditary) is built from
     material: object = None
     modulus_factor: float = math.nan
     target_kind: str = ""
-    soe_error: list = field(default_factory=list)
 
 
 def _bodies(material, sphere: dict, target):
