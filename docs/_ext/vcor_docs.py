@@ -268,7 +268,8 @@ class ValidityTable(Directive):
         limits = {"large_indentation": f"s_max / r > {validity.MAX_INDENTATION:g}",
                   "fast_impact": f"v0 > {validity.MAX_SPEED_FRACTION:g} sqrt(E(t0/4) / rho)",
                   "energy_residual": f"abs(energy residual) > {validity.MAX_ENERGY_RESIDUAL:g}",
-                  "under_resolved": f"fixed step, Kelvin-Voigt, t_d / dt < {validity.MIN_DAMPING_STEPS}"}
+                  "under_resolved": f"fixed step, Kelvin-Voigt, t_d / dt < {validity.MIN_DAMPING_STEPS}",
+                  "no_rebound": "sphere_velocity z'(t0) > 0 (still towards the target)"}
         if set(limits) != set(validity.FLAGS):
             raise self.error(f"validity flags differ from the table: {sorted(set(limits) ^ set(validity.FLAGS))}")
         rows = [[f"`{name}`", str(mask), f"`{limits[name]}`"] for name, mask in validity.FLAGS.items()]

@@ -36,6 +36,26 @@ def test_flags(material, v0, kwargs, flags):
         assert "adaptive" in r.validity_message  # says what to use instead
 
 
+@pytest.mark.parametrize("material, v0, h", [
+    (M.SLS(1.5e7, 0.12, 1200.0), 0.001, None),   # a plate of rubbery modulus 1e-4 of its glassy one
+    ("butyl-fc", 0.1, 5e-3),                      # a thin fractional plate
+])
+def test_a_sphere_still_approaching_at_separation_is_flagged(material, v0, h):
+    """The force vanishes while the sphere still moves towards the plate (its surface recedes faster):
+    COR 0.12 with the sphere at +0.52 v0, and 0.020 at +0.012 v0. Every method that solves the impact
+    (adaptive, direct; ive where the kernel is a Prony series) finds the same sphere velocity to 1e-6 and
+    flags no_rebound; the message gives the velocity in m/s. On the default plate butyl-fc rebounds."""
+    methods = ("adaptive", "direct") + (("ive",) if vcor.materials.get(material).is_prony else ())
+    runs = [vcor.simulate(material, v0, method=m, h=h) for m in methods]
+    for r in runs:
+        assert r.ok and r.sphere_velocity > 0.01 * v0 and r.cor > 0.01, (r.method, r.message)
+        assert r.validity == validity.FLAGS["no_rebound"], r.validity_message
+        assert f"z'(t0) = {r.sphere_velocity:.3g} m/s" in r.validity_message and "second contact" in r.validity_message
+        assert r.sphere_velocity == pytest.approx(runs[0].sphere_velocity, rel=1e-6)
+    if h is not None:  # the same material on the default (thicker) plate rebounds
+        assert vcor.simulate(material, v0).validity == 0
+
+
 def test_direct_on_kelvin_voigt_says_when_it_is_not_accurate():
     """Kelvin-Voigt with tau = 1 s (the preset's modulus; the viscous force stops the sphere within
     5 us, the COR is ~2e-6): fixed-step direct is 2 % off in the COR and 16 % in the peak force and

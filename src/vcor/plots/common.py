@@ -128,7 +128,8 @@ def flag_reasons(flags: int) -> str:
     words = {"large_indentation": f"s_max/r > {V.MAX_INDENTATION:g}",
              "fast_impact": f"fast impact, v0 > {V.MAX_SPEED_FRACTION:g} c (wave speed)",
              "energy_residual": f"energy balance off by > {V.MAX_ENERGY_RESIDUAL:g}",
-             "under_resolved": "damping under-resolved by the fixed step"}
+             "under_resolved": "damping under-resolved by the fixed step",
+             "no_rebound": "no rebound, sphere still approaching"}
     out = [words.get(name, name.replace("_", " ")) for name, mask in V.FLAGS.items() if flags & mask]
     known = sum(V.FLAGS.values())
     if flags & ~known:

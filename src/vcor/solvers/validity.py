@@ -16,6 +16,11 @@ energy_residual          4     ``|energy residual|`` > MAX_ENERGY_RESIDUAL: the 
 under_resolved           8     a fixed-step method and a Kelvin-Voigt (Dirac) kernel whose damping
                                stops the sphere within fewer than MIN_DAMPING_STEPS steps: the
                                fixed-step error there decays only as (dt / t_d)^1.4 (use adaptive)
+no_rebound               16    the sphere still moves towards the target at separation,
+                               ``sphere_velocity`` > 0: the plate's surface recedes faster than the
+                               sphere (thin viscoelastic plates, whose deflection keeps growing as
+                               they relax); the sphere meets it again, a second contact that the
+                               single-contact COR does not describe
 =======================  ====  =====================================================================
 
 A result whose outputs are not finite is never ``ok``: :func:`finalised` gives it the status
@@ -39,7 +44,7 @@ __all__ = ["FLAGS", "MAX_ENERGY_RESIDUAL", "MAX_INDENTATION", "MAX_SPEED_FRACTIO
            "damping_time", "finalised"]
 
 #: flag name -> bit mask (stable: archived datasets keep their meaning)
-FLAGS = {"large_indentation": 1, "fast_impact": 2, "energy_residual": 4, "under_resolved": 8}
+FLAGS = {"large_indentation": 1, "fast_impact": 2, "energy_residual": 4, "under_resolved": 8, "no_rebound": 16}
 MAX_INDENTATION = 0.1
 MAX_SPEED_FRACTION = 0.1
 MAX_ENERGY_RESIDUAL = 1e-4
@@ -115,6 +120,12 @@ def finalised(res, impact, options):
             notes.append(f"the Kelvin-Voigt damping stops the sphere within t_d = {t_d:.3g} s, {steps:.0f} fixed "
                          f"steps (fewer than {MIN_DAMPING_STEPS}): the fixed-step error there decays only as "
                          f"(dt / t_d)^1.4; use method adaptive, or dt <= t_d / {MIN_DAMPING_STEPS}")
+    if res.sphere_velocity > 0.0:
+        flags |= FLAGS["no_rebound"]
+        notes.append(f"the sphere still moves towards the target at separation (z'(t0) = "
+                     f"{res.sphere_velocity:.3g} m/s, {res.sphere_velocity / impact.v0:.3g} v0): the target's surface "
+                     f"recedes faster; the sphere meets it again, a second contact that this single-contact COR does "
+                     f"not describe")
     res.validity = flags
     res.validity_message = "; ".join(notes)
     return res
