@@ -19,8 +19,8 @@ under_resolved           8     a fixed-step method and a Kelvin-Voigt (Dirac) ke
 no_rebound               16    the sphere still moves towards the target at separation,
                                ``sphere_velocity`` > 0: the plate's surface recedes faster than the
                                sphere (thin viscoelastic plates, whose deflection keeps growing as
-                               they relax); the sphere meets it again, a second contact that the
-                               single-contact COR does not describe
+                               they relax); the COR describes this contact only, not the sphere's
+                               final rebound (a plate of bounded deflection is struck again)
 =======================  ====  =====================================================================
 
 A result whose outputs are not finite is never ``ok``: :func:`finalised` gives it the status
@@ -124,8 +124,8 @@ def finalised(res, impact, options):
         flags |= FLAGS["no_rebound"]
         notes.append(f"the sphere still moves towards the target at separation (z'(t0) = "
                      f"{res.sphere_velocity:.3g} m/s, {res.sphere_velocity / impact.v0:.3g} v0): the target's surface "
-                     f"recedes faster; the sphere meets it again, a second contact that this single-contact COR does "
-                     f"not describe")
+                     f"recedes faster than the sphere follows it; this COR describes this contact only, not the "
+                     f"sphere's final rebound (a plate whose deflection stays bounded is struck again)")
     res.validity = flags
     res.validity_message = "; ".join(notes)
     return res
