@@ -1,5 +1,6 @@
 """Planning a run stays light: the modules the Snakefile's process imports (workflow/rules/common.smk)
-load no scipy, numba, matplotlib or xarray; every snakemake call, a no-op included, pays for them."""
+load no scipy, numba, matplotlib or xarray; every snakemake call, a no-op included, pays for them. A job
+that solves nothing loads no solver (numba)."""
 
 import re
 import subprocess
@@ -19,3 +20,14 @@ def test_the_snakefile_imports_load_no_heavy_package():
             f"print(' '.join(m for m in {HEAVY!r} if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == [], f"planning imports {out.stdout.split()}"
+
+
+def test_the_aggregate_job_loads_no_solver():
+    """The aggregate job (workflow/scripts/aggregate.py) combines shards: its imports load no numba (the
+    solvers load where points are solved, in vcor.study.sweep.solve_points)."""
+    text = (ROOT / "workflow" / "scripts" / "aggregate.py").read_text()
+    lines = re.findall(r"^(?:from vcor[\w.]* import .+|import vcor[\w.]*)$", text, flags=re.M)
+    assert len(lines) >= 4, lines  # the pattern still finds the script's imports
+    code = "; ".join(["import sys", *lines, "print('numba' in sys.modules)"])
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"

@@ -24,9 +24,7 @@ from ..materials.catalogue import Catalogue
 from ..provenance import code_fingerprint
 from .aggregation import aggregate, dataset_attrs
 from .grid import Grid
-from .pool import solve
 from .progress import ProgressBar
-from .runner import rows_dataset
 from .scene import material_params
 
 __all__ = ["SHARD_TITLE", "TITLE", "combine", "shard_attrs", "solve_points"]
@@ -49,6 +47,10 @@ def solve_points(points: Sequence[dict], settings: dict, catalogue: Catalogue, *
     """The shard dataset of ``points`` (dimension ``point``, in their order), solved in ``workers``
     processes (:mod:`vcor.study.pool`) with a progress bar when ``progress`` (:mod:`vcor.study.progress`);
     ``from_data``: the names of materials fitted to measured data (their estimated work is larger)."""
+    # the solvers (numba) load where points are solved, not in a job that only combines shards
+    from .pool import solve
+    from .runner import rows_dataset
+
     points = list(points)
     with ProgressBar(len(points), enabled=progress) as bar:
         rows = solve(points, settings, catalogue, workers=workers, on_rows=bar.advance, from_data=from_data)
