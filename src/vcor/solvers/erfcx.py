@@ -4,8 +4,8 @@ every node of every grid).
 Below SWITCH: a piecewise polynomial, one per interval of width WIDTH, of degree DEGREE in
 tau = 2 (x - centre) / WIDTH in [-1, 1]: the interpolant at DEGREE + 1 Chebyshev nodes, in powers of tau
 (evaluated by Estrin's scheme). Its relative error against scipy.special.erfcx is below 3e-15 on
-[0, SWITCH) (``tests/solvers/test_erfcx.py``); libm's exp(x^2) erfc(x), which it replaces in the march,
-is slower and its exp carries the rounding of x^2 (relative x^2 eps, 7e-14 at the switch). The node values are
+[0, SWITCH) (``tests/solvers/test_erfcx.py``); libm's exp(x^2) erfc(x) is slower, and its exp
+carries the rounding of x^2 (relative x^2 eps, 7e-14 at the switch). The node values are
 exp(x^2) erfc(x) with x^2 split exactly into two doubles (Veltkamp/Dekker), so that only libm's own
 rounding enters. Above SWITCH: the asymptotic series 1 / (x sqrt(pi)) sum_n (-1)^n (2n - 1)!! / (2 x^2)^n,
 TERMS terms (truncation below 1e-17 at the switch).
