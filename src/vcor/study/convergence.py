@@ -19,7 +19,6 @@ from .. import status as _status
 from ..materials.catalogue import Catalogue
 from ..solvers.common import richardson
 from ..solvers.options import solver_options
-from ..solvers.simulate import simulate
 
 __all__ = ["LADDER", "RICHARDSON_STEP_TOLS", "RTOLS", "STEP_TOLS", "V0_ATTRS", "ladder_runs", "methods_for",
            "observed_order", "reference_gap", "study"]
@@ -53,6 +52,7 @@ def methods_for(material) -> list[tuple[str, dict, tuple]]:
 
 
 def _run(material, v0, kw, level, repeat):
+    from ..solvers.simulate import simulate  # here, not at the top: combining the cases loads no solver
     if "method" in kw and kw["method"] == "ive":
         args = {**kw, "rtol": level}
         repeat = 1  # slow and not noisy at this scale
@@ -66,6 +66,7 @@ def _run(material, v0, kw, level, repeat):
 
 
 def _reference(material, v0, **kw):
+    from ..solvers.simulate import simulate
     a = simulate(material, v0, method="direct", steps_per_contact=REF_STEPS[0], **kw)
     b = simulate(material, v0, method="direct", steps_per_contact=REF_STEPS[1], **kw)
     if not (a.ok and b.ok):
@@ -76,6 +77,8 @@ def _reference(material, v0, **kw):
 def study(name, v0, *, catalogue: Catalogue | None = None, repeat=3):
     """Dataset with dims (solver, level): cor, t0, wall_time, param, err_cor, err_t0, status."""
     import xarray as xr
+
+    from ..solvers.simulate import simulate
 
     material = (catalogue or Catalogue()).material(name)
     simulate(material, v0)  # JIT / cache load outside the timings

@@ -13,7 +13,6 @@ from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS
 from ..solvers.options import solver_options
-from ..solvers.simulate import simulate
 
 __all__ = ["histories_dataset", "moduli_dataset"]
 
@@ -56,6 +55,8 @@ def moduli_dataset(names, *, t_min=1e-6, t_max=1e-1, omega_min=1e1, omega_max=1e
 
 
 def _history_run(material, method, v0, base, geometry, catalogue):
+    from ..solvers.simulate import simulate  # here, not at the top: the moduli job loads no solver
+
     mat = catalogue.material(material)
     return simulate(mat, float(v0), options=base.replace(method=method), history=True, **geometry)
 
