@@ -229,6 +229,21 @@ ROWS = [
      ["freq_user_raw.csv", "loss angle below the instrument lag's phase", "deg C", "Hz", "does not describe"]),
     ("config: instrument_lag not a boolean", lambda: _validate(_config_with(
         lambda c: c["fits"]["pyvisco-polymer"]["data"].update(instrument_lag="yes"))), ["instrument_lag"]),
+    ("config: a method that cannot solve a scene's material",
+     lambda: _validate(_config_with(lambda c: c["scenes"]["butyl"].update(solver={"method": "ive"}))),
+     ["scenes.butyl.solver.method", "material 'butyl-fc'", "method 'ive' needs a Prony kernel", "'adaptive'"]),
+    ("sweep: a method that cannot solve the material", lambda: vcor.sweep(
+        {"materials": ["butyl-fc"], "grid": {"v0": [1, 2]}, "solver": {"method": "ive"}}, workers=1, progress=False),
+     ["solver.method", "material 'butyl-fc'", "method 'ive' needs a Prony kernel"]),
+    ("sweep: the paper's explicit scheme on a Kelvin-Voigt material", lambda: vcor.sweep(
+        {"materials": ["kelvin-voigt"], "grid": {"v0": [1, 2]}, "solver": {"method": "paper"}}, workers=1,
+        progress=False), ["solver.method", "method 'paper' has no Dirac (Kelvin-Voigt) term", "'direct'"]),
+    ("config: a history run whose method cannot solve its material", lambda: _validate(_config_with(
+        lambda c: c["scenes"]["butyl"]["histories"]["runs"].append(["butyl-fc", "ive"]))),
+     ["scenes.butyl.histories.runs", "[butyl-fc, ive]", "method 'ive' needs a Prony kernel"]),
+    ("dem: a method that cannot solve the collision", lambda: vcor.dem_export(
+        {"sphere": {"material": "butyl-fc"}, "v0": [1, 2], "solver": {"method": "ive"}}),
+     ["dem.solver.method", "method 'ive' needs a Prony kernel"]),
     ("config: option the method ignores",
      lambda: _validate(_config_with(lambda c: c["scenes"]["sls"].update(solver={"method": "ive", "dt": 1e-6}))),
      ["scenes.sls.solver", "dt", "not used by method 'ive'"]),

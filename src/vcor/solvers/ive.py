@@ -23,6 +23,7 @@ import numpy as np
 from ..materials.expsums import soe
 from ._fixed_kernels import march_prony
 from ._records import Body, Internal, Stop
+from .applicability import IVE_KERNELS
 from .common import Histories, Result, peak
 from .march import LINEAR_MAX_T_FACTOR, T_MAX_START, drive, finish, step_plan
 from .options import SUM_TOL
@@ -64,9 +65,7 @@ def kernel_terms(impact, method, horizon):
             what = str(exc)
         else:
             return (*rep.material.prony_terms(), rep.checked_error)
-    raise ValueError(f"method {method!r} needs a Prony kernel (sls, butyl-prony3, prony, elastic, kelvin-voigt) or "
-                     f"a two-body contact modulus that is a sum of exponentials from t = 0; {what}: use method "
-                     f"'adaptive' (or 'direct')")
+    raise ValueError(f"method {method!r} needs {IVE_KERNELS}; {what}: use method 'adaptive' (or 'direct')")
 
 
 def run_ive_fixed(impact, dt, n_steps, *, max_steps, rule="force", history=False, ghost=0.0):

@@ -6,6 +6,7 @@ from __future__ import annotations
 from ..contact.impact import GEOMETRY_DEFAULTS, make_impact
 from ..contact.pair import target_inputs
 from . import adaptive, direct, ive, soe
+from .applicability import refusal
 from .options import FIXED_STEP_METHODS, METHOD_NAMES, SolverOptions, solver_options
 from .validity import finalised
 
@@ -110,6 +111,9 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
     if target != "plate":
         material, geometry = target_inputs(material, target, geometry)
     impact = make_impact(material, v0, geometry)
+    why = refusal(impact.material, opts)
+    if why:
+        raise ValueError(why)
     tc = impact.contact_time_estimate()
     if opts.dt is not None and not opts.dt < tc:
         raise ValueError(f"dt must be in (0, {tc:.4g}) s (below the estimated contact time), got {opts.dt!r}")

@@ -20,7 +20,8 @@ from ..materials.catalogue import Catalogue
 from ..materials.presets import PRESETS
 from ..materials.specs import from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
-from ..solvers.options import METHOD_NAMES
+from ..solvers.applicability import refusal
+from ..solvers.options import METHOD_NAMES, SolverOptions
 from .dem import check_dem
 from .grid import Grid, canon
 from .project import BUILDS, DATASETS, DEFAULTS, Project, Scene
@@ -256,6 +257,9 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) ->
                              f"{[m for m in METHOD_NAMES if m != 'paper']}")
         if mat not in scene.get("materials", []):
             raise ValueError(f"{where}.histories.runs: {mat!r} is not in {where}.materials")
+        why = "" if mat in catalogue.computed() else refusal(catalogue.material(mat), SolverOptions(method=method))
+        if why:
+            raise ValueError(f"{where}.histories.runs: [{mat}, {method}]: {why}")
     settings = settings_of(scene)
     bodies = _body_identities(scene, catalogue)
     if bodies:

@@ -32,6 +32,7 @@ from ..dem.laws import HEREDITARY, MODELS
 from ..materials.catalogue import Catalogue
 from ..materials.shift import at_temperature
 from ..materials.specs import from_spec, shift_function
+from ..solvers.applicability import refusal
 from ..solvers.options import DEFAULT_METHOD, solver_options
 from .grid import axis_values
 
@@ -166,7 +167,7 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
             raise ValueError(f"{where}.models: {HEREDITARY} cannot take this collision: {why}")
     v0 = _speeds(spec, where)
     try:
-        solver_options(spec.get("solver") or {})  # checked now, used by the job
+        options = solver_options(spec.get("solver") or {})  # checked now, used by the job
     except ValueError as exc:
         raise ValueError(f"{where}.solver: {exc}") from None
     temps = [None]
@@ -196,9 +197,12 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
         for v in (v0[0], v0[-1]):
             try:
                 mat, geo = target_inputs(material, _target_at(spec, catalogue, T, where), geometry)
-                make_impact(mat, v, geo)
+                impact = make_impact(mat, v, geo)
             except ValueError as exc:
                 raise ValueError(f"{where}: {exc}") from None
+            why = refusal(impact.material, options)
+            if why:
+                raise ValueError(f"{where}.solver.method: {why}")
 
 
 def run_dem(name: str, spec: dict, catalogue: Catalogue):

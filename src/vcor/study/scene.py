@@ -27,6 +27,7 @@ import itertools
 from ..contact.bodies import impact_inputs, scene_bodies
 from ..contact.impact import GEOMETRY_AXES, make_impact
 from ..materials.catalogue import Catalogue
+from ..solvers.applicability import refusal
 from ..solvers.options import SolverOptions
 from .grid import AXIS_UNITS, MAX_AXIS_VALUES, Grid, axis_length, axis_role, axis_values, canon
 from .uncertainty import sample_material, samples_file, uncertainty_of
@@ -171,8 +172,10 @@ def _check_ties(where, scene, grid: Grid):
 
 
 def _check_corners(where, scene, grid: Grid, catalogue):
-    """Build the material and geometry of the grid's corner points, so that bad values fail now."""
+    """Build the material and geometry of the grid's corner points, so that bad values fail now, and
+    refuse a solver method that cannot solve a material's kernel (:func:`vcor.solvers.applicability.refusal`)."""
     settings = settings_of(scene)
+    options = solver_options_of(scene)
     bodies = [(scene.get(k) or {}).get("material") for k in ("sphere", "plate")]
     if any(isinstance(b, str) and b in catalogue.computed() for b in bodies):
         return  # a body's fit or calibration: its file is written by its rule, its values checked by the job
@@ -184,9 +187,12 @@ def _check_corners(where, scene, grid: Grid, catalogue):
             point = {"material": mat, **dict(zip(grid.names, combo))}
             try:
                 material, v0, geometry = build_point(point, settings, catalogue)
-                make_impact(material, v0, geometry)
+                impact = make_impact(material, v0, geometry)
             except ValueError as exc:
                 raise ValueError(f"{where}: point {point}: {exc}") from None
+            why = refusal(impact.material, options)
+            if why:  # the same at every point of this material: refused now, not stored as every point's status
+                raise ValueError(f"{where}.solver.method: material {mat!r}: {why}")
 
 
 def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None, grid: Grid | None = None) -> Grid:
