@@ -1,6 +1,7 @@
 """Measured DMA data: pyvisco's file conventions, bad data, time-temperature
 superposition, WLF. README, "Measured DMA data"."""
 
+import hashlib
 import json
 import math
 from pathlib import Path
@@ -135,6 +136,28 @@ def test_method_free_is_refused_naming_its_replacement():
     result, data, _ = fits.run_fit({"model": "prony", "data": raw})
     f = data.omega / (2 * np.pi)
     assert result.metrics["tan_delta_extrema"] == dma.tan_delta_extrema(result.material, f.min(), f.max())
+
+
+def test_a_fit_to_measured_sets_writes_the_same_file_byte_for_byte(tmp_path):
+    """Nothing run-dependent (a fit's run times, the folder the config was read from) enters the material
+    file of a fit to raw DMA sets: the same inputs give the same bytes (docs/user-guide/materials.md), with
+    shift factors found or given; a given shift file is named as the config names it."""
+    _synthetic(tmp_path / "s.csv", 1)
+    (tmp_path / "a.csv").write_text("T,log_aT\nC,-\n" + "".join(
+        f"{T},{tts.wlf_log_aT(T, T_REF, C1, C2):.6f}\n" for T in TEMPS))
+    config = {"fits": {"rubber": {"model": "prony", "data": {"file": "s.csv", "T_ref": T_REF, "shift_model": "wlf"}},
+                       "given": {"model": "prony", "data": {"file": "s.csv", "T_ref": T_REF, "shift_file": "a.csv"}}}}
+    (tmp_path / "config.yaml").write_text(yaml.safe_dump(config))
+    for name in config["fits"]:
+        digests = []
+        for i in range(2):
+            path = tmp_path / f"{name}{i}.nc"
+            fitted = vcor.fit(name, config=tmp_path / "config.yaml")
+            fitted.write(path)
+            digests.append(hashlib.sha256(path.read_bytes()).hexdigest())
+        assert digests[0] == digests[1], name
+        assert str(tmp_path) not in str(fitted.dataset.attrs), name
+    assert "given (a.csv)" in fitted.dataset.attrs["superposition"]
 
 
 def test_pyvisco_raw_sets_superposed_both_ways():

@@ -57,3 +57,15 @@ def test_loaded_is_the_written_file_read_back(tmp_path):
         assert {n: v.dtype for n, v in ours.variables.items()} == dtypes, kind
         assert _attr_types(ours) == _attr_types(theirs), kind
         assert list(ours.dims) == list(theirs.dims) and list(ours.variables) == list(theirs.variables), kind
+
+
+def test_a_calibration_names_its_data_file_as_the_config_does(tmp_path):
+    """The archived calibration names its data file relative to the project, as the config writes it, not as
+    the process opened it (an absolute path from a notebook would differ from the workflow's file)."""
+    import yaml
+
+    (tmp_path / "cor.csv").write_text("v0,cor\n" + "".join(f"{v},{vcor.simulate('sls', v).cor}\n" for v in V0))
+    config = {"calibrations": {"cal": {"data": "cor.csv", "material": "sls", "free": {"beta": [300.0, 5000.0]}}}}
+    (tmp_path / "config.yaml").write_text(yaml.safe_dump(config))
+    ds = vcor.calibrate("cal", config=tmp_path / "config.yaml").archive.loaded(command=COMMAND)
+    assert ds.attrs["data"] == "cor.csv"

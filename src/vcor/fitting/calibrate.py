@@ -587,7 +587,8 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
         "model_evaluations": cal.nfev, "optimizer_message": cal.message,
         "singular_values": json.dumps(cal.singular_values.tolist()),
         "not_identified": json.dumps({n: note for n, note, ok in zip(cal.names, cal.notes, cal.identified) if not ok}),
-        "data": cal.data.path,
+        # the data file as the spec names it (relative to the project), not as this process opened it
+        "data": str((spec or {}).get("data", cal.data.path)),
     })
     return ds
 

@@ -129,12 +129,11 @@ def _run_sets(raw, shifts, d, T_ref, shift_model):
     fitted = dma.fit_dma(raw, T_ref, log_aT=given, lag=lag)
     shift = dma.shift_function(fitted, shift_model)
     mc = dma.master_curve(raw, fitted.log_aT, T_ref=T_ref, lag=fitted.lag,
-                          source=f"given ({shifts.path}), PCHIP in T, zero at T_ref" if shifts is not None else
+                          source=f"given ({d['shift_file']}), PCHIP in T, zero at T_ref" if shifts is not None else
                           "global superposition of all sets, refined with the spectrum (vcor.fitting.dma)")
     settings = {"model": "prony", "method": "spectrum", "lam": fitted.spectrum.lam, "smoothing": fitted.smoothing,
                 "modes_fine": fitted.spectrum.n_modes, "merge_change": fitted.reduced.change,
-                "components": [1.0, dma.LOSS_WEIGHT], "notes": fitted.notes,
-                "times": {k: round(v, 3) for k, v in fitted.times.items()}}
+                "components": [1.0, dma.LOSS_WEIGHT], "notes": fitted.notes}  # no run times: the file is reproducible
     if lag:
         settings["instrument_lag"] = {"lag_s": fitted.lag, "lag_std_s": fitted.lag_std,
                                       "data": "the master curve is the measured data times exp(-i 2 pi f lag)"}
