@@ -244,6 +244,21 @@ ROWS = [
     ("dem: a method that cannot solve the collision", lambda: vcor.dem_export(
         {"sphere": {"material": "butyl-fc"}, "v0": [1, 2], "solver": {"method": "ive"}}),
      ["dem.solver.method", "method 'ive' needs a Prony kernel"]),
+    ("config: a scene name YAML reads as a number", lambda: _validate(_config_with(
+        lambda c: c["scenes"].update({2026: c["scenes"]["sls"]}))),
+     ["scenes: the key 2026 is read as a number", "quote it, '2026'"]),
+    ("config: a grid axis YAML reads as a boolean", lambda: _validate(_config_with(
+        lambda c: c["scenes"]["sls"]["grid"].update({True: [1.0]}))),
+     ["scenes.sls.grid: the key True is read as a boolean", "on, off, yes, no", "quote the word"]),
+    ("sweep: a scene called on in a config mapping", lambda: vcor.sweep(
+        "on", config={"scenes": {True: {"materials": ["sls"], "grid": {"v0": [1.0]}}}}),
+     ["scenes: the key True is read as a boolean"]),
+    ("dem: an entry the config does not have", lambda: vcor.dem_export("nope", config={"dem": {
+        "a": {"sphere": {"material": "sls"}, "v0": [1, 2]}, "b": {"sphere": {"material": "sls"}, "v0": [1, 2]}}}),
+     ["'nope' is not an entry of the config's dem block", "['a', 'b']"]),
+    ("config: a history speed out of range", lambda: _validate(_config_with(
+        lambda c: c["scenes"]["butyl"]["histories"].update(v0=1.0e7))),
+     ["scenes.butyl.histories.v0", "v0 must be in", "m/s"]),
     ("config: option the method ignores",
      lambda: _validate(_config_with(lambda c: c["scenes"]["sls"].update(solver={"method": "ive", "dt": 1e-6}))),
      ["scenes.sls.solver", "dt", "not used by method 'ive'"]),

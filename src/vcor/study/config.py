@@ -14,6 +14,7 @@ import math
 import re
 from pathlib import Path
 
+from ..contact.impact import make_impact
 from ..fitting.calibrate import check_spec
 from ..fitting.spec import check_fit_spec, expand_fits
 from ..materials.catalogue import Catalogue
@@ -257,9 +258,16 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) ->
                              f"{[m for m in METHOD_NAMES if m != 'paper']}")
         if mat not in scene.get("materials", []):
             raise ValueError(f"{where}.histories.runs: {mat!r} is not in {where}.materials")
-        why = "" if mat in catalogue.computed() else refusal(catalogue.material(mat), SolverOptions(method=method))
+        if mat in catalogue.computed():
+            continue  # a fit's or calibration's file is written by its rule: its values are checked by the job
+        material = catalogue.material(mat)
+        why = refusal(material, SolverOptions(method=method))
         if why:
             raise ValueError(f"{where}.histories.runs: [{mat}, {method}]: {why}")
+        try:
+            make_impact(material, scene["histories"]["v0"], settings_of(scene)["geometry"])
+        except ValueError as exc:
+            raise ValueError(f"{where}.histories.v0: {exc}") from None
     settings = settings_of(scene)
     bodies = _body_identities(scene, catalogue)
     if bodies:

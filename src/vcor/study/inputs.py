@@ -27,7 +27,7 @@ from ..materials.catalogue import Catalogue, content_hash
 from ..materials.models import Material
 from .config import load_project
 from .project import Project
-from .schema import check_schema
+from .schema import check_keys, check_schema
 
 __all__ = ["SCENE_NAME", "Resolved", "as_config", "plain", "read_config", "resolve_entry", "resolve_scene",
            "schema_path", "spec_of"]
@@ -94,13 +94,19 @@ def as_config(config) -> tuple[dict, Path]:
     if isinstance(config, Catalogue):
         cfg = {"materials": config.specs, "fits": config.fits, "calibrations": config.calibrations,
                "material_dir": config.material_dir}
-        return plain(cfg), Path(config.base_dir)
-    if isinstance(config, (str, Path)):
-        return read_config(config), Path(config).parent
-    if isinstance(config, dict):
-        return plain(config), Path(".")
-    raise ValueError(f"config must be None, a path to a YAML file, a mapping or a vcor.materials.Catalogue, "
-                     f"got {type(config).__name__}")
+        out = plain(cfg), Path(config.base_dir)
+    elif isinstance(config, (str, Path)):
+        out = read_config(config), Path(config).parent
+    elif isinstance(config, dict):
+        out = plain(config), Path(".")
+    else:
+        raise ValueError(f"config must be None, a path to a YAML file, a mapping or a vcor.materials.Catalogue, "
+                         f"got {type(config).__name__}")
+    try:
+        check_keys(out[0])  # before an entry is looked up by its name
+    except ValueError as exc:
+        raise type(exc)(f"{_where(config)}{exc}") from None
+    return out
 
 
 def _where(config) -> str:
@@ -163,7 +169,8 @@ def resolve_entry(section: str, entry, name, config, argument: str) -> Resolved:
                          f"one in config, got {type(entry).__name__}")
     project = _checked(study, base, config, rename)
     if name not in _entries(project, section):
-        known = sorted(_entries(project, section))
+        # a dem study holds the named entry only: the config's own block lists them all
+        known = sorted(_entries(project, section) if section != "dem" else (cfg.get("dem") or {}))
         raise ValueError(f"{_where(config)}{argument}: {name!r} is not an entry of the config's {section} block "
                          f"({known or 'it has none'})")
     return Resolved(name=name, project=project, base_dir=base)

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from ..checks import text_hint
 
-__all__ = ["SchemaError", "check_schema", "explain", "load_schema"]
+__all__ = ["SchemaError", "check_keys", "check_schema", "explain", "load_schema"]
 
 
 class SchemaError(ValueError):
@@ -64,11 +64,31 @@ def check_schema(config: dict, schema_path) -> dict:
     if not isinstance(config, dict):
         raise SchemaError(f"the config must be a mapping of sections (scenes, fits, calibrations, dem, "
                           f"materials, ...), got {type(config).__name__} {_short(config)}")
+    check_keys(config)
     schema = load_schema(schema_path)
     errors = list(_validator(schema).iter_errors(config))
     if errors:
         raise SchemaError(explain(_most_relevant(errors), schema))
     return config
+
+
+def check_keys(value, path=()) -> None:
+    """Every key of the config is text: YAML reads an unquoted 2026 as a number and on, off, yes, no, true
+    and false as booleans, which no name or key of a config can be (a scene 2026, a material called on).
+    SchemaError naming the key and the fix (quote it)."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            if not isinstance(key, str):
+                if isinstance(key, bool):
+                    read = ("a boolean (YAML reads an unquoted on, off, yes, no, true or false so); names and keys "
+                            "are text: quote the word as written, e.g. 'on'")
+                else:
+                    read = f"a number; names and keys are text: quote it, '{key}'"
+                raise SchemaError(f"{_where(path)}: the key {key!r} is read as {read}")
+            check_keys(item, (*path, key))
+    elif isinstance(value, list):
+        for i, item in enumerate(value):
+            check_keys(item, (*path, i))
 
 
 def _most_relevant(errors):
