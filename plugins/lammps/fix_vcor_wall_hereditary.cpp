@@ -31,7 +31,8 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 
 FixVcorWallHereditary::FixVcorWallHereditary(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), dim(0), has_lo(false), has_hi(false), lo(0.0), hi(0.0), wall_force{0.0, 0.0, 0.0}, ncontacts(0.0)
+    Fix(lmp, narg, arg), dim(0), has_lo(false), has_hi(false), lo(0.0), hi(0.0), wall_force{0.0, 0.0, 0.0},
+    ncontacts(0.0), warned(false)
 {
   const std::string usage = "fix ID group vcor/wall/hereditary xplane|yplane|zplane lo hi E_inf [E_1 beta_1 ...]";
   if (narg < 7) error->all(FLERR, "fix vcor/wall/hereditary: too few arguments; {}", usage);
@@ -76,6 +77,7 @@ int FixVcorWallHereditary::setmask()
 void FixVcorWallHereditary::init()
 {
   vcor::require_one_rank_radii_ids(lmp, "fix vcor/wall/hereditary");
+  warned = false;    // the time-step warning: once per run
 }
 
 void FixVcorWallHereditary::setup(int vflag)
@@ -88,10 +90,13 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
   double **x = atom->x;
   double **f = atom->f;
   double *radius = atom->radius;
+  double *rmass = atom->rmass;
+  double *mass = atom->mass;
+  int *type = atom->type;
   tagint *tag = atom->tag;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, law.nterms());
+  store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, law.nterms(), vcor::clock_of(lmp));
   wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
   double contacts = 0.0;
   for (int i = 0; i < nlocal; ++i) {
@@ -102,7 +107,8 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
       const double delta = radius[i] - gap;
       if (delta <= 0.0) continue;
       const double u = delta * std::sqrt(delta);
-      const double g = store.advance(vcor::Key{tag[i], side}, law, u);
+      const double mi = rmass ? rmass[i] : (mass ? mass[type[i]] : 0.0);
+      const double g = store.advance(vcor::Key{tag[i], side}, law, u, radius[i], mi);
       contacts += 1.0;
       if (g <= 0.0) continue;    // clipped at zero: the sphere has left the wall
       const double fn = 4.0 / 3.0 * std::sqrt(radius[i]) * g;
@@ -113,9 +119,12 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
   }
   store.end();
   ncontacts = contacts;
-  if (store.backwards)
-    error->all(FLERR, "fix vcor/wall/hereditary: the simulation time went back (reset_timestep) while contacts "
-                      "held history");
+  if (store.jump.set) error->all(FLERR, vcor::jump_message("fix vcor/wall/hereditary", store.jump, true));
+  if (store.shortest.n < vcor::MIN_STEPS_PER_CONTACT && !warned) {
+    warned = true;
+    if (comm->me == 0)
+      error->warning(FLERR, vcor::resolution_message("fix vcor/wall/hereditary", store.shortest, update->dt, true));
+  }
 }
 
 double FixVcorWallHereditary::compute_vector(int n)

@@ -32,6 +32,7 @@ class FixVcorWallHereditary : public Fix {
   vcor::Store store;
   double wall_force[3];         // total force of the walls on the group (N)
   double ncontacts;            // touching contacts
+  bool warned;                 // the time-step warning was given in this run
 };
 
 }    // namespace LAMMPS_NS

@@ -34,7 +34,8 @@
 
 using namespace LAMMPS_NS;
 
-PairVcorHereditary::PairVcorHereditary(LAMMPS *lmp) : Pair(lmp), ncontacts(0.0), maxterms(0), stride(0)
+PairVcorHereditary::PairVcorHereditary(LAMMPS *lmp) :
+    Pair(lmp), ncontacts(0.0), maxterms(0), stride(0), warned(false)
 {
   single_enable = 0;
   restartinfo = 0;
@@ -96,6 +97,7 @@ void PairVcorHereditary::coeff(int narg, char **arg)
 void PairVcorHereditary::init_style()
 {
   vcor::require_one_rank_radii_ids(lmp, "pair_style vcor/hereditary");
+  warned = false;    // the time-step warning: once per run
 
   neighbor->add_request(this, NeighConst::REQ_SIZE);
 
@@ -145,6 +147,8 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   double **x = atom->x;
   double **f = atom->f;
   double *radius = atom->radius;
+  double *rmass = atom->rmass;
+  double *mass = atom->mass;
   tagint *tag = atom->tag;
   int *type = atom->type;
   const int nlocal = atom->nlocal;
@@ -155,7 +159,7 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
 
-  store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, maxterms);
+  store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, maxterms, vcor::clock_of(lmp));
   long touching = 0;
 
   for (int ii = 0; ii < inum; ++ii) {
@@ -181,11 +185,13 @@ void PairVcorHereditary::compute(int eflag, int vflag)
       const double delta = radsum - r;
       const double u = delta * std::sqrt(delta);
       const vcor::Key key = tag[i] < tag[j] ? vcor::Key{tag[i], tag[j]} : vcor::Key{tag[j], tag[i]};
-      const double g = store.advance(key, law(itype, type[j]), u);
+      const double reff = radi * radius[j] / radsum;
+      const double mi = rmass ? rmass[i] : (mass ? mass[itype] : 0.0);
+      const double mj = rmass ? rmass[j] : (mass ? mass[type[j]] : 0.0);
+      const double g = store.advance(key, law(itype, type[j]), u, reff, mi * mj / (mi + mj));
       ++touching;
       if (g <= 0.0) continue;    // the force is clipped at zero: the bodies have parted
 
-      const double reff = radi * radius[j] / radsum;
       const double fn = 4.0 / 3.0 * std::sqrt(reff) * g;
       const double fpair = fn / r;
       f[i][0] += delx * fpair;
@@ -201,9 +207,13 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   }
   store.end();
   ncontacts = static_cast<double>(touching);
-  if (store.backwards)
-    error->all(FLERR, "pair_style vcor/hereditary: the simulation time went back (reset_timestep) while contacts "
-                      "held history");
+  if (store.jump.set)
+    error->all(FLERR, vcor::jump_message("pair_style vcor/hereditary", store.jump, false));
+  if (store.shortest.n < vcor::MIN_STEPS_PER_CONTACT && !warned) {
+    warned = true;
+    if (comm->me == 0)
+      error->warning(FLERR, vcor::resolution_message("pair_style vcor/hereditary", store.shortest, update->dt, false));
+  }
 
   if (vflag_fdotr) virial_fdotr_compute();
 }

@@ -35,6 +35,7 @@ class PairVcorHereditary : public Pair {
   double ncontacts;               // contacts evaluated in the last compute()
   int maxterms;
   int stride;                     // ntypes + 1 when allocated
+  bool warned;                    // the time-step warning was given in this run
 
   void allocate();
   vcor::Law &law(int i, int j) { return laws[i * stride + j]; }

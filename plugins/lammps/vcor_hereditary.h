@@ -18,7 +18,10 @@
 //
 // The internal variables of a contact are updated once per time step: a second evaluation at the
 // same step (run setup, run 0, rerun) starts again from the state accepted at the previous step.
-// They are dropped when the contact ends (no overlap).
+// They are dropped when the contact ends (no overlap). Between two evaluations of a contact the
+// simulation time must move by one time step or not at all (Clock): a reset_timestep that moves it
+// stops LAMMPS. When a contact ends, the time steps per Hertz contact time of its largest overlap are
+// measured (resolution()); fewer than MIN_STEPS_PER_CONTACT draw one warning per run.
 //
 // This file is part of vcor's LAMMPS plugin and is distributed under the GNU General Public
 // License version 2 (see LICENSE in this folder).
@@ -54,6 +57,7 @@ struct Law {
   // w_i = E_i (1 - a_i) / (beta_i h)
   double h_cache = -1.0;
   std::vector<double> a, w;
+  double ebar = 0.0;    // the modulus one step h_cache responds with: E_inf + sum_i w_i (Pa)
 
   int nterms() const { return static_cast<int>(e.size()); }
   double glassy() const;
@@ -67,6 +71,14 @@ void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
 
 // The simulation time (s) at the current time step (LAMMPS's atime, carried over changes of the step).
 double simulation_time(LAMMPS_NS::LAMMPS *lmp);
+
+// How the step and the time may have moved since a contact's last evaluation:
+//   run:   by one time step (the step number by 1, the time by update->dt), or not at all;
+//   setup: not at all in time (a run's set-up, run 0: the step number changes only by reset_timestep,
+//          which is consistent only when the time stays, i.e. reset_timestep N time $(time));
+//   rerun: forward by any time (rerun treats the time between two snapshots as one step).
+enum class Clock { run, setup, rerun };
+Clock clock_of(LAMMPS_NS::LAMMPS *lmp);
 
 // Parse "E_inf [E_1 beta_1 ...]": returns "" and fills law, or a one-line message naming the
 // coefficient that is wrong.
@@ -90,19 +102,39 @@ struct KeyHash {
 // The internal variables of every touching contact, keyed by atom IDs.
 class Store {
  public:
-  // start one evaluation of all contacts: the time step number, the simulation time (s) and the
-  // time step (s); records not touched before end() are dropped
-  void begin(bigint step, double now, double dt, int maxterms);
+  // start one evaluation of all contacts: the time step number, the simulation time (s), the
+  // time step (s) and how they may have moved since the last evaluation; records not touched
+  // before end() are dropped
+  void begin(bigint step, double now, double dt, int maxterms, Clock clock);
   // E_inf u + sum_i q_i (Pa m^1.5) of the contact `key` at overlap power u = delta^1.5 (m^1.5),
-  // its internal variables advanced from the state accepted at the previous step
-  double advance(const Key &key, Law &law, double u);
+  // its internal variables advanced from the state accepted at the previous step; reff (m) and
+  // meff (kg), the contact's effective radius and mass, only measure how well the time step
+  // resolves it (shortest below) and do not enter the force
+  double advance(const Key &key, Law &law, double u, double reff, double meff);
   // drop the contacts not evaluated since begin()
   void end();
   void clear();
   std::size_t size() const { return recs.size(); }
   double memory_usage() const;
-  // set when the simulation time went back while contacts held history (reset_timestep)
-  bool backwards = false;
+
+  // the first contact of this evaluation whose step or time moved otherwise than `clock` allows
+  // (reset_timestep while it held history)
+  struct Jump {
+    bool set = false;
+    Key key{0, 0};
+    bigint from_step = 0, to_step = 0;
+    double from_time = 0.0, to_time = 0.0;    // s
+  } jump;
+
+  // among the contacts end() dropped, the one the time step resolved worst: n = t_H / dt, the
+  // Hertz contact time of its largest overlap in time steps (Store::resolution), and the steps it
+  // lasted; n is infinite when end() dropped none
+  struct Ended {
+    Key key{0, 0};
+    double n = 0.0;
+    bigint steps = 0;
+    double overlap = 0.0;    // largest overlap over the effective radius
+  } shortest;
 
  private:
   struct Rec {
@@ -113,7 +145,12 @@ class Store {
     double u_prev;   // u at the accepted state
     double u_cur;    // u at the current state
     long call;       // the evaluation that last touched it
+    bigint first;    // the step of first touch
+    double u_max;    // the largest u (m^1.5)
+    double stiff;    // 2 Ebar(dt) sqrt(reff) / meff (m^-1/2 s^-2): omega^2 = stiff sqrt(delta)
+    double reff;     // m
   };
+  void moved(const Rec &c);
   std::vector<Rec> recs;
   std::vector<double> q;    // per record: q_prev[stride], q_cur[stride]
   std::unordered_map<Key, std::size_t, KeyHash> index;
@@ -122,7 +159,22 @@ class Store {
   long call = 0;
   bigint step = -1;
   double now = 0.0, dt = 0.0;
+  Clock clock = Clock::run;
 };
+
+// The time-step rule's n = t_H / dt of a contact whose largest overlap delta (m) gives
+// omega^2 = stiff sqrt(delta) (Store::Rec), for a time step dt (s).
+double resolution(double stiff, double delta, double dt);
+
+// One line for error->all: who, and the contact whose time moved (Store::jump; wall: a wall's key).
+std::string jump_message(const std::string &who, const Store::Jump &jump, bool wall);
+// One line for error->warning: who, and the contact the time step dt resolved worst (Store::shortest).
+std::string resolution_message(const std::string &who, const Store::Ended &ended, double dt, bool wall);
+
+// A contact resolved with fewer than this many time steps per Hertz contact time (n of the rule
+// dt = t_H(Ebar(dt)) / n, measured by resolution() when a contact ends) draws one warning per run
+// (vcor_hereditary.cpp says why this number).
+extern const double MIN_STEPS_PER_CONTACT;
 
 }    // namespace vcor
 

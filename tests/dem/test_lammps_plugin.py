@@ -3,9 +3,10 @@ plugin built by ``vcor lammps-plugin build`` (the fixture ``vcor_plugin``). The 
 of the default ``sls-pair`` entry and of a 3-term Prony pair gives vcor's COR within 2e-3 at 8 speeds
 (0.1 to 10 m/s) with vcor's trend, and equals the dataset's ``cor_model`` (the NumPy mirror,
 :mod:`vcor.dem.mirror`) to 1e-9; the internal variables advance once per step however often LAMMPS
-evaluates the forces; periodic images and ``newton off`` give the same COR; bad ``pair_coeff`` values
-and several MPI ranks stop LAMMPS with an error naming the cause; a packing of 500 spheres runs 1e5
-steps under gravity."""
+evaluates the forces; periodic images and ``newton off`` give the same COR; bad ``pair_coeff`` values,
+several MPI ranks and a ``reset_timestep`` that moves the time in a contact stop LAMMPS with an error
+naming the cause; a time step too large for the time-step rule draws one warning; a packing of 500
+spheres runs 1e5 steps under gravity, and refuses a law it does not have."""
 
 import re
 import subprocess
@@ -148,6 +149,81 @@ def test_periodic_images_and_newton_off_give_the_same_cor(lmp, vcor_plugin, tmp_
     assert abs(cors["on"] - cors["fixed"]) < 1e-10 and abs(cors["off"] - cors["fixed"]) < 1e-10
 
 
+_RESET = "run              ${nrun}\n"
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_reset_timestep_in_a_contact_stops_lammps_unless_the_time_is_kept(lmp, vcor_plugin, tmp_path, target):
+    """``reset_timestep`` at step 300 of a collision (the contact holds history from step ~10 to ~1100):
+    LAMMPS moves the simulation time with the step (forward by the steps skipped times dt, back to 0),
+    which the internal variables would take as elapsed time (forward to 100000 gave a COR of 0.625
+    for 0.791, silently). Forward or back, by one step, or to another time at the same step: LAMMPS
+    stops with one ERROR line saying so. With the time kept (``reset_timestep N time $(time)``),
+    forward or back, the COR is that of the plain deck to 1e-12; a new ``timestep`` (half the step) in
+    the contact keeps the time too and gives it to 1e-6."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
+    plain = _cors(lmp, vcor_plugin, deck, [1.0])[0]
+    who = "pair_style vcor/hereditary" if target == "pair" else "fix vcor/wall/hereditary"
+    for reset in ("reset_timestep 100000", "reset_timestep 0", "reset_timestep 301", "reset_timestep 300 time 1.0"):
+        variant = _variant(deck, "in.reset", [(_RESET, "run 300\n" + reset + "\n" + _RESET)])
+        out = run_lammps(lmp, variant, "-var", "plugin", str(vcor_plugin), screen=True, check=False)
+        errors = [x for x in out.stdout.splitlines() if x.startswith("ERROR")]
+        assert out.returncode != 0 and len(errors) == 1, (reset, out.stdout[-2000:])
+        assert errors[0].startswith(f"ERROR: {who}: the simulation time went from ") and "at step 300 to " in errors[0]
+        assert "which is not one time step" in errors[0] and "reset_timestep N time $(time)" in errors[0], errors[0]
+    kept = {}
+    for reset in ("reset_timestep 100000 time $(time)", "reset_timestep 0 time $(time)", "timestep $(0.5*dt)"):
+        variant = _variant(deck, "in.kept", [(_RESET, "run 300\n" + reset + "\n" + _RESET)])
+        kept[reset] = _cors(lmp, vcor_plugin, variant, [1.0])[0]
+    print(f"\n{target}: plain {plain:.15f}, " + ", ".join(f"{k}: {v:.15f}" for k, v in kept.items()))
+    assert abs(kept["reset_timestep 100000 time $(time)"] - plain) < 1e-12
+    assert abs(kept["reset_timestep 0 time $(time)"] - plain) < 1e-12
+    assert abs(kept["timestep $(0.5*dt)"] - plain) < 1e-6
+
+
+def _warnings(stdout: str) -> list[str]:
+    return [x for x in stdout.splitlines() if x.startswith("WARNING")]
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_a_time_step_too_large_for_the_rule_warns_once(lmp, vcor_plugin, tmp_path, target):
+    """The deck with 2 steps per contact time (-var nsteps 2; the rule asks for 1000) creates energy
+    (a COR above 1): LAMMPS warns once, naming the rule and the n it measured from the contact's
+    largest overlap (1.8); with 30 (n = 29.8, the COR within 2e-4 of vcor's) it does not warn. The
+    packing at ten times its time step (1e-4 s, n about 3.6) breaks the rule in hundreds of contacts
+    over 3000 steps: one warning from the pair style and one from the wall fix."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
+    who = "pair_style vcor/hereditary" if target == "pair" else "fix vcor/wall/hereditary"
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", "2", screen=True)
+    warnings = _warnings(out.stdout)
+    assert cor_of(out) > 1.0 and len(warnings) == 1, out.stdout[-2000:]
+    assert warnings[0].startswith(f"WARNING: {who}: the time step ") and \
+        "the time-step rule dt = t_H(Ebar(dt))/n needs n >= 10" in warnings[0], warnings[0]
+    n = float(re.search(r"resolves a contact with n = (\S+) steps per Hertz contact time", warnings[0]).group(1))
+    assert 1.5 < n < 2.0, warnings[0]
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", "30", screen=True)
+    assert not _warnings(out.stdout), out.stdout[-2000:]
+    if target == "pair":
+        packing = tmp_path / "in.packing"
+        packing.write_text(PACKING.read_text())
+        out = run_lammps(lmp, packing, "-var", "plugin", str(vcor_plugin), "-var", "dt", "1e-4", "-var", "settle",
+                         "3000", screen=True)
+        warnings = _warnings(out.stdout)
+        print("\n" + "\n".join(warnings))
+        assert len(warnings) == 2, warnings
+        assert {w.split(":")[1].strip() for w in warnings} == {"pair_style vcor/hereditary", "fix vcor/wall/hereditary"}
+
+
+def test_the_packing_refuses_an_unknown_law(lmp, tmp_path):
+    """in.packing's -var law is hereditary or granular: another stops it before anything runs, naming
+    the two (it used to run the hereditary law)."""
+    packing = tmp_path / "in.packing"
+    packing.write_text(PACKING.read_text())
+    out = run_lammps(lmp, packing, "-var", "law", "bogus", check=False)
+    assert out.returncode == 1
+    assert out.stderr.strip() == "in.packing: -var law must be hereditary or granular, got bogus", out.stderr
+
+
 _BAD = [
     ("-1e6 7.5e6 1200", "E_inf = -1000000 Pa is negative: a modulus must be >= 0 Pa"),
     ("2.5e6 -7.5e6 1200", "E_1 = -7500000 Pa is negative: a modulus must be >= 0 Pa"),
@@ -236,3 +312,4 @@ def test_a_packing_of_500_spheres_settles_under_gravity(lmp, vcor_plugin, tmp_pa
     assert ke[-1] < 1e-6 * released
     assert last.max() <= before.max()
     assert contacts[-1] > 1000  # resting on each other (about 2.7 per sphere)
+    assert not _warnings(out.stdout)  # its time step resolves every contact (the time-step rule's n >= 24.8)
