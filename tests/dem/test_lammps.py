@@ -55,3 +55,22 @@ def test_the_header_recipe_of_each_temperature_gives_that_temperatures_cor(lmp, 
         got = cor_of(run_lammps(lmp, deck, "-var", "v0", "2.0", *args))
         want = float(ds["cor_model"].sel(model="lammps-viscoelastic").values[i, 1])
         assert abs(got - want) <= 1e-3, (temps[i], got, want)
+
+
+def test_runs_collected_in_one_file_keep_every_line_and_show_lammps_errors(lmp, tmp_path):
+    """Run as its header says (``-log none``), a deck's COR goes to LAMMPS's standard output as LAMMPS holds
+    it: a shell loop that writes its own lines between runs into one file keeps every line, in order (a
+    deck that opened /dev/stdout again wrote at its own offset, and the loop's next line overwrote it);
+    and a bad value shows LAMMPS's ERROR line (``-screen none`` hid it)."""
+    import subprocess
+
+    col = fit.collision("sls", SPEEDS, sphere={"r": 0.005}, target={"sphere": {}})
+    ds = export.dem_dataset("t", [col], [fit.fit_laws(col, ["lammps-viscoelastic"])])
+    deck = tmp_path / lammps.deck_name(col.contact.kind)
+    lammps.write_deck(deck, ds)
+    loop = f'for v in 0.5 2; do echo "v0=$v"; "{lmp}" -in {deck.name} -var v0 $v -log none; done > out.txt'
+    subprocess.run(["sh", "-c", loop], cwd=tmp_path, check=True, timeout=300)
+    lines = [x for x in (tmp_path / "out.txt").read_text().splitlines() if x.startswith(("v0=", "COR = "))]
+    assert [x.split()[0] for x in lines] == ["v0=0.5", "COR", "v0=2", "COR"], lines
+    out = run_lammps(lmp, deck, "-var", "v0", "abc", check=False)
+    assert out.returncode != 0 and any(x.startswith("ERROR") for x in out.stdout.splitlines()), out.stdout[-2000:]

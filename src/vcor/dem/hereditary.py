@@ -5,10 +5,11 @@ on a rigid wall) of vcor's plugin (``plugins/lammps/``, GPL-2.0; :mod:`vcor.dem.
 ::
 
     vcor lammps-plugin build --out plugin        # its last line: the path of vcorplugin.so
-    lmp -in in.hereditary -var v0 2.5 -var plugin plugin/vcorplugin.so -screen none -log none
+    lmp -in in.hereditary -var v0 2.5 -var plugin plugin/vcorplugin.so -log none
 
-prints one line, ``COR = <value>``: the relative normal speed after the contact over the approach
-speed v0 (m/s), like ``in.pair``. The deck holds the contact's series from the dataset
+prints LAMMPS's own lines (its warnings and errors among them) and then ``COR = <value>``: the relative
+normal speed after the contact over the approach speed v0 (m/s), like ``in.pair``
+(:mod:`vcor.dem.lammps`). The deck holds the contact's series from the dataset
 (``hereditary_E_inf``, ``hereditary_E``, ``hereditary_beta``; per temperature with ``-var T <deg C>``,
 one of the entry's, the first by default) and the time step of
 :func:`vcor.dem.hereditary_law.time_step` (the fixed point of dt = t_H(Ebar(dt)) / nsteps, solved in
@@ -36,8 +37,8 @@ _HEADER = """\
 # vcor.contact.pair: Prony internal variables, the force clipped at zero) in LAMMPS. Written by
 # vcor.dem.hereditary; units si.
 #   vcor lammps-plugin build --out <DIR>     builds vcor's plugin (GPL-2.0); its last line is the .so
-#   lmp -in in.hereditary -var v0 <m/s> -var plugin <path to vcorplugin.so> -screen none -log none
-#                                            prints one line: COR = <value>
+#   lmp -in in.hereditary -var v0 <m/s> -var plugin <path to vcorplugin.so> -log none
+#                                            prints LAMMPS's lines, then one: COR = <value>
 # The contact's relaxation modulus E_c(t) = E_inf + sum_i E_i exp(-beta_i t) (Pa, 1/s), effective
 # plane-strain form ({form}), from results/dem/{name}.nc: {source}.
 # Time step: the fixed point of dt = t_H(Ebar(dt)) / nsteps, t_H(E) = 3.2181 (m_eff/K)^(2/5) v0^(-1/5),
@@ -54,7 +55,7 @@ atom_modify      map array
 variable found   equal is_file(${{plugin}})
 if "${{found}} == 0" then &
    "print 'in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin build prints it), &
-got ${{plugin}}' append /dev/stderr" "quit 1"
+got ${{plugin}}' append /dev/stderr screen no" "quit 1"
 plugin           load ${{plugin}}
 """
 #: the time step's fixed point, solved in the deck (the same iteration as hereditary_law.time_step)
@@ -113,7 +114,7 @@ def _selection(laws: list) -> str:
     branches = [f'"${{T}} == {T!r}"{" then" if i == 0 else ""} "jump SELF series_{i + 1}"'
                 for i, (T, _) in enumerate(laws)]
     text = ("if " + " &\n   elif ".join(branches)
-            + f" &\n   else \"print 'T must be one of: {allowed} (deg C)' append /dev/stderr\" \"quit 2\"\n")
+            + f" &\n   else \"print 'T must be one of: {allowed} (deg C)' append /dev/stderr screen no\" \"quit 2\"\n")
     for i, (_, law) in enumerate(laws):
         text += f"label            series_{i + 1}\n{_law_lines(law)}jump             SELF series_chosen\n"
     return text + "label            series_chosen\n"

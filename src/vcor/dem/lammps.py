@@ -1,8 +1,11 @@
 """Ready-to-run LAMMPS decks of a ``dem:`` entry: ``in.pair`` (two spheres, ``pair_style granular``)
 or ``in.wall`` (a sphere on a flat wall, ``fix wall/gran granular``), ``units si``.
 
-``lmp -in in.pair -var v0 2.5 -screen none -log none`` prints one line, ``COR = <value>``: the
-relative normal speed after the contact over the approach speed v0 (m/s). The deck holds the
+``lmp -in in.pair -var v0 2.5 -log none`` prints LAMMPS's own lines (its warnings and errors among them)
+and then one line ``COR = <value>`` (``grep '^COR ='`` picks it out): the relative normal speed after
+the contact over the approach speed v0 (m/s). The line goes to LAMMPS's screen, standard output as
+LAMMPS holds it, so that several runs whose output a shell collects in one file keep every line (a deck
+that opened /dev/stdout again would write at its own offset); ``-screen none`` would hide it. The deck holds the
 dataset's ``hertz/material`` modulus E (Pa), Poisson ratio and the fitted parameters; ``-var model
 viscoelastic`` (the default: ``damping viscoelastic`` with eta_n0 and ``limit_damping``) or ``-var
 model coeff_restitution`` (the constant e, without ``limit_damping``, where its COR is e exactly)
@@ -29,7 +32,7 @@ NSTEPS = 2000
 
 _HEADER = """\
 # vcor DEM deck, entry {name}: {what}. Written by vcor.dem.lammps; units si.
-#   lmp -in {deck} -var v0 <m/s> -screen none -log none     prints one line: COR = <value>
+#   lmp -in {deck} -var v0 <m/s> -log none     prints LAMMPS's lines, then one: COR = <value>
 {usage}# Parameters fitted by vcor (results/dem/{name}.nc){t_note}:
 {table}
 {quality}"""
@@ -108,7 +111,7 @@ label            more
 if "${{sep}} <= 0.0" then "run ${{nsteps}}" "jump SELF more"
 variable cor     equal (vx[2]-vx[1])/v_v0
 variable corf    format cor %.12g
-print            "COR = ${{corf}}" append /dev/stdout screen no universe no
+print            "COR = ${{corf}}" universe no
 """
 #: the pieces of a sphere-on-a-wall deck (as PAIR_MASSES, PAIR_ATOMS, PAIR_RUN)
 WALL_MASSES = """\
@@ -142,7 +145,7 @@ label            more
 if "${{sep}} <= 0.0" then "run ${{nsteps}}" "jump SELF more"
 variable cor     equal vx[1]/v_v0
 variable corf    format cor %.12g
-print            "COR = ${{corf}}" append /dev/stdout screen no universe no
+print            "COR = ${{corf}}" universe no
 """
 #: the time step of in.pair / in.wall: the elastic Hertz contact time of E_lammps over nsteps
 _PAIR_DT = """\

@@ -169,6 +169,8 @@ def build(out="vcor-lammps-plugin", *, lammps=None, source=None, builder: str = 
     one line per step. BuildError (one line) when something is missing or the build fails."""
     if builder not in ("auto", "cmake", "compiler"):
         raise BuildError(f"builder must be auto, cmake or compiler, got {builder!r}")
+    if Path(out).exists() and not Path(out).is_dir():
+        raise BuildError(f"out {str(out)!r} is a file: the plugin is built into a folder (--out DIR)")
     src = plugin_sources(source)
     lmp = find_lammps(lammps)
     cxx = _compiler()
