@@ -213,6 +213,9 @@ ROWS = [
     ("config: data file outside the project",
      lambda: _validate(_config_with(lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="/tmp/x.csv"))),
      ["fits.pyvisco-polymer.data.file", "relative path inside the project"]),
+    ("config: an absolute data path inside the project", lambda: _validate(_config_with(
+        lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file=str(ROOT / "data/pyvisco/freq_user_raw.csv")))),
+     ["fits.pyvisco-polymer.data.file", "relative path inside the project", "write 'data/pyvisco/freq_user_raw.csv'"]),
     ("config: DMA file missing", lambda: _validate(_config_with(
         lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="data/pyvisco/none.csv"))), ["none.csv"]),
     ("fit: instrument_lag not a boolean", lambda: spec.check_fit_spec(

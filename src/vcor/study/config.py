@@ -67,10 +67,12 @@ def inside_project(key: str, value, base_dir: Path) -> str:
     and the files a result depends on are part of it (link or copy outside data into the project)."""
     if not isinstance(value, str) or not value.strip():
         raise ValueError(f"{key} must be a non-empty path inside the project folder, got {value!r}")
-    path = Path(value)
-    if path.is_absolute() or not (base_dir / path).resolve().is_relative_to(base_dir.resolve()):
-        raise ValueError(f"{key} must be a relative path inside the project folder ({base_dir.resolve()}), "
-                         f"got {value!r}")
+    path, base = Path(value), base_dir.resolve()
+    if path.is_absolute() or not (base_dir / path).resolve().is_relative_to(base):
+        inside = path.is_absolute() and path.resolve().is_relative_to(base)
+        raise ValueError(f"{key} must be a relative path inside the project folder ({base}), got {value!r}"
+                         + (f": write {str(path.resolve().relative_to(base))!r}" if inside else
+                            " (link or copy the file into the project)"))
     return value
 
 
