@@ -2,6 +2,8 @@
 and no warning (docs, Datasets, "Conventions"), in one small project that writes every kind of dataset;
 a config with a key given twice stops the run before any job."""
 
+import json
+
 import netCDF4
 import numpy as np
 import pytest
@@ -91,6 +93,40 @@ def test_every_variable_says_what_it_is_and_its_unit(project):
                     need = ["long_name", "units_by_parameter"]
                 missing += [f"{path.name}:{name}:{a}" for a in need if a not in attrs]
     assert missing == []
+
+
+#: integer data variables that count (not flags)
+COUNTS = {"index", "iterations", "n_modes", "samples_ok"}
+
+
+def test_flags_say_their_values_and_numbers_name_the_flags_that_qualify_them(project):
+    """Every integer data variable but a count is a flag with flag_values or flag_masks and flag_meanings (a
+    history's ghost, a DEM law's opposite_trend, a calibration's identified included); every other numeric
+    data variable over the dimensions of a status flag, or more (a history's samples, each DEM law's values
+    at a point), names it in ancillary_variables."""
+    bare, unlinked = [], []
+    for path in sorted((project / "results").rglob("*.nc")):
+        with netCDF4.Dataset(path) as nc:
+            statuses = [n for n, v in nc.variables.items() if getattr(v, "standard_name", "") == "status_flag"]
+            coords = {c for v in nc.variables.values() for c in getattr(v, "coordinates", "").split()}
+            for name, var in nc.variables.items():
+                if name in nc.dimensions or name in coords or var.dtype is str:
+                    continue
+                attrs = set(var.ncattrs())
+                flag = bool({"flag_values", "flag_masks"} & attrs and "flag_meanings" in attrs)
+                if var.dtype.kind in "iu" and name not in COUNTS and not flag:
+                    bare.append(f"{path.name}:{name}")
+                if flag and getattr(var, "standard_name", "") in ("status_flag", "quality_flag"):
+                    continue  # a status or validity flag is what others name
+                covered = [s for s in statuses if set(nc[s].dimensions) <= set(var.dimensions)]
+                if var.dtype.kind in "fiu" and covered and not set(covered) <= set(
+                        getattr(var, "ancillary_variables", "").split()):
+                    unlinked.append(f"{path.name}:{name}")
+    assert bare == [] and unlinked == [], (bare, unlinked)
+    histories = netcdf.read_dataset(project / "results/paper/histories.nc")
+    options = json.loads(histories.attrs["solver_options"])
+    assert {run: o["method"] for run, o in options.items()} == {"sls/direct": "direct", "mine/ive": "ive"}
+    assert "geometry_defaults" in histories.attrs
 
 
 def test_the_datasets_read_back_under_their_names(project):

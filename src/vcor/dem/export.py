@@ -107,6 +107,8 @@ def _describe(ds, params: dict, with_t: bool) -> None:
     ds["status"].attrs.update(cf_attrs())
     ds["status"].attrs["long_name"] = "status of vcor's solve at the point"
     ds["validity"].attrs.update({k: v for k, v in validity_attrs().items() if k != "long_name"})
+    ds["opposite_trend"].attrs.update(flag_values=np.array([0, 1], dtype=ds["opposite_trend"].dtype),
+                                      flag_meanings="same_trend_or_within opposite_trend")
     for key, (model, unit, meaning, _) in params.items():
         ds[key].attrs.update(units=unit, long_name=meaning, model=model)
     ds["v0"].attrs.update(units="m s-1", long_name="impact speed (relative normal approach speed of a pair)")

@@ -557,7 +557,8 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
     ds["unit"] = ("parameter", np.array(param_units, dtype=str),
                   {"long_name": "unit (UDUNITS) of the parameter's estimate, stderr, interval, start and bounds"})
     ds["identified"] = ("parameter", cal.identified.astype(np.int8),
-                        {"long_name": "1: identified by the data; 0: see note", "units": "1"})
+                        {"long_name": "1: identified by the data; 0: see note", "units": "1",
+                         "flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "not_identified identified"})
     ds["note"] = ("parameter", np.array(cal.notes, dtype=str), {"long_name": "why a parameter is not identified"})
     ds["correlation"] = (("parameter", "parameter_2"), cal.correlation, {"units": "1", "long_name": "correlation"})
     ds = ds.assign_coords(point=("point", np.arange(cal.data.v0.size), {"units": "1", "long_name": "data point"}))
@@ -587,8 +588,7 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
         "model_evaluations": cal.nfev, "optimizer_message": cal.message,
         "singular_values": json.dumps(cal.singular_values.tolist()),
         "not_identified": json.dumps({n: note for n, note, ok in zip(cal.names, cal.notes, cal.identified) if not ok}),
-        # the data file as the spec names it (relative to the project), not as this process opened it
-        "data": str((spec or {}).get("data", cal.data.path)),
+        "data": str((spec or {}).get("data", cal.data.path)),  # as the spec names it, not as it was opened
     })
     return ds
 

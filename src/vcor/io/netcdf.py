@@ -139,13 +139,14 @@ def encode(ds):
 
 
 def _link_flags(ds) -> None:
-    """``ancillary_variables`` of every numeric data variable: the flag variables of its dimensions (in
-    place; a variable that names its own is left as it is)."""
+    """``ancillary_variables`` of every numeric data variable: the flag variables over its dimensions or a
+    part of them (a run's status qualifies each of its time samples; a point's status each law's value at
+    it), in place; a variable that names its own is left as it is."""
     flags = [n for n, v in ds.data_vars.items() if v.attrs.get("standard_name") in FLAG_STANDARD_NAMES]
     for name, var in ds.data_vars.items():
         if name in flags or var.dtype.kind not in "fiu" or "ancillary_variables" in var.attrs:
             continue
-        linked = [f for f in flags if ds[f].dims == var.dims]
+        linked = [f for f in flags if ds[f].dims and set(ds[f].dims) <= set(var.dims)]
         if linked:
             var.attrs["ancillary_variables"] = " ".join(linked)
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from .. import spheres as S
 from .. import status as _status
+from ..contact.impact import GEOMETRY_DEFAULTS
 from ..fitting.g_star import bridges_ice, fit_g_star
 from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
@@ -116,9 +117,11 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
     data = {}
     for k, (u, ln) in meta.items():
         arr = np.array(cols[k])
+        attrs = {"units": u, "long_name": ln}
         if k == "ghost":
             arr = arr.astype(np.int8)
-        data[k] = (("run", "sample"), arr, {"units": u, "long_name": ln})
+            attrs.update(flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="in_contact after_separation")
+        data[k] = (("run", "sample"), arr, attrs)
     for k, v in scal.items():
         data[k] = ("run", np.array(v, dtype=float), {"units": UNITS[k], "long_name": LONG_NAMES[k]})
     data["status"] = ("run", _status.codes_of(status), _status.cf_attrs())
@@ -131,10 +134,17 @@ def histories_dataset(runs, v0, *, options=None, geometry=None, ghost=None, n_sa
         "sample": ("sample", np.arange(n_samples), {"units": "1", "long_name": "sample index"}),
     }
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs["solver_options"] = json.dumps(base.to_dict(), sort_keys=True)
-    ds.attrs["v0"] = float(v0)
-    ds.attrs["v0_units"] = "m s-1"
+    ds.attrs.update(_history_attrs(base, labels, geometry, v0))
     return ds
+
+
+def _history_attrs(base, labels, geometry, v0) -> dict:
+    """The histories' global attributes: each run's own options (its method, with the scene's options that
+    apply to it) by run label, the geometry and its defaults, the speed."""
+    options = {label: base.replace(method=label.rsplit("/", 1)[1]).to_dict() for label in labels}
+    return {"solver_options": json.dumps(options, sort_keys=True), "geometry": json.dumps(geometry, sort_keys=True),
+            "geometry_defaults": json.dumps(dict(GEOMETRY_DEFAULTS), sort_keys=True), "v0": float(v0),
+            "v0_units": "m s-1"}
 
 
 def spheres_dataset(b_values, *, rules=("overlap", "force"), tau_ratios=(), steps_per_contact=2000, ice=None):
