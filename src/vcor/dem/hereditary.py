@@ -108,8 +108,11 @@ def laws_of(ds) -> list[tuple[float | None, HereditaryLaw]]:
 
 def _selection(laws: list) -> str:
     """The series of the chosen temperature (``-var T``), or the one series."""
-    if laws[0][0] is None:
-        return _law_lines(laws[0][1])
+    if laws[0][0] is None:  # one series: a -var T would be ignored, so it is refused (x: LAMMPS's
+        # if compares two texts, never a text with a number)
+        return ("variable T       index NONE\n"
+                "if \"x${T} != xNONE\" then \"print 'T: this entry has no temperatures (no T in its dem config), got "
+                "${T}' append /dev/stderr screen no\" \"quit 2\"\n" + _law_lines(laws[0][1]))
     allowed = " ".join(f"{T:g}" for T, _ in laws)
     branches = [f'"${{T}} == {T!r}"{" then" if i == 0 else ""} "jump SELF series_{i + 1}"'
                 for i, (T, _) in enumerate(laws)]
