@@ -262,6 +262,10 @@ ROWS = [
     ("config: a history speed out of range", lambda: _validate(_config_with(
         lambda c: c["scenes"]["butyl"]["histories"].update(v0=1.0e7))),
      ["scenes.butyl.histories.v0", "v0 must be in", "m/s"]),
+    ("sweep: a name that is no scene name", lambda: vcor.sweep(
+        {"materials": ["sls"], "grid": {"v0": [1.0]}}, name="my study"), ["name must be", "'my study'"]),
+    ("sweep: a name beside a scene's name", lambda: vcor.sweep("sls", config=ROOT / "config.yaml", name="x"),
+     ["name names a scene given as a mapping", "'sls'"]),
     ("config: option the method ignores",
      lambda: _validate(_config_with(lambda c: c["scenes"]["sls"].update(solver={"method": "ive", "dt": 1e-6}))),
      ["scenes.sls.solver", "dt", "not used by method 'ive'"]),

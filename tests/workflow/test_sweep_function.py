@@ -60,9 +60,14 @@ def test_sweep_equals_the_workflows_dataset(project, scene):
 
 
 def test_a_scene_given_as_its_mapping_is_the_same_scene(project):
+    """A mapping equal to a config's scene takes its name; ``name=`` names any mapping (its ``scene``
+    attribute and title), and the numbers do not depend on it."""
     ours = vcor.sweep(CONFIG["scenes"]["tied"], config=project / "config.yaml", workers=1, progress=False)
     assert ours.attrs["scene"] == "tied"
     _same(ours, read_dataset(project / "results/tied/sweep.nc"))
+    named = vcor.sweep(CONFIG["scenes"]["tied"], workers=1, progress=False, name="my-study")
+    assert named.attrs["scene"] == "my-study" and named.attrs["title"].endswith("scene my-study")
+    xr.testing.assert_identical(named["cor"], ours["cor"])
 
 
 def test_without_the_workflows_files_the_fits_and_samples_are_computed(project, tmp_path):

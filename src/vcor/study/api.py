@@ -56,7 +56,7 @@ __all__ = ["Calibrated", "DemExport", "Fitted", "calibrate", "dem_export", "fit"
 
 
 def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
-          progress: bool | None = None) -> xarray.Dataset:
+          progress: bool | None = None, name: str | None = None) -> xarray.Dataset:
     """Solve a scene's grid: the dataset the workflow archives as ``results/<scene>/sweep.nc``.
 
     Parameters
@@ -75,6 +75,9 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
         A progress bar (points done, ok / flagged / failed, time left) once the work has lasted two seconds
         (a shorter solve shows none): None on a terminal or in Jupyter, True also elsewhere (a log, a
         pipe), False never.
+    name : str, optional
+        The name of a scene given as a mapping, in the dataset's ``scene`` attribute and title (default:
+        the name of the config's scene that equals it, else ``sweep``), as ``scenes.<name>`` would give it.
 
     Returns
     -------
@@ -99,16 +102,17 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
     >>> [round(float(c), 3) for c in ds["cor"].sel(material="sls")], ds["cor"].attrs["units"]
     ([0.388, 0.432], '1')
     """
-    return sweep_archive(scene, config=config, workers=workers, progress=progress).loaded(command="vcor.sweep")
+    return sweep_archive(scene, config=config, workers=workers, progress=progress, name=name).loaded(
+        command="vcor.sweep")
 
 
 def sweep_archive(scene: dict | str, *, config: Any = None, workers: int | None = None,
-                  progress: bool | None = None) -> Archive:
+                  progress: bool | None = None, name: str | None = None) -> Archive:
     """:func:`sweep`'s dataset before it is archived (:class:`vcor.io.archived.Archive`): what ``vcor sweep``
     writes to its ``--out`` file."""
     processes = check_workers(workers)
     show = wanted(progress)
-    study = resolve_scene(scene, config)
+    study = resolve_scene(scene, config, name)
     sc, project = study.scene, study.project
     with tempfile.TemporaryDirectory(prefix="vcor-materials-") as folder:
         catalogue = ready_catalogue(project.catalogue, sc.used_materials(), sc.uncertainty, Path(folder))

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..materials.catalogue import Catalogue, content_hash
 from ..materials.models import Material
-from .config import load_project
+from .config import SCENE_NAME_PATTERN, load_project
 from .project import Project
 from .schema import check_keys, check_schema
 
@@ -194,9 +194,14 @@ def _objects_named(scene: dict, cfg: dict) -> dict:
     return {**scene, "materials": names}
 
 
-def _scene_entry(scene, cfg: dict, config) -> tuple[str, dict, bool]:
-    """(name, scene mapping, given by name) of the ``scene`` argument."""
+def _scene_entry(scene, cfg: dict, config, name=None) -> tuple[str, dict, bool]:
+    """(name, scene mapping, given by name) of the ``scene`` argument; ``name`` names a scene given as a
+    mapping (default: the config's scene that equals it, else SCENE_NAME)."""
     scenes = cfg.get("scenes") or {}
+    if name is not None and not (isinstance(name, str) and re.fullmatch(SCENE_NAME_PATTERN, name)):
+        raise ValueError(f"name must be a text of letters, digits, - and _ (a scene's name), got {name!r}")
+    if isinstance(scene, str) and name is not None:
+        raise ValueError(f"name names a scene given as a mapping; scene {scene!r} is the name of one of config's")
     if isinstance(scene, str):
         if config is None:
             raise ValueError(f"scene: {scene!r} names a scene, but no config was given: pass config= (the config "
@@ -209,15 +214,17 @@ def _scene_entry(scene, cfg: dict, config) -> tuple[str, dict, bool]:
         raise ValueError(f"scene must be a mapping (as under scenes.<name> of a config) or the name of a scene "
                          f"of config, got {type(scene).__name__}")
     given = plain(_objects_named(dict(scene), cfg))
+    if name is not None:
+        return name, given, False
     same = [n for n, s in scenes.items() if s == given]
     return (same[0] if same else SCENE_NAME), given, False
 
 
-def resolve_scene(scene, config=None) -> Resolved:
-    """The checked study of ``scene`` (its name in ``config``, or a mapping) with ``config``'s materials,
-    fits and calibrations; ValueError (one line naming the key: module docstring) before any work."""
+def resolve_scene(scene, config=None, name=None) -> Resolved:
+    """The checked study of ``scene`` (its name in ``config``, or a mapping, named ``name``) with ``config``'s
+    materials, fits and calibrations; ValueError (one line naming the key: module docstring) before any work."""
     cfg, base = as_config(config)
-    name, entry, by_name = _scene_entry(scene, cfg, config)
+    name, entry, by_name = _scene_entry(scene, cfg, config, name)
     study = {k: cfg[k] for k in _SHARED if k in cfg}
     study["scenes"] = {name: plain(entry)}
     key = f"scenes.{name}"
