@@ -294,6 +294,18 @@ def test_a_shard_without_point_indices_is_recomputed_never_misread(tmp_path):
     assert all("index" in p for s in again.values() for p in s.points)
 
 
+def test_a_dataset_the_config_asks_for_is_built_without_a_figure():
+    """histories: (and moduli:) in a scene build their dataset with no figure to draw it (they were
+    skipped: a histories-only scene built an empty manifest); with neither, the scene builds its sweep only."""
+    project = check({"scenes": {"h": {"materials": ["sls"], "histories": {"v0": 3.0, "runs": [["sls", "direct"]]}},
+                                "m": {"materials": ["sls"], "grid": {"v0": [1.0]}, "moduli": ["butyl-fc"]},
+                                "s": {"materials": ["sls"], "grid": {"v0": [1.0]}}}})
+    assert project.scenes["h"].datasets() == ["histories"]
+    assert project.scenes["m"].datasets() == ["sweep", "moduli"]
+    assert project.scenes["s"].datasets() == ["sweep"]
+    assert paths.fmt(paths.DATASET, scene="h", dataset="histories") in project.scene_targets("h")
+
+
 def test_result_paths_come_from_one_module():
     project = check(_scene(figures={"fig4": {"material": "sls"}}, grid={"v0": [1.0], "beta": [600, 1200]},
                            tie={"alpha": {"to": "beta", "ratio": 0.25}}))

@@ -81,6 +81,24 @@ def test_a_work_precision_scene_is_summed_up_by_its_runs(tmp_path):
                          "results/acc/convergence.nc"]
 
 
+def test_time_histories_are_summed_up_by_their_runs(tmp_path):
+    """A scene's time histories count their runs, a failed one by its status (a histories-only scene
+    printed nothing however its runs ended)."""
+    import types
+
+    from vcor.io import netcdf
+    from vcor.study import datasets
+    from vcor.study.summary import outcome_of, run_summary
+
+    ds = datasets.histories_dataset([("sls", "direct"), ("sls", "adaptive")], 3.0,
+                                    options={"max_adaptive_steps": 100}, geometry={"h": 0.001})
+    netcdf.write_dataset(ds, tmp_path / "results/h/histories.nc", title="test")
+    project = types.SimpleNamespace(scenes={"h": None}, dem={}, catalogue=types.SimpleNamespace(calibrations={}))
+    lines = run_summary(project, tmp_path)
+    assert lines[1:] == [f"  scene h (time histories): 2 runs, {outcome_of(ds).text()}: results/h/histories.nc"]
+    assert "2 failed (step-budget 2)" in lines[1]
+
+
 def _expected_line(path, scene: str) -> str:
     """The summary line of ``scene`` as counted here from its sweep dataset's status and validity."""
     with xr.open_dataset(path / f"results/{scene}/sweep.nc") as ds:

@@ -71,8 +71,10 @@ class Scene:
         return uncertainty_of(self.config)
 
     def datasets(self) -> list[str]:
-        """The datasets the scene builds: ``sweep`` with a grid, and each one its figures need."""
-        need = needs(self.figures)
+        """The datasets the scene builds: ``sweep`` with a grid, each one its figures need, and each one
+        its config names (``histories:``, ``moduli:``, ``spheres:``, ``convergence:``: asked for, so built
+        with no figure too)."""
+        need = needs(self.figures) | (set(DATASETS) & set(self.config))
         return (["sweep"] if self.grid is not None else []) + [n for n in DATASETS if n in need]
 
     def used_materials(self) -> list[str]:

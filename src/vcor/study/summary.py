@@ -4,10 +4,11 @@ For each scene whose sweep dataset exists, one line: its points, how many are ``
 model's stated range, how many are ``ok`` but flagged (by validity reason, :mod:`vcor.solvers.validity`;
 a point can carry several reasons, so the reasons' counts may add up to more than the flagged points),
 how many did not finish ``ok`` (by status, :mod:`vcor.status`), and the dataset's path. Then one line
-per scene whose work-precision dataset exists (its runs, counted alike: the cells of the
-method x ladder table that were run), one per DEM entry whose dataset exists (its collisions) and one
-per calibration whose record exists (its path). The workflow prints these lines when a run ends, successful or not (the
-Snakefile's ``onsuccess`` / ``onerror`` handlers); a run with nothing to do ends before them.
+per scene whose time histories exist (its runs) and one per scene whose work-precision dataset exists
+(its runs, counted alike: the cells of the method x ladder table that were run), one per DEM entry
+whose dataset exists (its collisions) and one per calibration whose record exists (its path). The
+workflow prints these lines when a run ends, successful or not (the Snakefile's ``onsuccess`` /
+``onerror`` handlers); a run with nothing to do ends before them.
 
 Only the ``status`` and ``validity`` variables (small integers) are read, with netCDF4 itself (xarray
 would decode every string variable of the file, one string per point, before anything is read), so the
@@ -101,14 +102,16 @@ class _Stored:
 def read_outcome(path, *, runs_only: bool = False) -> Outcome:
     """The :class:`Outcome` of a dataset file, reading only its ``status`` and ``validity`` (module
     docstring). ``runs_only``: a work-precision dataset's cells with a ladder value (``param`` finite);
-    the others are past a shorter ladder or of a method that does not apply, not runs."""
+    the others are past a shorter ladder or of a method that does not apply, not runs (a dataset without
+    ``param``, the time histories, is all runs)."""
     import netCDF4
 
     with netCDF4.Dataset(path) as nc:
         if "status" not in nc.variables:
             raise ValueError(f"{path}: no variable 'status'; a sweep dataset has one")
         nc.set_auto_maskandscale(False)
-        keep = np.isfinite(np.asarray(nc["param"][...], dtype=float)).ravel() if runs_only else slice(None)
+        keep = (np.isfinite(np.asarray(nc["param"][...], dtype=float)).ravel() if runs_only and "param" in nc.variables
+                else slice(None))
         stored = {name: _Stored(np.asarray(nc[name][...]).ravel()[keep],
                                 {a: nc[name].getncattr(a) for a in nc[name].ncattrs()})
                   for name in ("status", "validity") if name in nc.variables}
@@ -126,7 +129,7 @@ def _line(kind: str, name: str, path: Path, shown: str, *, runs: bool = False) -
 
 def run_summary(project, base_dir=".") -> list[str]:
     """Lines saying what the project's results hold (module docstring); ``[]`` when no scene has a
-    sweep or work-precision dataset and no DEM entry or calibration has a dataset. ``project`` is a
+    sweep, time-histories or work-precision dataset and no DEM entry or calibration has a dataset. ``project`` is a
     :class:`vcor.study.project.Project`; paths are shown relative to ``base_dir``."""
     base = Path(base_dir)
     lines = []
@@ -134,6 +137,9 @@ def run_summary(project, base_dir=".") -> list[str]:
         shown = paths.fmt(paths.SWEEP, scene=name)
         if (base / shown).is_file():
             lines.append(_line("scene", name, base / shown, shown))
+        shown = paths.fmt(paths.DATASET, scene=name, dataset="histories")
+        if (base / shown).is_file():
+            lines.append(_line("scene", f"{name} (time histories)", base / shown, shown, runs=True))
         shown = paths.fmt(paths.DATASET, scene=name, dataset="convergence")
         if (base / shown).is_file():
             lines.append(_line("scene", f"{name} (work-precision)", base / shown, shown, runs=True))
