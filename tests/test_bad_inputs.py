@@ -224,6 +224,16 @@ ROWS = [
     ("fit: method free is refused", lambda: spec.check_fit_spec(
         {"model": "prony", "method": "free", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": -5}},
         base_dir=ROOT, where="fits.x"), ["fits.x.method", "'free'", "method: spectrum"]),
+    ("fit: T_ref outside the sets with a WLF shift function", lambda: spec.check_fit_spec(
+        {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": 120, "shift_model": "wlf"}},
+        base_dir=ROOT, where="fits.x"), ["fits.x.data.T_ref", "120 deg C lies outside the sets'", "among the data"]),
+    ("fit: a shift model for a master curve", lambda: spec.check_fit_spec(
+        {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5, "shift_model": "wlf"}},
+        base_dir=ROOT, where="fits.x"), ["fits.x.data.shift_model", "master curve", "no shift factors"]),
+    ("config: a temperature axis over a fit to a master curve", lambda: _validate(_config_with(lambda c: c.update(
+        fits={"mfit": {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5}}},
+        scenes={"s": {"materials": ["mfit"], "grid": {"v0": [1.0], "T": [0.0, 10.0]}}}))),
+     ["scenes.s.grid.T", "fit 'mfit' has no shift function", "master curve", "raw sets"]),
     ("fit: instrument_lag on a master curve", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5, "instrument_lag": True}},
         base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "master curve", "two or more temperatures"]),

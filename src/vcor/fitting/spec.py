@@ -142,9 +142,14 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     if d.get("instrument_lag") and not raw.is_raw:
         raise ValueError(f"{where}.data.instrument_lag: {raw.path} is a master curve (no T, Set columns); the lag is "
                          f"told from the material by superposing sets at two or more temperatures")
-    if raw.is_raw and shift_model == "table" and "shift_file" not in d:
+    if shift_model != SHIFT_MODELS[0] and not raw.is_raw:  # (the default, table, is what a config omits)
+        raise ValueError(f"{where}.data.shift_model: {raw.path} is a master curve (no T, Set columns): it has no "
+                         f"shift factors to fit a shift function to; give raw sets at two or more temperatures")
+    if raw.is_raw and "shift_file" not in d:
+        # the sets' shifts are zero at T_ref by interpolation between the sets around it: outside them the
+        # zero would be extrapolated and the shift function fitted through it, off inside the data
         T = np.array([s.T for s in split_sets(raw)])
         if not T.min() <= T_ref <= T.max():
             raise ValueError(f"{where}.data.T_ref: {T_ref:g} deg C lies outside the sets' {T.min():.4g}..{T.max():.4g} "
-                             f"deg C: a tabulated shift function (shift_model: table) needs T_ref inside; "
-                             f"use shift_model wlf or arrhenius")
+                             f"deg C: the master curve's reference must lie among the data (other temperatures "
+                             f"follow from the shift function)")

@@ -237,17 +237,36 @@ def check_temperature_axis(name: str, scene: dict, catalogue: Catalogue, grid: G
         return
     temps = grid.axis("T").values
     for mat in grid.materials:
-        if catalogue.source(mat) == "fit" and "file" in (catalogue.fits[mat].get("data") or {}):
+        fitted = catalogue.source(mat) == "fit"
+        data = (catalogue.fits[mat].get("data") or {}) if fitted else {}
+        if "file" in data and ("shift_file" in data or _raw_sets(catalogue, data["file"])):
             continue
-        shift = catalogue.shift(mat)
+        shift = None if fitted else catalogue.shift(mat)
         if shift is None:
-            raise ValueError(f"scenes.{name}.grid.T: material {mat!r} has no shift function (a temperature axis "
-                             f"needs materials.{mat}.shift in the config, or a fit to multi-temperature data)")
+            what = (f"fit {mat!r} has no shift function (its data {data['file']} is a master curve, without T and Set "
+                    f"columns)" if "file" in data else
+                    f"fit {mat!r} has no shift function (a fit to built-in data has none)" if fitted else
+                    f"material {mat!r} has no shift function")
+            raise ValueError(f"scenes.{name}.grid.T: {what}; a temperature axis needs materials.<name>.shift in the "
+                             f"config, or a fit to raw sets at two or more temperatures")
         for T in (temps[0], temps[-1]):
             try:
                 shift.log_aT(T)
             except ValueError as exc:
                 raise ValueError(f"scenes.{name}.grid.T: material {mat!r}: {exc}") from None
+
+
+def _raw_sets(catalogue: Catalogue, file: str) -> bool:
+    """Does a fit's data file hold raw sets (T and Set columns: a shift function follows from the fit)? True
+    also where the file cannot be read: the fit's own check names that."""
+    from pathlib import Path
+
+    from ..fitting.dma.data import read_table
+
+    try:
+        return read_table(Path(catalogue.base_dir) / file).is_raw
+    except (OSError, ValueError):
+        return True
 
 
 def _body_materials(bodies: dict, catalogue: Catalogue) -> dict:
