@@ -269,9 +269,14 @@ ROWS = [
     ("dem: an entry the config does not have", lambda: vcor.dem_export("nope", config={"dem": {
         "a": {"sphere": {"material": "sls"}, "v0": [1, 2]}, "b": {"sphere": {"material": "sls"}, "v0": [1, 2]}}}),
      ["'nope' is not an entry of the config's dem block", "['a', 'b']"]),
+    ("config: a history run whose method cannot take the scene's options", lambda: _validate(_config_with(
+        lambda c: c["scenes"].update(h={"materials": ["butyl-fc"], "solver": {"method": "direct", "form": "b"},
+                                        "histories": {"v0": 10, "runs": [["butyl-fc", "direct"]]}}))),
+     ["scenes.h.histories.runs", "[butyl-fc, direct]", "form 'b'"]),
+    ("config: an empty moduli list", lambda: _validate(_scene("sls", moduli=[])), ["scenes.sls.moduli"]),
     ("config: a history speed out of range", lambda: _validate(_config_with(
         lambda c: c["scenes"]["butyl"]["histories"].update(v0=1.0e7))),
-     ["scenes.butyl.histories.v0", "v0 must be in", "m/s"]),
+     ["scenes.butyl.histories (v0 = 10000000.0 m/s", "v0 must be in", "m/s"]),
     ("sweep: a name that is no scene name", lambda: vcor.sweep(
         {"materials": ["sls"], "grid": {"v0": [1.0]}}, name="my study"), ["name must be", "'my study'"]),
     ("sweep: a name beside a scene's name", lambda: vcor.sweep("sls", config=ROOT / "config.yaml", name="x"),

@@ -60,8 +60,8 @@ def test_the_header_recipe_of_each_temperature_gives_that_temperatures_cor(lmp, 
 def test_runs_collected_in_one_file_keep_every_line_and_show_lammps_errors(lmp, tmp_path):
     """Run as its header says (``-log none``), a deck's COR goes to LAMMPS's standard output as LAMMPS holds
     it: a shell loop that writes its own lines between runs into one file keeps every line, in order (a
-    deck that opened /dev/stdout again wrote at its own offset, and the loop's next line overwrote it);
-    and a bad value shows LAMMPS's ERROR line (``-screen none`` hid it)."""
+    deck that opened /dev/stdout again would write at its own offset, behind the loop's next line); and a
+    bad value shows LAMMPS's ERROR line on standard output."""
     import subprocess
 
     col = fit.collision("sls", SPEEDS, sphere={"r": 0.005}, target={"sphere": {}})

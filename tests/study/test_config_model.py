@@ -295,8 +295,8 @@ def test_a_shard_without_point_indices_is_recomputed_never_misread(tmp_path):
 
 
 def test_a_dataset_the_config_asks_for_is_built_without_a_figure():
-    """histories: (and moduli:) in a scene build their dataset with no figure to draw it (they were
-    skipped: a histories-only scene built an empty manifest); with neither, the scene builds its sweep only."""
+    """histories: (and moduli:, spheres:, convergence:) in a scene build their dataset with no figure to draw
+    it: a histories-only scene builds its histories; with none of them, the scene builds its sweep only."""
     project = check({"scenes": {"h": {"materials": ["sls"], "histories": {"v0": 3.0, "runs": [["sls", "direct"]]}},
                                 "m": {"materials": ["sls"], "grid": {"v0": [1.0]}, "moduli": ["butyl-fc"]},
                                 "s": {"materials": ["sls"], "grid": {"v0": [1.0]}}}})

@@ -22,11 +22,20 @@ from ..materials.presets import PRESETS
 from ..materials.specs import from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.applicability import refusal
-from ..solvers.options import METHOD_NAMES, SolverOptions
+from ..solvers.options import METHOD_NAMES
 from .dem import check_dem
 from .grid import Grid, canon
 from .project import BUILDS, DATASETS, DEFAULTS, Project, Scene
-from .scene import MAX_JOBS, MAX_POINTS, check_temperature_axis, grid_of, point_count, settings_of, validate_scene
+from .scene import (
+    MAX_JOBS,
+    MAX_POINTS,
+    check_temperature_axis,
+    grid_of,
+    point_count,
+    settings_of,
+    solver_options_of,
+    validate_scene,
+)
 from .uncertainty import check_uncertainty
 
 __all__ = ["NAME_PATTERN", "SCENE_NAME_PATTERN", "Project", "inline_config_materials", "load_project"]
@@ -263,13 +272,14 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) ->
         if mat in catalogue.computed():
             continue  # a fit's or calibration's file is written by its rule: its values are checked by the job
         material = catalogue.material(mat)
-        why = refusal(material, SolverOptions(method=method))
+        why = refusal(material, solver_options_of(scene).replace(method=method))  # the options the job runs
         if why:
             raise ValueError(f"{where}.histories.runs: [{mat}, {method}]: {why}")
         try:
             make_impact(material, scene["histories"]["v0"], settings_of(scene)["geometry"])
-        except ValueError as exc:
-            raise ValueError(f"{where}.histories.v0: {exc}") from None
+        except ValueError as exc:  # the speed, or the scene's geometry: the message names the parameter
+            raise ValueError(f"{where}.histories (v0 = {scene['histories']['v0']} m/s, the scene's geometry): "
+                             f"{exc}") from None
     settings = settings_of(scene)
     bodies = _body_identities(scene, catalogue)
     if bodies:

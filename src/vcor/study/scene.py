@@ -191,7 +191,7 @@ def _check_corners(where, scene, grid: Grid, catalogue):
             except ValueError as exc:
                 raise ValueError(f"{where}: point {point}: {exc}") from None
             why = refusal(impact.material, options)
-            if why:  # the same at every point of this material: refused now, not stored as every point's status
+            if why:  # the same at every point of this material: the scene is refused, not each point
                 raise ValueError(f"{where}.solver.method: material {mat!r}: {why}")
 
 

@@ -82,8 +82,12 @@ def check_keys(value, path=()) -> None:
                 if isinstance(key, bool):
                     read = ("a boolean (YAML reads an unquoted on, off, yes, no, true or false so); names and keys "
                             "are text: quote the word as written, e.g. 'on'")
-                else:
+                elif key is None:
+                    read = "null (YAML reads an empty key, ~ or null so); names and keys are text: name it"
+                elif isinstance(key, (int, float)):
                     read = f"a number; names and keys are text: quote it, '{key}'"
+                else:  # a date (YAML reads 2026-01-01 so), or another YAML type
+                    read = f"a {type(key).__name__}; names and keys are text: quote it as written, e.g. '{key}'"
                 raise SchemaError(f"{_where(path)}: the key {key!r} is read as {read}")
             check_keys(item, (*path, key))
     elif isinstance(value, list):
