@@ -9,7 +9,10 @@
 // clipped at zero, along the wall's normal. The coefficients are the contact's relaxation
 // modulus in the effective plane-strain form: for a sphere of Young's relaxation modulus E(t)
 // and Poisson ratio nu on a rigid wall, E_c = E / (1 - nu^2). The global vector holds the force
-// of the walls on the group (N, 3 components) and the number of touching contacts.
+// of the walls on the group (N, 3 components), the number of touching contacts and the smallest n
+// of the time-step rule (Store::shortest) among the contacts that have ended since the fix was
+// defined (inf while none has). The walls act in a minimization too (as the pair style does), where
+// the contact does not advance in time (vcor_hereditary.h).
 //
 // This file is part of vcor's LAMMPS plugin and is distributed under the GNU General Public
 // License version 2 (see LICENSE in this folder).
@@ -22,8 +25,10 @@
 #include "error.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,7 +37,7 @@ using namespace FixConst;
 
 FixVcorWallHereditary::FixVcorWallHereditary(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dim(0), has_lo(false), has_hi(false), lo(0.0), hi(0.0), wall_force{0.0, 0.0, 0.0},
-    ncontacts(0.0), warned(false)
+    ncontacts(0.0), nmin(std::numeric_limits<double>::infinity())
 {
   const std::string usage = "fix ID group vcor/wall/hereditary xplane|yplane|zplane lo hi E_inf [E_1 beta_1 ...]";
   if (narg < 7) error->all(FLERR, "fix vcor/wall/hereditary: too few arguments; {}", usage);
@@ -64,23 +69,38 @@ FixVcorWallHereditary::FixVcorWallHereditary(LAMMPS *lmp, int narg, char **arg) 
     error->all(FLERR, "fix vcor/wall/hereditary: a wall across the periodic dimension {}", "xyz"[dim]);
 
   vector_flag = 1;
-  size_vector = 4;
+  size_vector = 5;
   global_freq = 1;
-  extvector = 1;
+  extvector = -1;
+  extlist = new int[size_vector]{1, 1, 1, 1, 0};
+}
+
+FixVcorWallHereditary::~FixVcorWallHereditary()
+{
+  delete[] extlist;
 }
 
 int FixVcorWallHereditary::setmask()
 {
-  return POST_FORCE;
+  return POST_FORCE | MIN_POST_FORCE;
 }
 
 void FixVcorWallHereditary::init()
 {
   vcor::require_one_rank_radii_ids(lmp, "fix vcor/wall/hereditary");
-  warned = false;    // the time-step warning: once per run
 }
 
 void FixVcorWallHereditary::setup(int vflag)
+{
+  post_force(vflag);
+}
+
+void FixVcorWallHereditary::min_setup(int vflag)
+{
+  post_force(vflag);
+}
+
+void FixVcorWallHereditary::min_post_force(int vflag)
 {
   post_force(vflag);
 }
@@ -107,7 +127,7 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
       const double delta = radius[i] - gap;
       if (delta <= 0.0) continue;
       const double u = delta * std::sqrt(delta);
-      const double mi = rmass ? rmass[i] : (mass ? mass[type[i]] : 0.0);
+      const double mi = rmass ? rmass[i] : (mass ? mass[type[i]] : 0.0);    // the wall does not move
       const double g = store.advance(vcor::Key{tag[i], side}, law, u, radius[i], mi);
       contacts += 1.0;
       if (g <= 0.0) continue;    // clipped at zero: the sphere has left the wall
@@ -119,9 +139,10 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
   }
   store.end();
   ncontacts = contacts;
+  nmin = std::min(nmin, store.shortest.n);
   if (store.jump.set) error->all(FLERR, vcor::jump_message("fix vcor/wall/hereditary", store.jump, true));
-  if (store.shortest.n < vcor::MIN_STEPS_PER_CONTACT && !warned) {
-    warned = true;
+  if (store.shortest.n < vcor::MIN_STEPS_PER_CONTACT && vcor::run_of(lmp) != warned) {
+    warned = vcor::run_of(lmp);
     if (comm->me == 0)
       error->warning(FLERR, vcor::resolution_message("fix vcor/wall/hereditary", store.shortest, update->dt, true));
   }
@@ -129,7 +150,7 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
 
 double FixVcorWallHereditary::compute_vector(int n)
 {
-  return n < 3 ? wall_force[n] : ncontacts;
+  return n < 3 ? wall_force[n] : (n == 3 ? ncontacts : nmin);
 }
 
 double FixVcorWallHereditary::memory_usage()

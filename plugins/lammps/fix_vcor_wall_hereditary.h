@@ -17,10 +17,13 @@ namespace LAMMPS_NS {
 class FixVcorWallHereditary : public Fix {
  public:
   FixVcorWallHereditary(class LAMMPS *, int, char **);
+  ~FixVcorWallHereditary() override;
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void min_setup(int) override;
   void post_force(int) override;
+  void min_post_force(int) override;
   double compute_vector(int) override;
   double memory_usage() override;
 
@@ -32,7 +35,8 @@ class FixVcorWallHereditary : public Fix {
   vcor::Store store;
   double wall_force[3];         // total force of the walls on the group (N)
   double ncontacts;            // touching contacts
-  bool warned;                 // the time-step warning was given in this run
+  double nmin;                 // the smallest n of the time-step rule among the contacts ended so far
+  vcor::RunId warned;          // the run the time-step warning was last given in
 };
 
 }    // namespace LAMMPS_NS

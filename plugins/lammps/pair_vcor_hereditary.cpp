@@ -10,6 +10,9 @@
 // relaxation modulus E(t) and Poisson ratio nu, E_c = E / (2 (1 - nu^2)). The force between
 // spheres i and j with overlap delta is 4/3 sqrt(R) (E_inf u + sum_i q_i), u = delta^1.5,
 // R = r_i r_j / (r_i + r_j), clipped at zero; no tangential force, no potential energy.
+// compute pair vcor/hereditary gives two numbers: [1] the contacts evaluated in the last force
+// evaluation, [2] the smallest n of the time-step rule (Store::shortest) among the contacts that have
+// ended since the pair style was defined (inf while none has).
 //
 // This file is part of vcor's LAMMPS plugin and is distributed under the GNU General Public
 // License version 2 (see LICENSE in this folder).
@@ -30,14 +33,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 using namespace LAMMPS_NS;
 
 PairVcorHereditary::PairVcorHereditary(LAMMPS *lmp) :
-    Pair(lmp), ncontacts(0.0), maxterms(0), stride(0), warned(false)
+    Pair(lmp), ncontacts(0.0), nmin(std::numeric_limits<double>::infinity()), maxterms(0), stride(0)
 {
   single_enable = 0;
+  nextra = 2;
+  pvector = new double[nextra];
+  pvector[0] = 0.0;
+  pvector[1] = nmin;
   restartinfo = 0;
   writedata = 0;
   finitecutflag = 1;
@@ -50,6 +58,7 @@ PairVcorHereditary::~PairVcorHereditary()
     memory->destroy(setflag);
     memory->destroy(cutsq);
   }
+  delete[] pvector;
 }
 
 void PairVcorHereditary::allocate()
@@ -97,7 +106,6 @@ void PairVcorHereditary::coeff(int narg, char **arg)
 void PairVcorHereditary::init_style()
 {
   vcor::require_one_rank_radii_ids(lmp, "pair_style vcor/hereditary");
-  warned = false;    // the time-step warning: once per run
 
   neighbor->add_request(this, NeighConst::REQ_SIZE);
 
@@ -188,6 +196,10 @@ void PairVcorHereditary::compute(int eflag, int vflag)
       const double reff = radi * radius[j] / radsum;
       const double mi = rmass ? rmass[i] : (mass ? mass[itype] : 0.0);
       const double mj = rmass ? rmass[j] : (mass ? mass[type[j]] : 0.0);
+      // the reduced mass measures the time-step rule's n (Store::advance). With one of the two atoms
+      // held still (fix setforce 0, fix freeze) the contact moves the other's mass m_moving alone,
+      // and n is underestimated by sqrt(1 + m_moving / m_held): sqrt(2) for equal masses, more when
+      // the held atom is the lighter. The warning then errs early (on the safe side), never late.
       const double g = store.advance(key, law(itype, type[j]), u, reff, mi * mj / (mi + mj));
       ++touching;
       if (g <= 0.0) continue;    // the force is clipped at zero: the bodies have parted
@@ -207,10 +219,13 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   }
   store.end();
   ncontacts = static_cast<double>(touching);
+  nmin = std::min(nmin, store.shortest.n);
+  pvector[0] = ncontacts;
+  pvector[1] = nmin;
   if (store.jump.set)
     error->all(FLERR, vcor::jump_message("pair_style vcor/hereditary", store.jump, false));
-  if (store.shortest.n < vcor::MIN_STEPS_PER_CONTACT && !warned) {
-    warned = true;
+  if (store.shortest.n < vcor::MIN_STEPS_PER_CONTACT && vcor::run_of(lmp) != warned) {
+    warned = vcor::run_of(lmp);
     if (comm->me == 0)
       error->warning(FLERR, vcor::resolution_message("pair_style vcor/hereditary", store.shortest, update->dt, false));
   }

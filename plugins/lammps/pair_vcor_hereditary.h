@@ -33,9 +33,10 @@ class PairVcorHereditary : public Pair {
   std::vector<double> maxrad;     // largest radius per atom type (m)
   vcor::Store store;
   double ncontacts;               // contacts evaluated in the last compute()
+  double nmin;                    // the smallest n of the time-step rule among the contacts ended so far
   int maxterms;
   int stride;                     // ntypes + 1 when allocated
-  bool warned;                    // the time-step warning was given in this run
+  vcor::RunId warned;             // the run the time-step warning was last given in
 
   void allocate();
   vcor::Law &law(int i, int j) { return laws[i * stride + j]; }

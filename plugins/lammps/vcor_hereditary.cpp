@@ -120,18 +120,33 @@ void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
   if (!lmp->atom->tag_enable) lmp->error->all(FLERR, "{} needs atom IDs (atom_modify id yes)", who);
 }
 
+// Update::whichflag: 0 unset, 1 dynamics (run, rerun), 2 minimization (update.h)
+static constexpr int WHICH_MINIMIZE = 2;
+
 double simulation_time(LAMMPS_NS::LAMMPS *lmp)
 {
   const LAMMPS_NS::Update *update = lmp->update;
+  if (update->whichflag == WHICH_MINIMIZE) return update->atime;
   return update->atime + static_cast<double>(update->ntimestep - update->atimestep) * update->dt;
 }
 
 Clock clock_of(LAMMPS_NS::LAMMPS *lmp)
 {
+  if (lmp->update->whichflag == WHICH_MINIMIZE) return Clock::minimize;
   // rerun evaluates the forces of each snapshot in a set-up, after moving the step and the time on
   const char *command = lmp->input ? lmp->input->command : nullptr;
   if (command && std::strcmp(command, "rerun") == 0) return Clock::rerun;
   return lmp->update->setupflag ? Clock::setup : Clock::run;
+}
+
+RunId run_of(LAMMPS_NS::LAMMPS *lmp)
+{
+  const LAMMPS_NS::Update *update = lmp->update;
+  RunId id;
+  id.which = update->whichflag;
+  id.first = update->firststep;
+  id.last = update->laststep;
+  return id;
 }
 
 // Two times of a contact count as one when they differ by at most TIME_SLACK time steps plus the
@@ -158,13 +173,14 @@ double resolution(double stiff, double delta, double dt)
 
 // Why 10. resolution() gives the n of the time-step rule: in the deck in.hereditary (-var nsteps n,
 // the sls pair at 1 m/s, two spheres or a sphere on a wall) it measures n within 1% from n = 3 up
-// (993.6 at 1000, 9.95 at 10), and 1.8 at 2. There the COR is vcor's within 2e-4 at n = 30, off by
-// 3e-3 at n = 10 (more than the 2e-3 the deck is checked to), 3e-2 at n = 5, 0.08 at n = 3, and above
-// 1 (energy created: the step's omega dt = 4.03 / n passes Verlet's limit 2) at n = 2. The plugin's
-// tests resolve every contact with n >= 99 (the decks' 1000 and 100 steps), and examples/in.packing
-// (1e-5 s) with n >= 24.8 over the 52 000 contacts that end in its 1e5 steps; a light touch (an
-// overlap of 1e-6 of the radius, over a step or two) has a large n, so it does not warn however few
-// steps it lasts.
+// (3.01 at 3, 5.02 at 5, 9.95 at 10), and 1.8 at 2. There the COR is vcor's within 2e-4 at n = 30, off
+// by 3e-3 at n = 10 (more than the 2e-3 the deck is checked to), 3e-2 at n = 5, 0.08 at n = 3, and above
+// 1 (energy created: the step's omega dt = 4.03 / n passes Verlet's limit 2) at n = 2: the test
+// test_a_time_step_too_large_for_the_rule_warns_once (tests/dem/test_lammps_plugin.py) prints these.
+// examples/in.packing (1e-5 s) resolves every contact that ends in its 1e5 steps with n >= 27 between
+// spheres and n >= 24.8 with the floor (printed by test_a_packing_of_500_spheres_settles_under_gravity);
+// a light touch (an overlap of 1e-6 of the radius, over a step or two) has a large n, so it does not
+// warn however few steps it lasts.
 const double MIN_STEPS_PER_CONTACT = 10.0;
 
 // the contact as a reader knows it: two atom IDs, or an atom ID and a wall (Key{tag, side})
@@ -180,10 +196,15 @@ std::string jump_message(const std::string &who, const Store::Jump &jump, bool w
   s.precision(12);
   s << who << ": the simulation time went from " << jump.from_time << " s at step " << jump.from_step << " to "
     << jump.to_time << " s at step " << jump.to_step << " between two evaluations of a contact ("
-    << contact_text(jump.key, wall)
-    << "), which is not one time step: reset_timestep moves the time with the step (forward by the steps skipped, "
-       "back to 0) and the contact's internal variables would take that as elapsed time. Reset the step while no "
-       "contact touches, or keep the time: reset_timestep N time $(time)";
+    << contact_text(jump.key, wall) << "), which is not one time step: ";
+  if (jump.pre_no_after_minimize)
+    s << "a run with pre no right after a minimization counts the minimizer's iterations as time steps and the "
+         "contact's internal variables would take that as elapsed time. Run with pre yes (the default) after "
+         "minimize";
+  else
+    s << "reset_timestep moves the time with the step (forward by the steps skipped, back to 0) and the contact's "
+         "internal variables would take that as elapsed time. Reset the step while no contact touches, or keep the "
+         "time: reset_timestep N time $(time)";
   return s.str();
 }
 
@@ -227,6 +248,9 @@ void Store::moved(const Rec &c)
 {
   if (jump.set) return;
   jump.set = true;
+  // a run's first step without a set-up (pre no) after a minimization: LAMMPS's time then counts the
+  // minimizer's iterations as time steps (the set-up's Integrate::init would start from atime again)
+  jump.pre_no_after_minimize = c.minimized && clock == Clock::run;
   jump.key = c.key;
   jump.from_step = c.step;
   jump.to_step = step;
@@ -236,16 +260,28 @@ void Store::moved(const Rec &c)
 
 double Store::advance(const Key &key, Law &law, double u, double reff, double meff)
 {
+  const bool minimizing = clock == Clock::minimize;
   std::size_t r;
   auto found = index.find(key);
   if (found == index.end()) {
-    // first touch: the internal variables start at zero, one step ago, with u = 0
+    // first touch: the internal variables start at zero, one step ago, with u = 0 (in a minimization,
+    // at the same time: no time passes)
     r = recs.size();
-    law.cache(dt);
-    const double stiff = meff > 0.0 ? 2.0 * law.ebar * std::sqrt(reff) / meff : 0.0;    // 0: not measured
-    recs.push_back({key, step, now - dt, now, 0.0, 0.0, call, step, 0.0, stiff, reff});
+    recs.push_back({key, step, minimizing ? now : now - dt, now, 0.0, 0.0, call, step, 0.0, -1.0, reff, minimizing});
     q.resize((r + 1) * 2 * stride, 0.0);
     index.emplace(key, r);
+  } else if (minimizing) {
+    // a minimizer's iteration: the last state becomes the accepted one at the same time (the contact's
+    // time does not move, and is not checked)
+    r = found->second;
+    Rec &c = recs[r];
+    if (c.step != step) {
+      double *qp = &q[2 * r * stride];
+      for (int i = 0; i < stride; ++i) qp[i] = qp[stride + i];
+      c.t_prev = c.t_cur;
+      c.u_prev = c.u_cur;
+      c.step = step;
+    }
   } else {
     r = found->second;
     Rec &c = recs[r];
@@ -269,7 +305,16 @@ double Store::advance(const Key &key, Law &law, double u, double reff, double me
     }
   }
   Rec &c = recs[r];
-  double h = now - c.t_prev;
+  if (c.stiff < 0.0 && !minimizing) {
+    // the contact's stiffness for resolution(), at the time step it is integrated with; meff is the
+    // caller's (the pair style's reduced mass errs early with one atom held still: pair_vcor_hereditary.cpp)
+    law.cache(dt);
+    c.stiff = meff > 0.0 ? 2.0 * law.ebar * std::sqrt(reff) / meff : 0.0;    // 0: not measured
+  }
+  // the time since the accepted state: in a minimization the contact's own (0 after its first
+  // iteration; at the step a run ended, that step's length, which gives the run's last state again)
+  const double t = minimizing ? c.t_cur : now;
+  double h = t - c.t_prev;
   if (h < 0.0) h = 0.0;    // within the slack (else the jump stops LAMMPS after this evaluation)
   const double *a, *w;
   if (std::fabs(h - dt) <= 1e-9 * dt) {
@@ -291,8 +336,9 @@ double Store::advance(const Key &key, Law &law, double u, double reff, double me
     sum += qc[i];
   }
   c.u_cur = u;
-  c.t_cur = now;
+  c.t_cur = t;
   c.call = call;
+  c.minimized = minimizing;
   if (u > c.u_max) c.u_max = u;
   return law.e_inf * u + sum;
 }
@@ -305,11 +351,14 @@ void Store::end()
       ++r;
       continue;
     }
-    // the contact has ended: how well did the time step resolve it?
+    // the contact has ended: how well did the time step resolve it? (not in a minimization: no time
+    // step resolves it there)
     const Rec &c = recs[r];
-    const double delta = std::cbrt(c.u_max * c.u_max);
-    const double n = resolution(c.stiff, delta, dt);
-    if (n < shortest.n) shortest = {c.key, n, c.step - c.first + 1, delta / c.reff};
+    if (clock != Clock::minimize && c.stiff >= 0.0) {
+      const double delta = std::cbrt(c.u_max * c.u_max);
+      const double n = resolution(c.stiff, delta, dt);
+      if (n < shortest.n) shortest = {c.key, n, c.step - c.first + 1, delta / c.reff};
+    }
     index.erase(recs[r].key);
     const std::size_t last = recs.size() - 1;
     if (r != last) {

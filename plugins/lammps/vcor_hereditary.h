@@ -20,8 +20,11 @@
 // same step (run setup, run 0, rerun) starts again from the state accepted at the previous step.
 // They are dropped when the contact ends (no overlap). Between two evaluations of a contact the
 // simulation time must move by one time step or not at all (Clock): a reset_timestep that moves it
-// stops LAMMPS. When a contact ends, the time steps per Hertz contact time of its largest overlap are
-// measured (resolution()); fewer than MIN_STEPS_PER_CONTACT draw one warning per run.
+// stops LAMMPS. A minimization is not time evolution: under minimize the internal variables do not
+// advance in time (each evaluation responds to the change of overlap at zero elapsed time, the glassy
+// response) and the contact keeps its time, which the run after the minimization resumes from. When a
+// contact ends, the time steps per Hertz contact time of its largest overlap are measured
+// (resolution()); fewer than MIN_STEPS_PER_CONTACT draw one warning per run (RunId).
 //
 // This file is part of vcor's LAMMPS plugin and is distributed under the GNU General Public
 // License version 2 (see LICENSE in this folder).
@@ -70,15 +73,33 @@ struct Law {
 void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
 
 // The simulation time (s) at the current time step (LAMMPS's atime, carried over changes of the step).
+// During a minimization, LAMMPS's atime itself: the minimizer counts its iterations as time steps (and
+// min_style fire changes update->dt), but the run after it starts again from atime (Integrate::init
+// sets atimestep to the step without advancing atime), so no time passes in a minimization.
 double simulation_time(LAMMPS_NS::LAMMPS *lmp);
 
 // How the step and the time may have moved since a contact's last evaluation:
-//   run:   by one time step (the step number by 1, the time by update->dt), or not at all;
-//   setup: not at all in time (a run's set-up, run 0: the step number changes only by reset_timestep,
-//          which is consistent only when the time stays, i.e. reset_timestep N time $(time));
-//   rerun: forward by any time (rerun treats the time between two snapshots as one step).
-enum class Clock { run, setup, rerun };
+//   run:      by one time step (the step number by 1, the time by update->dt), or not at all;
+//   setup:    not at all in time (a run's set-up, run 0: the step number changes only by reset_timestep,
+//             which is consistent only when the time stays, i.e. reset_timestep N time $(time));
+//   rerun:    forward by any time (rerun treats the time between two snapshots as one step);
+//   minimize: a minimization (update->whichflag == 2, LAMMPS's "2 for min"; 1 is a run or rerun): the
+//             step number moves by the minimizer's iterations and the time is not checked; the internal
+//             variables do not advance in time and the contact keeps the time of its last state, so
+//             the run that follows (whose set-up is at that time) continues from the contact's state.
+enum class Clock { run, setup, rerun, minimize };
 Clock clock_of(LAMMPS_NS::LAMMPS *lmp);
+
+// One warning per run: a run as the force evaluations see it, LAMMPS's whichflag, firststep and
+// laststep, which every run command (also with pre no, which skips init() and setup()), every chunk of
+// run every and every minimize sets anew.
+struct RunId {
+  int which = -1;
+  bigint first = -1, last = -1;
+  bool operator==(const RunId &o) const { return which == o.which && first == o.first && last == o.last; }
+  bool operator!=(const RunId &o) const { return !(*this == o); }
+};
+RunId run_of(LAMMPS_NS::LAMMPS *lmp);
 
 // Parse "E_inf [E_1 beta_1 ...]": returns "" and fills law, or a one-line message naming the
 // coefficient that is wrong.
@@ -118,9 +139,11 @@ class Store {
   double memory_usage() const;
 
   // the first contact of this evaluation whose step or time moved otherwise than `clock` allows
-  // (reset_timestep while it held history)
+  // (reset_timestep while it held history; a run with pre no right after a minimization, when
+  // pre_no_after_minimize)
   struct Jump {
     bool set = false;
+    bool pre_no_after_minimize = false;
     Key key{0, 0};
     bigint from_step = 0, to_step = 0;
     double from_time = 0.0, to_time = 0.0;    // s
@@ -128,7 +151,7 @@ class Store {
 
   // among the contacts end() dropped, the one the time step resolved worst: n = t_H / dt, the
   // Hertz contact time of its largest overlap in time steps (Store::resolution), and the steps it
-  // lasted; n is infinite when end() dropped none
+  // lasted; n is infinite when end() dropped none, and in a minimization (no time step to resolve)
   struct Ended {
     Key key{0, 0};
     double n = 0.0;
@@ -147,8 +170,10 @@ class Store {
     long call;       // the evaluation that last touched it
     bigint first;    // the step of first touch
     double u_max;    // the largest u (m^1.5)
-    double stiff;    // 2 Ebar(dt) sqrt(reff) / meff (m^-1/2 s^-2): omega^2 = stiff sqrt(delta)
+    double stiff;    // 2 Ebar(dt) sqrt(reff) / meff (m^-1/2 s^-2): omega^2 = stiff sqrt(delta); < 0
+                     // until measured (a contact that starts in a minimization, at its first step)
     double reff;     // m
+    bool minimized;  // the last evaluation was in a minimization
   };
   void moved(const Rec &c);
   std::vector<Rec> recs;
