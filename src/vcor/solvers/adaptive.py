@@ -237,13 +237,16 @@ def plate_record(impact, tables: Tables, kind: int) -> tuple[Plate, float]:
 def smooth_step(impact, kind: int | None = None) -> float:
     """The largest step (s) of an accepted grid on which the error has no h^3.5 term
     (``SMOOTH_EXPONENTS``): RESOLVED_DECAY over the fastest rate (1/s) of the kernel's and the plate's
-    exponential modes (inf when no mode relaxes), or 0 where the error may have that term at any step:
-    a kernel that is not an exact exponential sum or has a Dirac term (Kelvin-Voigt), a plate whose
-    modulus is in closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum. ``kind``: the
+    exponential modes, or 0 where the error may have that term at any step:
+    a kernel that is not an exact exponential sum or has a Dirac term (Kelvin-Voigt), an elastic kernel
+    (its force vanishes with the overlap, as |t - t0|^1.5: the step across the separation leaves an error
+    that depends on where t0 falls in it, which three grids do not remove), a plate whose modulus is in
+    closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum. ``kind``: the
     impact's :func:`plate_kind`, where the caller has it. Also 0 where RESOLVED_DECAY is 0 or the grid
     constants have been set to another number of grids (SMOOTH_GRIDS is then not GRIDS - 1: benchmarks)."""
     mat = impact.material
-    if not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or not mat.is_prony or mat.viscosity != 0.0:
+    if (not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or not mat.is_prony or mat.viscosity != 0.0
+            or mat.is_elastic):
         return 0.0
     kind = plate_kind(impact) if kind is None else kind
     plate = impact.geometry.plate_material
@@ -383,7 +386,7 @@ def _weights_for(exponents) -> tuple:
 
 RICHARDSON_WEIGHTS = _weights_for(RICHARDSON_EXPONENTS)
 #: Three grids (the accepted grid, every step divided by 2 and 4) eliminating h^2 and h^4, where the error
-#: has no h^3.5 term: a kernel that is an exact exponential sum (Prony, SLS, elastic; no Dirac term, no
+#: has no h^3.5 term: a relaxing kernel that is an exact exponential sum (Prony, SLS; no Dirac term, no
 #: t^-1/2 singularity) on a rigid target, a plate of constant mobility or one whose modulus is an exact
 #: exponential sum, and every one of their modes resolved on the accepted grid (rate times the largest
 #: step <= RESOLVED_DECAY; :func:`grid_count`). With h^2 removed, the grids' differences of these kernels

@@ -824,11 +824,13 @@ SMOOTH_EXPONENTS = (2.0, 4.0)
 
 def smooth_kernel_rates(impact):
     """The relaxation rates (1/s) of the kernel's and the plate's exponential terms when both are exact
-    sums of exponentials with no Dirac term (a rigid target, a plate of constant mobility or a plate
-    material that does not relax, of any law, count as such), else None: the cases in which
+    sums of exponentials with no Dirac term and the kernel relaxes (a rigid target, a plate of constant
+    mobility or a plate material that does not relax, of any law, count as such), else None: the cases in which
     ``adaptive`` takes three Richardson grids once every rate times its accepted grid's largest step
     is at most vcor.solvers.adaptive.RESOLVED_DECAY."""
     g = impact.geometry
+    if impact.material.is_elastic:
+        return None  # its force vanishes with the overlap, |t - t0|^1.5: four grids (vcor.solvers.adaptive.smooth_step)
     bodies = [impact.material]
     constant = g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic)
     if not constant:
