@@ -249,6 +249,35 @@ def test_an_elastic_kernel_holds_1e7_between_the_sampled_speeds():
     assert worst <= 1e-7
 
 
+@pytest.mark.parametrize("ratio", [1e-6, 1e-8])
+def test_a_contact_far_shorter_than_its_estimate_is_located_on_resolved_steps(ratio):
+    """An SLS whose rubbery modulus is 1e-6 or 1e-8 of its glassy one, at 1 mm/s: the contact-time estimate
+    (of the rubbery modulus) is hundreds of times the glassy contact, which separates within SEP_STEPS
+    smallest steps. The smallest step is lowered until the separation falls on a step <= t0 / SEP_STEPS:
+    COR and t0 within 1e-7 of ive (on the usual smallest step 7e-8 and 5e-6 off)."""
+    material = vcor.materials.SLS(1.5e7, 1200.0 * ratio, 1200.0)
+    impact = make_impact(material, 1e-3, {})
+    tc = impact.contact_time_estimate()
+    res, ref = vcor.simulate(material, 1e-3), vcor.simulate(material, 1e-3, method="ive", rtol=1e-12)
+    floor = 2.0 ** math.floor(math.log2(tc)) * 2.0**-adaptive.FLOOR_BITS
+    assert res.ok and res.t0 < adaptive.SEP_STEPS * floor  # the case lowers the smallest step
+    e_cor, e_t0 = abs(res.cor / ref.cor - 1), abs(res.t0 / ref.t0 - 1)
+    print(f"\nrubbery/glassy {ratio:g}: t0 / tc {res.t0 / tc:.2g}, errors {e_cor:.1e} / {e_t0:.1e}")
+    assert e_cor <= 1e-7 and e_t0 <= 1e-7
+
+
+@pytest.mark.parametrize(("material", "geometry"), [("butyl-fc", {"r": 0.01, "h": 1e-6}), ("butyl-prony3", {"h": 1e-9}),
+                                                    ("butyl-prony3", {"r": 1.0, "h": 1e-5})])
+def test_a_plate_receding_at_once_reports_no_spurious_separation(material, geometry):
+    """Plates 1 nm to 10 um thin recede at once: on the first steps, which the error control does not refine,
+    their force crosses zero spuriously (on the usual smallest step an ok COR of 0.78..0.99 after 6..8
+    steps, t0 ~ 1e-8 s, the sphere still at v0), where ive and direct find the contact going on for seconds.
+    Located again on resolved steps the contact goes on too, and the result says it did not separate
+    within the budget."""
+    res = vcor.simulate(material, 1.0, **geometry)
+    assert res.status == "step-budget", (res.status, res.cor, res.t0, res.message)
+
+
 #: fractional and CERF laws other than the presets (E0, E1 in Pa and Pa s^0.5; E0, E1 in Pa and b1 in s^-0.5):
 #: a pure fractional law, a stiff and a soft one; CERF laws whose time scale 1/b1^2 is far longer and far
 #: shorter than the contact

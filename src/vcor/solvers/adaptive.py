@@ -65,10 +65,10 @@ from ._records import (
 from .common import OUTCOME, Result, separation_scalars
 from .march import N_EXTRA, Arrays, March, finish
 
-__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_HORIZON", "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_STEPS",
-           "SMOOTH_GRIDS", "SMOOTH_WEIGHTS", "PlateTables", "Tables", "grid_count", "grid_outcomes", "impact_tables",
-           "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome",
-           "run_adaptive", "slope_weights", "smooth_step", "solve"]
+__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "RESOLVED_DECAY",
+           "RICHARDSON_WEIGHTS", "SEP_STEPS", "SMOOTH_GRIDS", "SMOOTH_WEIGHTS", "PlateTables", "Tables",
+           "grid_count", "grid_outcomes", "impact_tables", "level_tables", "one_call", "plate_kind", "plate_record",
+           "plate_tables", "richardson_outcome", "run_adaptive", "slope_weights", "smooth_step", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -427,18 +427,49 @@ def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False
     says so; histories are those of the finest grid.
     ``fixed_level`` (tests): march every step on that level (h = h_base 2^level, no error control),
     a uniform grid on which the march is the direct scheme with an exponential-sum history.
-    ``one_call_path`` (tests): False runs the general path also where :func:`one_call` would do."""
-    kind = plate_kind(impact)
+    ``one_call_path`` (tests): False runs the general path also where :func:`one_call` would do.
+
+    A separation earlier than SEP_STEPS smallest steps cannot be located on a step <= t / SEP_STEPS: it
+    fell on steps the error control could not refine (a contact far shorter than tc, or a spurious
+    zero of the force on the first, unresolved steps of a plate that recedes at once). The march is then
+    run again with the smallest step lowered below t0 / SEP_STEPS (the horizon kept), up to
+    MAX_FLOOR_LOWERING levels; a separation still unresolved there is ``diverged``."""
+    t_start = time.perf_counter()
     h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
+    lowered = 0
+    opts = (step_tol, max_steps, rule, history, ghost, tol, fixed_level, extrapolate)  # as _run_on_floor unpacks
+    while True:
+        res = _run_on_floor(impact, tc, h_base, HORIZON_START * 2.0**lowered, one_call_path and lowered == 0, opts)
+        if fixed_level is not None or not res.ok or res.t0 >= SEP_STEPS * h_base:
+            break
+        if lowered >= MAX_FLOOR_LOWERING:
+            res.status = "diverged"
+            res.message = (f"the separation at t0 = {res.t0:.6g} s falls on unresolved steps: the smallest step "
+                           f"{h_base:.3g} s, {lowered} levels below the usual, is still above t0 / {SEP_STEPS}")
+            break
+        k = min(max(1, math.ceil(math.log2(2.0 * SEP_STEPS * h_base / res.t0))), MAX_FLOOR_LOWERING - lowered)
+        h_base *= 2.0**-k
+        lowered += k
+    res.wall_time = time.perf_counter() - t_start
+    return res
+
+
+#: the most levels by which :func:`run_adaptive` lowers its smallest step to resolve an early separation
+MAX_FLOOR_LOWERING = 40
+
+
+def _run_on_floor(impact, tc, h_base, factor, one_call_path, opts):
+    """:func:`run_adaptive` (its options ``opts``) on the smallest step ``h_base`` (s), first horizon ``factor``."""
+    step_tol, max_steps, rule, history, ghost, tol, fixed_level, extrapolate = opts
+    kind = plate_kind(impact)
     t_start = time.perf_counter()
     if one_call_path and not history and fixed_level is None:
         res = _one_call(impact, tc, kind, h_base, GRIDS if extrapolate else 1, step_tol, max_steps, rule, tol)
         if res is not None:
-            res.wall_time = time.perf_counter() - t_start
             return res
     kw = {"step_tol": step_tol, "max_steps": max_steps, "rule": rule, "tol": tol, "kind": kind}
     last_history = history and not extrapolate
-    march, lev, _, factor = _march(impact, _Grid(h_base=h_base, tc=tc, fixed_level=fixed_level), HORIZON_START,
+    march, lev, _, factor = _march(impact, _Grid(h_base=h_base, tc=tc, fixed_level=fixed_level), factor,
                                    ghost=ghost if last_history else 0.0, **kw)
     march.wall = time.perf_counter() - t_start
     coarse = finish(impact, march, rule=rule, history=last_history, method="adaptive")
