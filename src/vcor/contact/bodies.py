@@ -210,8 +210,8 @@ def impact_inputs(sphere: Body, plate: Body,
     geometry = {"r": sphere.size, "h": plate.size, "rho_a": sphere.rho, "rho_b": plate.rho}
     if sphere.rigid:  # the paper's case 3: E' = E'_b, plate mobility from the same E'_b
         return plate.material, {**geometry, "nu": plate.nu, "case": 3}
-    if plate.rigid:  # an immovable, rigid target
-        return sphere.material, {**geometry, "nu": sphere.nu, "case": 3, "rigid": True}
+    if plate.rigid:  # an immovable, rigid target: no plate density (a thickness given is refused by make_impact)
+        return sphere.material, {**geometry, "rho_b": None, "nu": sphere.nu, "case": 3, "rigid": True}
     if sphere.material == plate.material and sphere.nu == plate.nu:  # case 2: E'/2, mobility from E'
         return sphere.material, {**geometry, "nu": sphere.nu, "case": 2}
     a, b = sphere.material, plate.material

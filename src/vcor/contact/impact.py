@@ -332,7 +332,8 @@ class Impact:
 
 
 def make_impact(material, v0, geometry: dict) -> Impact:
-    """The validated :class:`~vcor.contact.impact.Impact` of a material (a preset name or a Material),
+    """The validated :class:`~vcor.contact.impact.Impact` of a material (a preset name, a spec ``{model: ...}``
+    or a Material),
     an impact speed (m/s) and geometry keywords.
 
     Examples
@@ -349,9 +350,14 @@ def make_impact(material, v0, geometry: dict) -> Impact:
     unknown = set(geometry) - set(GEOMETRY_DEFAULTS)
     if unknown:
         raise ValueError(f"unknown geometry keyword(s) {sorted(unknown)}; allowed: {sorted(GEOMETRY_DEFAULTS)}")
+    if isinstance(material, dict):  # a spec {model: ...}, as a config's materials: block and the bodies take it
+        from ..materials.specs import from_spec
+
+        material = from_spec(material, where="material")
     mat = _preset(material) if isinstance(material, str) else material
     if not isinstance(mat, _materials.Material):
-        raise ValueError(f"material must be a preset name or a vcor.materials.Material, got {material!r}")
+        raise ValueError(f"material must be a preset name, a spec {{model: ...}} or a vcor.materials.Material, "
+                         f"got {material!r}")
     geo = _geometry(**geometry)
     # a value other than the default where it is not used would be ignored (a flat curve over an axis of it);
     # settings that spell out every keyword at its default pass
@@ -359,6 +365,10 @@ def make_impact(material, v0, geometry: dict) -> Impact:
         raise ValueError(f"E_plate is the elastic plate's modulus of case 4 only; this impact is case {geo.case}, "
                          f"whose plate is of the material: give case=4 (a viscoelastic sphere on an elastic "
                          f"plate), or leave E_plate out")
+    given = [k for k in ("h", "rho_b") if getattr(geo, k) is not None]
+    if geo.rigid and given:
+        raise ValueError(f"{' and '.join(given)} describe a plate, and rigid=True is an immovable target without one: "
+                         f"give rigid or the plate, not both")
     if geo.nu_plate != GEOMETRY_DEFAULTS["nu_plate"] and geo.case != 4 and geo.plate_material is None:
         raise ValueError(f"nu_plate is the Poisson ratio of a plate of its own material (case 4, or a plate "
                          f"body); this impact is case {geo.case}, whose plate takes nu: give nu, or leave nu_plate "

@@ -56,8 +56,9 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
 
     Parameters
     ----------
-    material : str or Material
-        Preset name (``vcor.materials.PRESETS``) or material object.
+    material : str, dict or Material
+        Preset name (``vcor.materials.PRESETS``), a spec ``{model: ..., <parameters>}`` as a config's
+        ``materials:`` block takes it, or a material object.
     v0 : float
         Impact speed, m/s, > 0.
     options : SolverOptions or dict, optional
