@@ -171,3 +171,28 @@ def test_a_sample_is_the_same_whichever_part_fits_it(lagged, tmp_path):
     other = resample.samples_dataset("syn", spec, 4, seed=6, full=full, indices=[0, 1])
     with pytest.raises(ValueError, match=r"different bootstraps .*'seed'"):
         samples.merge_samples([parts[0], other])
+
+
+def test_a_refit_that_stops_short_of_convergence_is_named(lagged, tmp_path, monkeypatch):
+    """A sample whose joint solve stopped at its iteration limit stays in the band, and the samples file names
+    it (attribute not_converged: sample -> its note), in one job and merged from parts alike."""
+    import dataclasses
+
+    data, full = lagged
+    path = write_csv(tmp_path / "dma.csv", data)
+    spec = {"model": "prony", "data": {"file": str(path), "T_ref": T_REF, "instrument_lag": True}}
+    real, calls = resample.refit, []
+    note = "joint solve: not converged (stopped after 500 of at most 500 iterations)"
+
+    def refit(sample, fit):
+        calls.append(1)
+        out = real(sample, fit)
+        return dataclasses.replace(out, notes=[*out.notes, note]) if len(calls) % 2 == 0 else out
+
+    monkeypatch.setattr(resample, "refit", refit)
+    one = resample.samples_dataset("syn", spec, 4, seed=5, full=full)
+    assert samples.not_converged(one) == {1: [note], 3: [note]}
+    calls.clear()
+    parts = [resample.samples_dataset("syn", spec, 4, seed=5, full=full, indices=samples.part_indices(4, k, 2))
+             for k in (0, 1)]
+    assert samples.not_converged(samples.merge_samples(parts)) == {1: [note], 3: [note]}

@@ -17,3 +17,5 @@ with job_log(smk) as log:
                          identity=smk.params.identity)
     log.note(f"refitted {name} to {count(indices.size, 'bootstrap sample')} of its data, {indices[0]}..{indices[-1]} "
              f"of {n} (part {part + 1} of {parts}, seed {seed}), from {smk.input.fit}: {smk.output[0]}")
+    for i, notes in samples.not_converged(ds).items():
+        log.note(f"sample {i}: {'; '.join(notes)} (kept in the band; the file's attribute not_converged lists it)")

@@ -381,7 +381,8 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         (T_set): the full-data shifts and their linearised standard errors.
         Attributes: ``spec``, ``n``, ``seed``, ``mode`` (resampling), ``T_ref``, ``shift_model``,
         ``fit_name``, ``smoothing`` (held fixed), ``instrument_lag_full_s`` and its standard error (the
-        full-data fit's lag, s), ``failures``, and ``material`` and ``shift`` of the
+        full-data fit's lag, s), ``failures``, ``not_converged`` (sample -> the notes of a refit that stopped
+        short of convergence; such samples stay in the band), and ``material`` and ``shift`` of the
         full-data fit (so the file reads as a material file, :func:`vcor.materials.from_file`).
 
     Raises
@@ -412,6 +413,11 @@ def samples_dataset(name: str, spec: dict, n: int, *, seed: int = 0, base_dir=".
         "smoothing": json.dumps(full.smoothing, sort_keys=True, default=float),
         "instrument_lag_full_s": float(full.lag), "instrument_lag_std_full_s": float(full.lag_std),
         "failures": json.dumps(info["failures"]),
+        # samples whose refit stopped short of convergence (kept in the band: a stopped solve is near its
+        # optimum, and leaving them out would bias it), named so that a reader can judge
+        "not_converged": json.dumps({str(int(i)): [n for n in s.notes if "not converged" in n]
+                                     for i, s in zip(info["indices"], samples)
+                                     if any("not converged" in n for n in s.notes)}),
         "material": json.dumps(full.material().to_dict()),
         "shift": json.dumps(dma.shift_function(full, shift_model).to_dict()),
     })

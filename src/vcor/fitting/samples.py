@@ -17,7 +17,7 @@ import numpy as np
 from ..materials.models import Prony
 from ..materials.shift import ShiftFunction
 
-__all__ = ["BOOTSTRAP_ATTRS", "merge_samples", "part_indices", "sample_materials"]
+__all__ = ["BOOTSTRAP_ATTRS", "merge_samples", "not_converged", "part_indices", "sample_materials"]
 
 #: attributes of a samples dataset that name its bootstrap (the same in every part of it; :func:`merge_samples`)
 BOOTSTRAP_ATTRS = ("fit_name", "spec", "n", "seed", "mode", "T_ref", "shift_model", "smoothing",
@@ -60,7 +60,14 @@ def merge_samples(parts):
                    fill_value={"E": 0.0, "beta": math.nan}, combine_attrs="override")
     ds["mode"].attrs = dict(parts[0]["mode"].attrs)
     ds.attrs["failures"] = json.dumps([f for p in parts for f in json.loads(p.attrs["failures"])])
+    ds.attrs["not_converged"] = json.dumps({str(k): v for p in parts for k, v in not_converged(p).items()})
     return ds
+
+
+def not_converged(ds) -> dict:
+    """{sample: notes} of the samples of a :func:`vcor.fitting.resample.samples_dataset` whose refit stopped
+    short of convergence (attribute ``not_converged``; empty for a file without it)."""
+    return {int(k): v for k, v in json.loads(ds.attrs.get("not_converged", "{}")).items()}
 
 
 def sample_materials(ds) -> list:
