@@ -75,6 +75,18 @@ def test_one_speed_is_reported_unidentifiable(clean):
     assert np.all(np.isinf(cal.stderr)) and np.all(np.isinf(cal.upper95))
 
 
+def test_one_speed_flags_every_parameter_whatever_the_null_direction(tmp_path):
+    """Three points at 2 m/s with stated errors, E_glassy and beta free: the linearised null direction
+    leans almost wholly to E_glassy (beta's share below the singular-direction rule's 0.1), yet a curved
+    valley of (E_glassy, beta) pairs meets the COR at 2 m/s: with fewer distinct speeds than free
+    parameters every parameter is flagged, its interval infinite."""
+    data = C.CorData(np.full(3, 2.0), np.array([0.52, 0.53, 0.515]), cor_std=np.full(3, 0.005))
+    cal = C.calibrate(data, M.SLS(2e7, 500.0, 2000.0), {"E_glassy": [1e6, 1e9], "beta": [600.0, 1e6]})
+    assert not cal.identified.any(), cal.report()
+    assert all("1 distinct speed(s) for 2 free parameters" in n for n in cal.notes)
+    assert np.all(np.isinf(cal.upper95))
+
+
 def test_estimate_at_a_bound_is_flagged(clean):
     cal = C.calibrate(C.CorData(V0, clean), START, {"E_glassy": [1e6, 12e6], "beta": [400.0, 1e6]})
     assert not cal.identified[0] and "bound" in cal.notes[0]

@@ -21,11 +21,10 @@ estimated, normal otherwise), mapped back (asymmetric for positive parameters); 
 delta-method standard error of the parameter itself. The band of the fitted curve propagates cov
 through the model's sensitivities on a grid of speeds.
 
-Identifiability: a parameter is reported as not identified (flag and note, in the dataset and the
-log) when the Jacobian is rank-deficient or ill-conditioned along a direction it takes part in
-(singular value below ``COND_LIMIT`` times the largest), when its estimate ends at a bound, or when
-its standard error exceeds a factor of 10 (sigma of ln p > ln 10). Such a result is not a confident
-estimate: its interval is reported as infinite.
+Identifiability (flag and note, in the dataset and the log): no parameter with fewer distinct speeds than
+free parameters; else not one whose Jacobian direction is rank-deficient or ill-conditioned (singular
+value below ``COND_LIMIT`` times the largest), whose estimate ends at a bound, or whose standard error
+exceeds a factor of 10 (sigma of ln p > ln 10); its interval is then reported as infinite.
 
 During the search, a trial point where the material refuses its parameters (e.g. an SLS with
 beta < alpha) returns a large residual so that the trust region rejects it; a trial point where the
@@ -302,11 +301,14 @@ def _covariance(J, r, sigma_known, dof):
     return cov, sv, Vt, small
 
 
-def _identified(names, fit, box, sx, linear, svd):
-    """(identified, notes) per parameter: not identified when a singular direction involves it, at a bound,
-    with no degrees of freedom left, or known to worse than a factor :data:`FACTOR_LIMIT`."""
+def _identified(names, fit, box, sx, linear, svd, n_speeds):
+    """(identified, notes) per parameter (module docstring: fewer distinct speeds ``n_speeds`` than free
+    parameters, a singular direction, a bound, no degrees of freedom, more than a factor FACTOR_LIMIT)."""
     sv, Vt, small = svd
     n = len(names)
+    if n_speeds < n:  # a COR per speed constrains at most n_speeds combinations, whatever the null direction
+        return np.zeros(n, dtype=bool), [f"the data constrain only a combination of {names}: {n_speeds} distinct "
+                                         f"speed(s) for {n} free parameters"] * n
     notes = [""] * n
     identified = np.ones(n, dtype=bool)
     for k in np.flatnonzero(small):
@@ -416,7 +418,7 @@ def calibrate(data: CorData, material, free: dict, *, geometry: dict | None = No
     sigma_known = data.cor_std is not None
     cov, sv, Vt, small = _covariance(J, r, sigma_known, dof)
     sx = np.sqrt(np.clip(np.diag(cov), 0.0, None))
-    identified, notes = _identified(names, fit, box, sx, model.linear, (sv, Vt, small))
+    identified, notes = _identified(names, fit, box, sx, model.linear, (sv, Vt, small), np.unique(data.v0).size)
     for i, why in _material_limits(model, x):
         identified[i], notes[i] = False, (f"the estimate is on the material's own limit (a step of the fit's "
                                           f"difference beyond it is not a valid material: {why}): the data push "
@@ -549,8 +551,7 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
     for name, values, long in (("estimate", cal.estimate, "estimate"), ("stderr", cal.stderr, "standard error"),
                                ("lower95", cal.lower95, "95 % interval, lower end"),
                                ("upper95", cal.upper95, "95 % interval, upper end"),
-                               ("start", cal.start, "start value"),
-                               ("lower_bound", cal.bounds[:, 0], "lower bound"),
+                               ("start", cal.start, "start value"), ("lower_bound", cal.bounds[:, 0], "lower bound"),
                                ("upper_bound", cal.bounds[:, 1], "upper bound")):
         ds[name] = ("parameter", np.asarray(values, float), {"long_name": long, "units_by_parameter": json.dumps(
             dict(zip(cal.names, param_units)))})
@@ -582,8 +583,7 @@ def calibration_dataset(cal: Calibration, spec: dict | None = None, n_curve: int
     ds["cor_upper95"] = ("v0_curve", ch, {"units": "1", "long_name": "95 % band of the model (parameters)"})
     ds.attrs.update({
         "material": json.dumps(cal.material.to_dict(), sort_keys=True),
-        "calibration_spec": json.dumps(spec or {}, sort_keys=True, default=str),
-        "chi2": cal.chi2, "dof": cal.dof,
+        "calibration_spec": json.dumps(spec or {}, sort_keys=True, default=str), "chi2": cal.chi2, "dof": cal.dof,
         "cor_errors": "stated (cor_std)" if cal.sigma_known else "estimated from the residuals",
         "model_evaluations": cal.nfev, "optimizer_message": cal.message,
         "singular_values": json.dumps(cal.singular_values.tolist()),
