@@ -55,6 +55,19 @@ def test_bad_data_names_file_line_and_column(tmp_path, text, words):
         assert w in str(err.value), (w, str(err.value))
 
 
+def test_sets_closer_than_the_reading_scatter_are_refused(tmp_path):
+    """Two sets 0.0012 K apart (a relabelled set beside another) have shift factors that cannot be told
+    apart (fitted, they jump by most of a decade within the 0.001 K): refused, naming both sets and their
+    temperatures; 0.5 K apart they are two sets."""
+    path = tmp_path / "close.csv"
+    rows = [f"{f},{8000 + f + k},{90 + f},{T},{k}\n" for k, T in enumerate((20.0, 20.0012, 35.0)) for f in (0.1, 1, 10)]
+    path.write_text(RAW_HEAD + "".join(rows))
+    with pytest.raises(ValueError, match=r"close\.csv: sets 0 and 1 lie at 20 and 20\.0012 deg C, closer than 0\.5 K"):
+        dma.split_sets(dma.read_table(path))
+    path.write_text(RAW_HEAD + "".join(r.replace(",20.0012,", ",20.5,") for r in rows))
+    assert [round(s.T, 4) for s in dma.split_sets(dma.read_table(path))] == [20.0, 20.5, 35.0]
+
+
 def test_superposition_needs_two_temperatures(tmp_path):
     path = tmp_path / "one.csv"
     path.write_text(RAW_HEAD + "".join(f"{f},{8000 + f},{90 + f},20,0\n" for f in (0.1, 1, 10)))

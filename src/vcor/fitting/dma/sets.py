@@ -99,7 +99,8 @@ def split_sets(raw) -> list[DMASet]:
     ------
     ValueError
         Missing columns, non-positive values, fewer than two sets, a set with fewer than three
-        distinct frequencies, or two sets at the same temperature (naming the file when there is one).
+        distinct frequencies, or two sets closer than the 0.5 K scatter of a set's temperature readings
+        (``vcor.materials.shift.TABLE_TOLERANCE``; naming the file when there is one).
     """
     if isinstance(raw, list):
         return raw
@@ -116,8 +117,11 @@ def split_sets(raw) -> list[DMASet]:
     out.sort(key=lambda d: d.T)
     if len(out) < 2:
         raise ValueError(f"{where}: superposition needs sets at two or more temperatures, got {len(out)}")
-    if np.any(np.diff([d.T for d in out]) <= 0):
-        raise ValueError(f"{where}: two sets have the same mean temperature")
+    for a, b in zip(out, out[1:]):  # the scatter of a set's readings: closer sets are one temperature
+        if b.T - a.T < TABLE_TOLERANCE:
+            raise ValueError(f"{where}: sets {a.label:g} and {b.label:g} lie at {a.T:.6g} and {b.T:.6g} deg C, closer "
+                             f"than {TABLE_TOLERANCE:g} K, the scatter of a set's temperature readings: their shift "
+                             f"factors cannot be told apart; give them one set label, or check their T")
     return out
 
 
