@@ -239,7 +239,7 @@ def smooth_step(impact, kind: int | None = None) -> float:
     (``SMOOTH_EXPONENTS``): RESOLVED_DECAY over the fastest rate (1/s) of the kernel's and the plate's
     exponential modes, or 0 where the error may have that term at any step:
     a kernel that is not an exact exponential sum or has a Dirac term (Kelvin-Voigt), an elastic kernel
-    (its force vanishes with the overlap, as |t - t0|^1.5: the step across the separation leaves an error
+    (its force vanishes with the overlap, as ``|t - t0|^1.5``: the step across the separation leaves an error
     that depends on where t0 falls in it, which three grids do not remove), a plate whose modulus is in
     closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum. ``kind``: the
     impact's :func:`plate_kind`, where the caller has it. Also 0 where RESOLVED_DECAY is 0 or the grid
