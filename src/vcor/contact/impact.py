@@ -365,8 +365,8 @@ def make_impact(material, v0, geometry: dict) -> Impact:
         raise ValueError(f"E_plate is the elastic plate's modulus of case 4 only; this impact is case {geo.case}, "
                          f"whose plate is of the material: give case=4 (a viscoelastic sphere on an elastic "
                          f"plate), or leave E_plate out")
-    given = [k for k in ("h", "rho_b") if getattr(geo, k) is not None]
-    if geo.rigid and given:
+    if geo.rigid and (geo.h is not None or geo.rho_b is not None):
+        given = [k for k in ("h", "rho_b") if getattr(geo, k) is not None]
         raise ValueError(f"{' and '.join(given)} describe a plate, and rigid=True is an immovable target without one: "
                          f"give rigid or the plate, not both")
     if geo.nu_plate != GEOMETRY_DEFAULTS["nu_plate"] and geo.case != 4 and geo.plate_material is None:
