@@ -287,28 +287,28 @@ class _Grid:
 
 def _tables_for(impact, h_base, factor, tol, kind):
     """(horizon (s), number of levels, tables, plate record as a plain tuple, largest relative error of
-    the kernel's and the plate's exponential sums) for the horizon ``factor`` contact-time estimates.
+    the kernel's and the plate's exponential sums, :func:`smooth_step`) for the horizon ``factor`` estimates.
     They depend on the impact's material and geometry, not on its speed: cached on those (a sweep's points
     and repeated calls share them). The key also holds the module's grid constants and its
     :func:`level_tables` as they are at the call, so that a benchmark or test that sets them is never
     served tables made under others."""
     return impact_tables(impact.material, impact.geometry, h_base, factor, tol, kind,
-                          (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION))
+                          (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS))
 
 
 @functools.lru_cache(maxsize=256)
 def impact_tables(material, geometry, h_base, factor, tol, kind, module):
     """(Cached.) :func:`_tables_for` of an impact of ``material`` and ``geometry`` (any speed); ``module``:
-    (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION) at the call."""
+    (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS) at the call."""
     impact = Impact(material, 1.0, geometry)  # the speed enters none of the tables
-    level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION = module  # noqa: N806 (the module's, as keyed)
+    level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION = module[:4]  # noqa: N806 (the module's, as keyed)
     top = h_base * 2.0**FLOOR_BITS
     horizon = factor * 2.0 * top  # a power of two >= factor t_c: the tables of a sweep's points are shared
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
     tables = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                           2.0 * horizon, tol)
     plate, plate_error = plate_record(impact, tables, kind)
-    return horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error)
+    return horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), smooth_step(impact, kind)
 
 
 def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind):
@@ -316,7 +316,7 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
     Returns (March, levels, horizon, factor)."""
     plan = _NO_PLAN if grid.plan is None else grid.plan
     while True:
-        horizon, n_levels, tables, plate, soe_error = _tables_for(impact, grid.h_base, factor, tol, kind)
+        horizon, n_levels, tables, plate, soe_error, _ = _tables_for(impact, grid.h_base, factor, tol, kind)
         nk = tables.levels.mode_decay.shape[1]
         modes = tuple(Modes(np.zeros(nk), np.ones(Plate(*plate).moduli.size)))
         first = START_LEVEL if grid.fixed_level is None else int(grid.fixed_level)
@@ -521,20 +521,20 @@ def grid_outcomes(impact, tc, n_grids, *, step_tol, max_steps, rule, tol, fewer=
 
 def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth):
     """(rows, the exponential sums' relative error) of :func:`grid_outcomes`; rows None where declined.
-    ``smooth``: :func:`smooth_step`, or 0 for all ``n_grids``."""
-    horizon, n_levels, tables, plate, soe_error = _tables_for(impact, h_base, HORIZON_START, tol, kind)
+    ``smooth``: :func:`smooth_step` (None: the impact's, cached with its tables), or 0 for all ``n_grids``."""
+    horizon, n_levels, tables, plate, soe_error, own = _tables_for(impact, h_base, HORIZON_START, tol, kind)
     control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / SEP_STEPS, 0.0)  # an AdaptiveControl
     out = np.empty((max(GRIDS, n_grids), 11))
     done = adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, _STOPS[rule],
-                          max_steps, START_LEVEL, INITIAL_SIZE, out, smooth)
+                          max_steps, START_LEVEL, INITIAL_SIZE, out, own if smooth is None else smooth)
     if not done:
         return None, soe_error
     return out[:done], soe_error
 
 
 def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol):
-    smooth = smooth_step(impact, kind) if n_grids == GRIDS else 0.0
-    rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth)
+    rows, soe_error = _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol,
+                                 None if n_grids == GRIDS else 0.0)
     if rows is None:
         return None
     rows = rows.tolist()
