@@ -173,6 +173,18 @@ def test_a_fit_to_measured_sets_writes_the_same_file_byte_for_byte(tmp_path):
     assert "given (a.csv)" in fitted.dataset.attrs["superposition"]
 
 
+def test_the_text_table_of_a_fit_to_measured_sets_shows_its_own_metrics_and_shift(tmp_path):
+    """The fit's text table (``<material_dir>/<name>.txt``, ``Fitted.table``) of a fit to measured sets has the
+    measured-data header and metrics (no built-in band, no NaN column) and its shift function."""
+    _synthetic(tmp_path / "s.csv", 1)
+    config = {"fits": {"rubber": {"model": "prony", "data": {"file": "s.csv", "T_ref": T_REF, "shift_model": "wlf"}}}}
+    (tmp_path / "config.yaml").write_text(yaml.safe_dump(config))
+    fitted = vcor.fit("rubber", config=tmp_path / "config.yaml")
+    table = fitted.table
+    assert "fits of measured data" in table and "Bagley" not in table and "nan" not in table, table
+    assert f"# shift function: {fitted.dataset.attrs['shift']}" in table, table
+
+
 def test_pyvisco_raw_sets_superposed_both_ways():
     """README table: our shift factors against pyvisco's, and how well each superposes E'."""
     raw = dma.read_table(DATA / "freq_user_raw.csv")

@@ -49,8 +49,9 @@ from .spec import check_measured
 from .spectrum.modes import reduce_modes
 from .spectrum.smooth import SpectrumFit
 
-__all__ = ["START_ATTR", "data_from_spec", "full_fit_from_file", "full_fit_from_record", "full_fit_record",
-           "metrics_table", "result_dataset", "run_fit", "scene_metrics_table"]
+__all__ = ["MEASURED_HEADER", "MEASURED_KEYS", "START_ATTR", "data_from_spec", "full_fit_from_file",
+           "full_fit_from_record", "full_fit_record", "metrics_table", "result_dataset", "run_fit",
+           "scene_metrics_table"]
 
 
 def run_fit(spec: dict, base_dir="."):
@@ -299,11 +300,15 @@ def scene_metrics_table(names, material_dir) -> str:
         rows = [(n, _preset(n), None) for n in ("butyl-cerf", "butyl-prony3")] + builtin
         out += metrics_table([(n, m, metrics(m, data)) for n, m, _ in rows])
     if measured:
-        out += metrics_table(measured, ["abs_E_star_rms", "storage_rms", "loss_rms", "tan_delta_rms",
-                                        "storage_max", "loss_max", "tan_delta_max"],
-                             "# fits of measured data: relative errors against their own superposed data (master\n"
-                             "# curve at T_ref: E', E'', tan delta); max and RMS, dimensionless")
+        out += metrics_table(measured, MEASURED_KEYS, MEASURED_HEADER)
     return out
+
+
+#: the metrics and the header of a table of fits to measured data
+MEASURED_KEYS = ["abs_E_star_rms", "storage_rms", "loss_rms", "tan_delta_rms", "storage_max", "loss_max",
+                 "tan_delta_max"]
+MEASURED_HEADER = ("# fits of measured data: relative errors against their own superposed data (master\n"
+                   "# curve at T_ref: E', E'', tan delta); max and RMS, dimensionless")
 
 
 def metrics_table(rows, keys=None, header=None) -> str:

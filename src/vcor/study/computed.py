@@ -43,7 +43,12 @@ def fit_archive(name: str, spec: dict, base_dir=".") -> tuple[Archive, FitResult
     result, data, attrs = fits.run_fit(spec, base_dir=base_dir)
     ds = fits.result_dataset(result, data, spec)
     ds.attrs.update(attrs, material_name=name)
-    table = f"# {name}: {result.material.to_dict()}\n" + fits.metrics_table([(name, result.material, result.metrics)])
+    row = [(name, result.material, result.metrics)]
+    measured = "file" in (spec.get("data") or {})
+    table = (f"# {name}: {result.material.to_dict()}\n"
+             + (f"# shift function: {attrs['shift']}\n" if attrs.get("shift") else "")
+             + (fits.metrics_table(row, fits.MEASURED_KEYS, fits.MEASURED_HEADER) if measured
+                else fits.metrics_table(row)))
     return Archive(dataset=ds, title=f"vcor fitted material {name}", timestamp=False), result, table
 
 
