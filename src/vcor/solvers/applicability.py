@@ -10,11 +10,20 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["IVE_KERNELS", "refusal"]
+__all__ = ["IVE_KERNELS", "IVE_VOLTERRA", "PAPER_NO_DIRAC", "form_b_singular", "refusal"]
 
 #: what ``ive`` and ``ive-numba`` take, in words
 IVE_KERNELS = ("a Prony kernel (sls, butyl-prony3, prony, elastic, kelvin-voigt) or a two-body contact modulus "
-                "that is a sum of exponentials from t = 0")
+               "that is a sum of exponentials from t = 0")
+#: the refusals the runners raise too (for callers that reach them without :func:`refusal`)
+IVE_VOLTERRA = ("solver option volterra: the second-order term of method 'ive' needs a Prony kernel (its G_k > 0); "
+                "a two-body contact modulus takes it with method 'direct'")
+PAPER_NO_DIRAC = "method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'"
+
+
+def form_b_singular(kind: str) -> str:
+    """The refusal of ``direct``'s form b for a kernel of ``kind`` singular at t = 0."""
+    return f"form 'b' needs a finite k(0) and an integrable kdot; material {kind!r} is singular at t = 0: use form 'a'"
 
 
 def refusal(material, options) -> str:
@@ -38,11 +47,9 @@ def refusal(material, options) -> str:
             return (f"method {method!r} needs {IVE_KERNELS}; got {mat.kind!r}: use method 'adaptive' "
                     f"(or 'direct')")
         if method == "ive" and options.volterra and not mat.is_prony:
-            return ("solver option volterra: the second-order term of method 'ive' needs a Prony kernel "
-                    "(its G_k > 0); a two-body contact modulus takes it with method 'direct'")
+            return IVE_VOLTERRA
     if method == "paper" and mat.viscosity > 0:
-        return "method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'"
+        return PAPER_NO_DIRAC
     if method == "direct" and options.form == "b" and not math.isfinite(mat.glassy):
-        return (f"form 'b' needs a finite k(0) and an integrable kdot; material {mat.kind!r} is singular at "
-                f"t = 0: use form 'a'")
+        return form_b_singular(mat.kind)
     return ""

@@ -23,6 +23,7 @@ from ._records import (
     Volterra,
     fixed_state,
 )
+from .applicability import PAPER_NO_DIRAC, form_b_singular
 from .march import Arrays, March, drive, finish, step_plan
 
 __all__ = ["folded_weights", "kernel_weights", "run_direct", "run_paper", "solve", "solve_paper", "volterra_weights"]
@@ -72,10 +73,7 @@ def run_direct(impact, dt, n_steps, *, max_steps, rule="force", volterra=False, 
     eta = impact.kappa * mat.viscosity
     if form == "b":
         if not math.isfinite(mat.glassy):
-            raise ValueError(
-                "form 'b' needs a finite k(0) and an integrable kdot; "
-                f"material {mat.kind!r} is singular at t = 0: use form 'a'"
-            )
+            raise ValueError(form_b_singular(mat.kind))
         if volterra:
             raise ValueError("volterra=True is implemented for form 'a' (h2 = c2 k(t1 + t2)) only")
     cache = {}
@@ -134,7 +132,7 @@ def _form_b_weights(impact, dt, n):
 def run_paper(impact, dt, n_steps, *, max_steps, rule="force", history=False):
     """The paper-like explicit baseline (see ``_fixed_kernels.march_paper``); for benchmarks only."""
     if impact.material.viscosity > 0:
-        raise ValueError("method 'paper' has no Dirac (Kelvin-Voigt) term; use 'direct'")
+        raise ValueError(PAPER_NO_DIRAC)
     t_start = time.perf_counter()
     body = tuple(Body(0.0, float(impact.m), float(impact.v0)))
     n = n_steps

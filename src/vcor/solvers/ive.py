@@ -23,7 +23,7 @@ import numpy as np
 from ..materials.expsums import soe
 from ._fixed_kernels import march_prony
 from ._records import Body, Internal, Stop
-from .applicability import IVE_KERNELS
+from .applicability import IVE_KERNELS, IVE_VOLTERRA
 from .common import Histories, Result, peak
 from .march import LINEAR_MAX_T_FACTOR, T_MAX_START, drive, finish, step_plan
 from .options import SUM_TOL
@@ -111,8 +111,7 @@ class _System:
     def of(cls, impact, rule, volterra, c2, horizon):
         g_inf, e, b, sum_error = kernel_terms(impact, "ive", horizon)
         if volterra and sum_error > 0.0:
-            raise ValueError("solver option volterra: the second-order term of method 'ive' needs a Prony kernel "
-                             "(its G_k > 0); a two-body contact modulus takes it with method 'direct'")
+            raise ValueError(IVE_VOLTERRA)
         kap = impact.kappa
         G = kap * e
         return cls(G_inf=kap * g_inf, G=G, inv_G=np.where(G > 0, 1.0 / np.where(G > 0, G, 1.0), 0.0), b=b,
