@@ -282,7 +282,7 @@ ROWS = [
     ("sweep: a name beside a scene's name", lambda: vcor.sweep("sls", config=ROOT / "config.yaml", name="x"),
      ["name names a scene given as a mapping", "'sls'"]),
     ("rigid target with a plate thickness", lambda: vcor.simulate("sls", 1.0, rigid=True, h=0.01),
-     ["h describe a plate", "rigid=True", "not both"]),
+     ["h describes a plate", "rigid=True", "not both"]),
     ("a material spec with a bad key", lambda: vcor.simulate({"model": "sls", "E_glassy": 1e7, "alpha": 300}, 1.0),
      ["material", "beta"]),
     ("config: option the method ignores",

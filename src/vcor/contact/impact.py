@@ -367,7 +367,8 @@ def make_impact(material, v0, geometry: dict) -> Impact:
                          f"plate), or leave E_plate out")
     if geo.rigid and (geo.h is not None or geo.rho_b is not None):
         given = [k for k in ("h", "rho_b") if getattr(geo, k) is not None]
-        raise ValueError(f"{' and '.join(given)} describe a plate, and rigid=True is an immovable target without one: "
+        raise ValueError(f"{' and '.join(given)} describe{'s' if len(given) == 1 else ''} a plate, and rigid=True is "
+                         f"an immovable target without one: "
                          f"give rigid or the plate, not both")
     if geo.nu_plate != GEOMETRY_DEFAULTS["nu_plate"] and geo.case != 4 and geo.plate_material is None:
         raise ValueError(f"nu_plate is the Poisson ratio of a plate of its own material (case 4, or a plate "
