@@ -16,13 +16,14 @@ GRID = "scenes:\n  s:\n    materials: [sls]\n    grid:\n      v0: [1, 2]\n      
 
 
 @pytest.mark.parametrize("text, words", [
-    (GRID, "line 7: key 'v0' is given twice in one mapping (lines 5 and 7)"),
-    ("fits: {}\nscenes: {}\nfits: {a: 1}\n", "line 3: key 'fits' is given twice in one mapping (lines 1 and 3)"),
-    ("grid: {v0: [1], v0: [2]}\n", "line 1: key 'v0' is given twice in one mapping (both on line 1)"),
-    ("grid:\n  1: a\n  1.0: b\n", "line 3: key 1.0 is given twice"),  # equal once read
-    ("scenes:\n  s:\n    'v0': 1\n    v0: 2\n", "line 4: key 'v0' is given twice"),
-    ('{"scenes": {"s": {"grid": {"v0": [1],\n\t"v0": [2]}}}}', "line 2: key 'v0' is given twice in one mapping "
-                                                              "(lines 1 and 2)"),  # JSON, a tab included
+    (GRID, "line 7, column 7: key 'v0' is given twice in one mapping (lines 5 and 7)"),
+    ("fits: {}\nscenes: {}\nfits: {a: 1}\n",
+     "line 3, column 1: key 'fits' is given twice in one mapping (lines 1 and 3)"),
+    ("grid: {v0: [1], v0: [2]}\n", "line 1, column 17: key 'v0' is given twice in one mapping (both on line 1)"),
+    ("grid:\n  1: a\n  1.0: b\n", "line 3, column 3: key 1.0 is given twice"),  # equal once read
+    ("scenes:\n  s:\n    'v0': 1\n    v0: 2\n", "line 4, column 5: key 'v0' is given twice"),
+    ('{"scenes": {"s": {"grid": {"v0": [1],\n\t"v0": [2]}}}}',
+     "line 2, column 2: key 'v0' is given twice in one mapping (lines 1 and 2)"),  # JSON, a tab included
 ])
 def test_a_repeated_key_is_refused_naming_it_and_both_lines(tmp_path, text, words):
     path = tmp_path / "config.yaml"
@@ -63,17 +64,17 @@ def test_a_broken_or_missing_file_is_named_with_line_and_column(tmp_path):
 def test_material_files_the_cli_config_and_the_schema_are_read_strictly(tmp_path, capsys):
     mat = tmp_path / "m.json"
     mat.write_text('{"kind": "sls", "E_glassy": 15e6, "alpha": 300.0,\n  "beta": 1200.0, "alpha": 30.0}')
-    with pytest.raises(RepeatedKeyError, match=r"material file .*m\.json, line 2: key 'alpha' is given twice .*"
-                                               r"\(lines 1 and 2\)"):
+    with pytest.raises(RepeatedKeyError, match=r"material file .*m\.json, line 2, column 19: key 'alpha' is given "
+                                               r"twice .*\(lines 1 and 2\)"):
         from_file(mat)
     cfg = tmp_path / "config.yaml"
     cfg.write_text("materials:\n  mine: {model: sls, E_glassy: 15e6, alpha: 300, beta: 1200}\n"
                    "  mine: {model: sls, E_glassy: 30e6, alpha: 300, beta: 1200}\n")
     assert cli.main(["impact", "--config", str(cfg), "--material", "mine", "--v0", "10"]) == 2
-    assert "--config " + str(cfg) + ", line 3: key 'mine' is given twice" in capsys.readouterr().err
+    assert "--config " + str(cfg) + ", line 3, column 3: key 'mine' is given twice" in capsys.readouterr().err
     bad = tmp_path / "schema.yaml"
     bad.write_text("type: object\nproperties: {}\ntype: array\n")
-    with pytest.raises(RepeatedKeyError, match="config schema .*line 3: key 'type'"):
+    with pytest.raises(RepeatedKeyError, match="config schema .*line 3, column 1: key 'type'"):
         schema.load_schema(bad)
 
 

@@ -153,12 +153,12 @@ def test_a_key_given_twice_stops_the_run_before_any_job(make_project, smk, tmp_p
     (path / "config.yaml").write_text(text.replace("      v0:\n", "      v0: [5.0]\n      v0:\n"))
     out = smk(path, "-n", check=False)
     said = out.stdout + out.stderr
-    assert out.returncode != 0 and "config file config.yaml, line 7: key 'v0' is given twice in one mapping " \
-                                   "(lines 6 and 7)" in said, said
+    assert out.returncode != 0 and "config file config.yaml, line 7, column 7: key 'v0' is given twice in one " \
+                                   "mapping (lines 6 and 7)" in said, said
     (path / "config.yaml").write_text(text)
     (path / "my.yaml").write_text("scenes:\n  t:\n    materials: [sls]\n    materials: [kelvin-voigt]\n"
                                   "    grid: {v0: [1.0]}\n")
     out = smk(path, "-n", "--configfile", "my.yaml", check=False)
     said = out.stdout + out.stderr
-    assert out.returncode != 0 and "my.yaml, line 4: key 'materials' is given twice" in said, said
+    assert out.returncode != 0 and "my.yaml, line 4, column 5: key 'materials' is given twice" in said, said
     assert not (path / "results").exists()

@@ -3,10 +3,10 @@
 PyYAML, Python's ``json`` and Snakemake's config loader all keep the last of two equal keys of a mapping
 without a word, so a config with two ``v0:`` lines in one grid silently loses the first. Every YAML or
 JSON file vcor reads (configs, the config schema, material files) goes through this module, which
-refuses such a file in one line naming the file, the key and both lines::
+refuses such a file in one line naming the file, the key, both lines and the second one's column::
 
-    config file config.yaml, line 14: key 'v0' is given twice in one mapping (lines 12 and 14): only the
-    last would be read; remove or rename one
+    config file config.yaml, line 14, column 5: key 'v0' is given twice in one mapping (lines 12 and 14): only
+    the last would be read; remove or rename one
 
 Equal means equal once read (``1`` and ``1.0`` are the same key, ``'v0'`` and ``v0`` too); the same key in
 two different mappings is of course allowed, and so is a key that overrides one brought in by a YAML
@@ -27,20 +27,20 @@ class RepeatedKeyError(ValueError):
     """A key given twice in one mapping; the message names the file, the key and both lines."""
 
 
-def _message(where: str, key, first: int | None, second: int | None) -> str:
+def _message(where: str, key, first: int | None, second: int | None, column: int | None = None) -> str:
     if first is None:
         return f"{where}: key {key!r} is given twice in one object: only the last would be read; remove or rename one"
     lines = f"lines {first} and {second}" if first != second else f"both on line {second}"
-    return (f"{where}, line {second}: key {key!r} is given twice in one mapping ({lines}): only the last would be "
-            f"read; remove or rename one")
+    return (f"{where}, line {second}, column {column}: key {key!r} is given twice in one mapping ({lines}): only the "
+            f"last would be read; remove or rename one")
 
 
 class _Repeated(Exception):
     """A repeated key found while reading: the key and the lines of both (None: not known)."""
 
-    def __init__(self, key, first=None, second=None):
+    def __init__(self, key, first=None, second=None, column=None):
         super().__init__(key)
-        self.key, self.first, self.second = key, first, second
+        self.key, self.first, self.second, self.column = key, first, second, column
 
 
 @functools.cache
@@ -56,10 +56,11 @@ def _strict_loader():
         for key_node, _ in node.value:
             if key_node.tag == "tag:yaml.org,2002:merge":  # '<<': the keys it brings may be overridden
                 continue
-            key, line = loader.construct_object(key_node, deep=True), key_node.start_mark.line + 1
+            key, mark = loader.construct_object(key_node, deep=True), key_node.start_mark
+            line = mark.line + 1
             try:
                 if key in seen:
-                    raise _Repeated(key, seen[key], line)
+                    raise _Repeated(key, seen[key], line, mark.column + 1)
                 seen[key] = line
             except TypeError:  # an unhashable key: the safe constructor refuses it with its own message
                 break
@@ -75,7 +76,7 @@ def _yaml(text: str, where: str):
     try:
         return yaml.load(text, Loader=_strict_loader())  # a SafeLoader with stricter mappings
     except _Repeated as rep:
-        raise RepeatedKeyError(_message(where, rep.key, rep.first, rep.second)) from None
+        raise RepeatedKeyError(_message(where, rep.key, rep.first, rep.second, rep.column)) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         at = f", line {mark.line + 1}, column {mark.column + 1}" if mark is not None else ""
@@ -121,8 +122,8 @@ def _read(path, what: str) -> tuple[str, str]:
 def load_yaml(path, *, what: str = "config file"):
     """The content of the YAML or JSON file at ``path`` (tried as JSON first, then as YAML, as Snakemake
     reads a config file). ``what`` names the file's role in the errors: :class:`RepeatedKeyError` for a
-    key given twice in one mapping (the key and both lines), ValueError for a file that is missing or
-    not valid YAML (line and column).
+    key given twice in one mapping (the key, both lines and the second's column), ValueError for a file
+    that is missing or not valid YAML (line and column).
 
     Examples
     --------
@@ -135,8 +136,8 @@ def load_yaml(path, *, what: str = "config file"):
     ...     load_yaml(path)
     ... except ValueError as exc:
     ...     print(exc)
-    config file ...config.yaml, line 5: key 'v0' is given twice in one mapping (lines 4 and 5): only the last
-    would be read; remove or rename one
+    config file ...config.yaml, line 5, column 7: key 'v0' is given twice in one mapping (lines 4 and 5): only
+    the last would be read; remove or rename one
     """
     text, where = _read(path, what)
     try:
