@@ -26,7 +26,7 @@ def test_pade_coefficients_reproduce_table_1():
     assert max(abs(a - b) for a, b in zip(d, S.TABLE_I)) < 1e-4
 
 
-# README "Viscoelastic spheres": each bound below is the README's number (measured values in comments)
+# docs/validation.md, "Viscoelastic spheres": each bound below is the page's number (measured values in comments)
 @pytest.mark.parametrize("b, bound", [(1e-3, 2e-9), (3e-3, 2e-9), (1e-2, 2.5e-8)])
 def test_overlap_rule_matches_four_term_series(b, bound):
     gap = abs(S.cor_numeric(b, "overlap") - S.cor_series(b, 4))  # 9.2e-10, 1.5e-9, 2.3e-8: O(b^5)

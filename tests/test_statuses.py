@@ -1,4 +1,4 @@
-"""One status vocabulary (README, "Statuses"): each status a row; a failed point or run never loses
+"""One status vocabulary (docs/user-guide/statuses.md): each status a row; a failed point or run never loses
 the others; failed histories are NaN with their status; an error-estimate run has its own status."""
 
 import math

@@ -1,5 +1,5 @@
 """Measured DMA data: pyvisco's file conventions, bad data, time-temperature
-superposition, WLF. README, "Measured DMA data"."""
+superposition, WLF. docs/user-guide/dma.md."""
 
 import hashlib
 import json

@@ -84,8 +84,9 @@ def test_expand_fits():
         spec.expand_fits({"p-n{n}": {"model": "prony", "n_terms": 3}})
 
 
-#: README "Fitted materials" table: (max E(t), max |E*|, max tan delta) relative errors and the COR gap
-#: COR(v0 = 10) / COR_fractional - 1. Rounded in the README: each must round to within 10 %.
+#: docs/validation.md, "Fits of the Bagley–Torvik Butyl": (max E(t), max |E*|, max tan delta) relative
+#: errors and the COR gap COR(v0 = 10) / COR_fractional - 1. Rounded on that page: each must round to
+#: within 10 %.
 README_FITS = {
     "paper CERF": ((0.21, 0.45, 0.61), 0.061),
     "paper Prony": ((0.62, 0.78, 0.97), 0.217),

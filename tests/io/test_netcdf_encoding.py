@@ -120,9 +120,9 @@ def _shard():
 
 
 def test_archives_written_before_the_cf_encoding_still_read(tmp_path):
-    """Files written the old way (text coordinate variables, _FillValue on coordinates, hyphenated
-    names): the aggregate combines old shards, rebuild reads an old sweep, the run summary, the table and
-    the DEM deck read old files, each exactly as it reads the same data written today."""
+    """Files without vcor_name attributes (text coordinate variables, _FillValue on coordinates,
+    hyphenated names): the aggregate combines such shards, rebuild reads such a sweep, the run summary,
+    the table and the DEM deck read such files, each exactly as it reads the same data in the CF encoding."""
     shard, rows = _shard()
     grid = scene.grid_of(SCENE)
     old, new = {}, {}

@@ -1,5 +1,6 @@
 """Your own materials: the config's ``materials:`` block, ``vcor.material_specs``,
-the CLI's ``--config`` and the workflow. README, "Your own materials"."""
+the CLI's ``--config`` and the workflow. docs/user-guide/materials.md, "Your own materials in the
+configuration"."""
 
 import json
 

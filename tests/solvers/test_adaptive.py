@@ -402,7 +402,7 @@ def test_fractional_thin_plate_separates_after_hours():
     t^-1/2) and the time horizon grows until it separates. The COR (~1e-11) is converged; t0 is not:
     the force creeps to zero so slowly that the grid and the grid quartered disagree on t0 by tens of
     per cent, so the run is not Richardson-extrapolated and says so, and step_tol / 100 moves t0 by
-    more than 10 % (README, "Known limits"); sweeps store that as a large t0_err."""
+    more than 10 % (docs/validation.md, "Long contacts", the known limit); sweeps store that as a large t0_err."""
     a = vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3)
     b = vcor.simulate("butyl-fc", 10.0, method="adaptive", h=1e-3, step_tol=1e-7)
     assert a.ok and b.ok, (a.message, b.message)

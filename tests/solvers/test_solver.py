@@ -91,8 +91,8 @@ def test_convergence_order_fractional_kernel():
 # ----------------------------------------------------------------------------- energy, limits
 @pytest.mark.parametrize("name", ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3"])
 def test_energy_residual_small(name):
-    """README "Numerics": the energy residual (kinetic energy lost - hysteresis - work into the plate,
-    relative) is ~1e-11 (measured 2.0e-11 .. 3.3e-11 at v0 = 10)."""
+    """docs/validation.md, "Energy, invariants and independent oracles": the energy residual (kinetic
+    energy lost - hysteresis - work into the plate, relative) is ~1e-11 (measured 2.0e-11 .. 3.3e-11 at v0 = 10)."""
     r = vcor.simulate(name, 10.0, method="direct")
     print(f"\n{name}: energy residual {r.energy_residual:.2e}")
     assert abs(r.energy_residual) < 1e-10
@@ -106,13 +106,13 @@ def test_rigid_elastic_gives_unit_cor():
 
 
 # ----------------------------------------------------------------------------- Volterra
-#: README "Numerics": the Volterra term's effect on the COR at c2 = 1 m^-1.5, v0 = 10 m/s
+#: docs/validation.md, "The Volterra term": the Volterra term's effect on the COR at c2 = 1 m^-1.5, v0 = 10 m/s
 VOLTERRA_EFFECT = {"sls": 1.0e-5, "butyl-fc": 6.3e-6, "butyl-prony3": 7.3e-6}
 
 
 @pytest.mark.parametrize("name", sorted(VOLTERRA_EFFECT))
 def test_volterra_effect_sizes(name):
-    """The README's effect sizes, to a tolerance that catches a factor of two (or a wrong sign)."""
+    """The effect sizes docs/validation.md quotes, to a tolerance that catches a factor of two (or a wrong sign)."""
     off = vcor.simulate(name, 10.0, method="direct")
     on = vcor.simulate(name, 10.0, method="direct", volterra=True)
     assert on.status == "ok"
@@ -153,7 +153,7 @@ def test_volterra_elastic_closed_form():
 
 # ----------------------------------------------------------------------------- histories
 def test_contact_time_estimate_is_an_estimate_not_a_bound():
-    """README "Numerics": t0 / t_c = 0.845 in the paper's case (h = 20 mm), 0.82 .. 0.91 for
+    """docs/validation.md, "Long contacts": t0 / t_c = 0.845 in the paper's case (h = 20 mm), 0.82 .. 0.91 for
     h = 12 .. 100 mm, so 2000 steps per t_c is about 1690 steps per contact."""
     ratios = {}
     for h in (0.012, 0.02, 0.1):
@@ -246,9 +246,9 @@ def test_fractional_cor_against_converged_prony_with_ive(v0):
     assert abs(oracle.cor - direct) < 1e-7
 
 
-# ----------------------------------------------------------------------------- README "noticed"
+# ----------------------------------------------------------------------------- docs/validation.md, "Against the paper"
 def test_hysteresis_at_50_m_s_against_the_paper():
-    """README: at 50 m/s W_h = 27.3 J (fractional), 26.7 J (CERF), 27.1 J with the paper-like scheme,
+    """docs/validation.md: at 50 m/s W_h = 27.3 J (fractional), 26.7 J (CERF), 27.1 J with the paper-like scheme,
     W_h + W_plate = 39.8 J; the paper states 30.7 J, which none of these explains."""
     fc = vcor.simulate("butyl-fc", 50.0)
     cerf = vcor.simulate("butyl-cerf", 50.0)

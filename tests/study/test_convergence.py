@@ -1,4 +1,4 @@
-"""Work-precision study (README, "Accuracy against run time"): statuses, options and orders."""
+"""Work-precision study (docs/validation.md, "Convergence"): statuses, options and orders."""
 
 import json
 

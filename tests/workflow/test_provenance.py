@@ -1,5 +1,5 @@
-"""Provenance-safe archives (README, "Provenance"): a shard's identity covers the computing code and
-the material's content; changed code recomputes the affected shards (and ``snakemake -n`` lists
+"""Provenance-safe archives (docs/user-guide/datasets.md, "Provenance"): a shard's identity covers the
+computing code and the material's content; changed code recomputes the affected shards (and ``snakemake -n`` lists
 them); an aggregate never combines shards of different code or material parameters."""
 
 import json
