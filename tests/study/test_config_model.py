@@ -10,6 +10,7 @@ import pytest
 import yaml
 
 from vcor import provenance
+from vcor.materials import Catalogue
 from vcor.study import aggregation, paths, runner, shards
 from vcor.study.config import load_project
 from vcor.study.grid import AXIS_UNITS, Grid, axis_role, axis_values, point_key
@@ -281,6 +282,29 @@ def test_extending_a_grid_reuses_shards_with_their_rows_in_the_new_grid(tmp_path
         assert grid.point(row)["v0"] == p["v0"] and grid.point(row)["material"] == p["material"]
     new = [s for k, s in again.items() if k != only.id]
     assert sum(len(s.points) for s in new) == 4 and all(p["v0"] == 1.0 for s in new for p in s.points)
+
+
+def test_a_shard_with_points_of_a_changed_material_is_not_reused(tmp_path):
+    """A finished shard holding points of a material whose identity changed (or that left the scene) is
+    not reused: all its still-wanted points are planned again, none is solved for an identity it was not
+    planned with. A shard's job is given only the swept materials its points name (``shard_materials``);
+    ``check_current`` refuses a point whose identity is not the catalogue's."""
+    plan = shards.plan_shards(SCENE, tmp_path, 100, IDS)
+    (only,) = plan.values()
+    _write(tmp_path, only, _solve(only))
+    assert list(shards.plan_shards(SCENE, tmp_path, 100, IDS)) == [only.id]
+    for ids, scene in (({**IDS, "kelvin-voigt": "id-kv-2"}, SCENE), ({"sls": IDS["sls"]}, {**SCENE, "materials": ["sls"]})):
+        again = shards.plan_shards(scene, tmp_path, 100, ids)
+        assert only.id not in again
+        assert all(p["material_id"] == ids[p["material"]] for s in again.values() for p in s.points)
+        assert sum(len(s.points) for s in again.values()) == 4 * len(scene["materials"])
+    sls_only = [p for p in only.points if p["material"] == "sls"]
+    assert shards.shard_materials(sls_only, ["kelvin-voigt", "sls", "tpu"], SCENE["materials"]) == ["sls", "tpu"]
+    shards.check_current([{"material": "sls", "material_id": Catalogue().identity("sls")}], Catalogue(), "abc")
+    with pytest.raises(ValueError, match=r"shard abc: its points of material 'sls' were planned for identity id-sls"):
+        shards.check_current([{"material": "sls", "material_id": "id-sls"}], Catalogue(), "abc")
+    with pytest.raises(ValueError, match="now gives no such material"):
+        shards.check_current([{"material": "gone", "material_id": "x"}], Catalogue(), "abc")
 
 
 def test_a_shard_without_point_indices_is_recomputed_never_misread(tmp_path):

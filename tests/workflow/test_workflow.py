@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 import yaml
 
 import vcor
@@ -279,6 +280,38 @@ def test_other_materials_added_or_reordered_rerun_nothing(make_project, smk, tmp
     (path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
     out = smk(path, "-n", "-j1")
     assert "Nothing to be done" in out.stdout + out.stderr, out.stdout[-3000:]
+
+
+def test_a_changed_material_reruns_no_shard_without_its_points(make_project, smk, tmp_path):
+    """A changed material re-runs no shard that holds none of its points (byte-identical files; its job
+    is given the materials its points name), never re-runs a shard that holds its old points (they are
+    planned anew with the shard's other points: no number is stored under the identity of another
+    definition), and the sweep holds the new numbers."""
+    mats = {"gel-a": {"model": "sls", "E_glassy": 15.0e6, "alpha": 300.0, "beta": 1200.0},
+            "gel-b": {"model": "sls", "E_glassy": 20.0e6, "alpha": 200.0, "beta": 900.0}}
+    config = {"materials": mats, "scenes": {"s": {"materials": ["gel-b"], "grid": {"v0": [1.0, 3.0]}}}}
+    path = make_project(tmp_path, config)
+    smk(path, "-j1")
+    only_b = {p.name: p.read_bytes() for p in (path / "results/s/shards").glob("*.nc")}
+    config["scenes"]["s"]["materials"] = ["gel-a", "gel-b"]
+    config["scenes"]["s"]["grid"]["v0"] = [1.0, 3.0, 5.0]
+    (path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
+    smk(path, "-j1")  # one new shard: gel-a at every speed, gel-b at 5 m/s
+    changed = {**mats["gel-a"], "E_glassy": 25.0e6}
+    config["materials"]["gel-a"] = changed
+    (path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
+    out = smk(path, "-n", "-j1", "--quiet", "rules")
+    text = out.stdout + out.stderr
+    lines = {ln.split()[0]: int(ln.split()[1]) for ln in text.splitlines() if len(ln.split()) == 2
+             and ln.split()[1].isdigit()}
+    assert lines.get("sweep_shard") == 1, text
+    smk(path, "-j1")
+    assert {p.name: p.read_bytes() for p in (path / "results/s/shards").glob("*.nc") if p.name in only_b} == only_b
+    with xr.open_dataset(path / "results/s/sweep.nc") as ds:
+        a = [str(m) for m in ds["material_label"].values].index("gel-a")
+        for v0 in (1.0, 5.0):
+            cor = float(ds["cor"].isel(material=a).sel(v0=v0))
+            assert cor == pytest.approx(vcor.simulate(changed, v0).cor, rel=1e-9)
 
 
 def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):

@@ -274,6 +274,20 @@ def get_shard_rows(wildcards):
     return [shard.rows for shard in shard_plan(wildcards.scene).values()]
 
 
+def shard_materials(wildcards):
+    """The materials a shard's job is given (vcor.study.shards.shard_materials)."""
+    sc = SCENES[wildcards.scene]
+    return vshards.shard_materials(get_shard_points(wildcards), sc.used_materials(), sc.materials)
+
+
+def get_shard_catalogue(wildcards):
+    return catalogue_spec(shard_materials(wildcards))
+
+
+def get_shard_material_files(wildcards):
+    return PROJECT.material_files_of(wildcards.scene, shard_materials(wildcards))
+
+
 def get_material_files(wildcards):
     """Computed material files a scene's jobs read (fits, calibrations; none for presets and config
     materials: no fit unless needed)."""

@@ -3,7 +3,7 @@
 
 rule sweep_shard:
     input:
-        materials=get_material_files,
+        materials=get_shard_material_files,
         kernels=get_scene_kernels,
     output:
         nc=vpaths.SHARD,
@@ -18,7 +18,7 @@ rule sweep_shard:
     params:
         points=get_shard_points,
         settings=get_settings,
-        catalogue=get_scene_catalogue,
+        catalogue=get_shard_catalogue,
     script:
         "../scripts/sweep_shard.py"
 

@@ -10,6 +10,7 @@ smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     points, settings = smk.params.points, smk.params.settings
     catalogue = Catalogue(**smk.params.catalogue)
+    shards.check_current(points, catalogue, smk.wildcards.shard)
     ready = load_kernels([settings["solver"]["method"]])
     log.note(f"numba kernels of method {settings['solver']['method']} ready (loaded or compiled) in {seconds(ready)}",
              timed=False)

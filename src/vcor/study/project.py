@@ -125,12 +125,14 @@ class Project:
             out.append(paths.fmt(paths.FIT_METRICS, scene=scene))
         return out
 
-    def material_files_of(self, scene: str) -> list[str]:
+    def material_files_of(self, scene: str, names=None) -> list[str]:
         """The computed material files (fits, calibrations) a scene's jobs read; presets and config
-        materials are built from their definitions."""
+        materials are built from their definitions. ``names``: of those materials only (a shard's,
+        :func:`vcor.study.shards.shard_materials`)."""
         computed = self.catalogue.computed()
-        return ([paths.material(self.material_dir, m) for m in self.scenes[scene].used_materials() if m in computed]
-                + [path for path, _ in self.samples_of(scene)])
+        used = self.scenes[scene].used_materials() if names is None else names
+        return ([paths.material(self.material_dir, m) for m in used if m in computed]
+                + [path for path, m in self.samples_of(scene) if names is None or m in names])
 
     def samples_of(self, scene: str) -> list[tuple[str, str]]:
         """(samples file, fit name) of every material of an uncertainty scene (vcor.study.uncertainty)."""

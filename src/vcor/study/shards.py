@@ -11,8 +11,11 @@ A shard file is named ``<settings hash>-<points hash>``:
 
 So changed code, a changed preset or fit, or changed settings give new shard names: the workflow
 recomputes exactly those shards and ``snakemake -n`` lists them. Planning reuses every finished
-shard whose settings hash matches and that holds still-wanted points, and groups only the points
-not yet covered into new shards, so extending a grid never recomputes finished points.
+shard whose settings hash matches, that holds still-wanted points and none of a changed or removed
+material, and groups only the points not yet covered into new shards, so extending a grid never
+recomputes finished points; a changed material recomputes its points and those that shared their
+shards. A job is given only the materials its points name (:func:`shard_materials`): editing one
+material re-runs no job without its points.
 
 A point's name (:func:`vcor.study.grid.point_key`) leaves out its grid index, which moves when a grid
 is extended; every shard still records the index of each point when it was written (its ``index``
@@ -37,11 +40,13 @@ from .scene import grid_of, settings_of
 __all__ = [
     "SHARD_PATTERN",
     "Shard",
+    "check_current",
     "identified_points",
     "index_text",
     "plan_shards",
     "point_key",
     "settings_hash",
+    "shard_materials",
     "shard_settings",
 ]
 
@@ -75,6 +80,33 @@ def identified_points(scene, identities: dict, grid: Grid | None = None) -> list
     name -> id)."""
     grid = grid or grid_of(scene)
     return [{**p, "material_id": identities[p["material"]]} for p in grid.points()]
+
+
+def shard_materials(points, used: list, swept) -> list[str]:
+    """The materials a shard's job is given: the scene's ``used`` ones less the ``swept`` materials that
+    none of the shard's points names, so that a changed material re-runs no shard without its points
+    (their jobs' params and inputs do not name it)."""
+    named = {p["material"] for p in points}
+    return [m for m in used if m not in swept or m in named]
+
+
+def check_current(points, catalogue, shard: str) -> None:
+    """ValueError, before any work, when a point's ``material_id`` is not the identity its material has
+    in ``catalogue``: solving it would store numbers under the identity of another definition
+    (:func:`plan_shards` reuses no such shard; this guards the job itself)."""
+    seen = {}
+    for p in points:
+        name = p["material"]
+        if name not in seen:
+            try:
+                seen[name] = catalogue.identity(name)
+            except ValueError:
+                seen[name] = None
+        if seen[name] != p["material_id"]:
+            now = f"identity {seen[name]}" if seen[name] else "no such material"
+            raise ValueError(f"shard {shard}: its points of material {name!r} were planned for identity "
+                             f"{p['material_id']}, and the config now gives {now}: they cannot be solved again; "
+                             f"move the shard's .nc and .json files aside to plan its points anew")
 
 
 def _lookup(point: dict) -> tuple:
@@ -139,8 +171,12 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
     """{shard id: :class:`Shard`}. Existing shards with the same settings hash are reused as they are,
     if they are what their writer wrote (:func:`vcor.io.receipts.problem`, the shard id as identity)
     and hold still-wanted points; a shard that is not is passed to ``on_invalid(path, reason)`` (the
-    workflow moves it aside) and its points are planned again. The points not covered are cut into
-    jobs of about ``job_seconds`` of estimated work each (:func:`vcor.study.cost.split_by_work`;
+    workflow moves it aside) and its points are planned again. A shard is reused only when every one
+    of its points names a material of the scene with its current identity: one that holds points of a
+    changed or removed material stays on disk unused, and its other points are planned again (its job
+    could not solve the old points again, and solving them with the new definition would store
+    numbers under the identity of another). The points not covered are cut into jobs of about
+    ``job_seconds`` of estimated work each (:func:`vcor.study.cost.split_by_work`;
     ``from_data``: the materials fitted to measured data), at most ``shard_size`` points each (None: no
     cap). ``grid`` and ``settings``: the scene's, when the caller built them already."""
     settings = settings or settings_of(scene)
@@ -160,7 +196,8 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
                 on_invalid(nc, str(exc))
             continue
         rows = matcher.rows(pts)
-        if not any(r in matcher.todo for r in rows):
+        if not any(r in matcher.todo for r in rows) or any(identities.get(p["material"]) != p["material_id"]
+                                                            for p in pts):
             continue
         reason = receipts.problem(nc, idx.stem)
         if reason is not None:
