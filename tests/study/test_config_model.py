@@ -293,7 +293,8 @@ def test_a_shard_with_points_of_a_changed_material_is_not_reused(tmp_path):
     (only,) = plan.values()
     _write(tmp_path, only, _solve(only))
     assert list(shards.plan_shards(SCENE, tmp_path, 100, IDS)) == [only.id]
-    for ids, scene in (({**IDS, "kelvin-voigt": "id-kv-2"}, SCENE), ({"sls": IDS["sls"]}, {**SCENE, "materials": ["sls"]})):
+    changed, removed = {**IDS, "kelvin-voigt": "id-kv-2"}, {"sls": IDS["sls"]}
+    for ids, scene in ((changed, SCENE), (removed, {**SCENE, "materials": ["sls"]})):
         again = shards.plan_shards(scene, tmp_path, 100, ids)
         assert only.id not in again
         assert all(p["material_id"] == ids[p["material"]] for s in again.values() for p in s.points)
