@@ -326,6 +326,19 @@ def test_configfile_runs_only_its_scenes(make_project, smk, tmp_path):
     assert "results/sls/" not in text and "results/butyl/" not in text
 
 
+def test_a_config_error_names_its_file_line_and_column(make_project, smk, tmp_path):
+    """A refusal that names a key path says where that key is: the --configfile, line and column."""
+    path = make_project(tmp_path, TINY)
+    (path / "my.yaml").write_text("scenes:\n  mine:\n    materials: [sls]\n    grid:\n      v0: ['36 km/h', 1.0]\n")
+    out = smk(path, "-n", "-j1", "--configfile", "my.yaml", check=False)
+    said = out.stdout + out.stderr
+    assert out.returncode != 0 and "config file my.yaml, line 5, column 12: scenes.mine.grid.v0[0]: " in said, said
+    (path / "my.yaml").write_text("scenes:\n  mine:\n    materials: [sls]\n    grid: {v0: [1.0], h: [0.01, -0.1]}\n")
+    out = smk(path, "-n", "-j1", "--configfile", "my.yaml", check=False)
+    said = out.stdout + out.stderr
+    assert "config file my.yaml, line 2, column 3: scenes.mine: point" in said, said
+
+
 @pytest.mark.parametrize(
     "mutate, words",
     [

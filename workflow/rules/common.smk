@@ -12,6 +12,7 @@ from snakemake.exceptions import WorkflowError
 
 import vcor.io.receipts as vreceipts
 import vcor.io.yamlfile as vyamlfile
+import vcor.io.yamlplace as vyamlplace
 import vcor.plots as vplots
 import vcor.provenance as vprovenance
 import vcor.study.archive as varchive
@@ -36,7 +37,9 @@ try:
     vschema.check_schema(config, SCHEMA)  # fills in the schema's defaults
     PROJECT = vconfig.load_project(config, base_dir=".")
 except ValueError as exc:
-    raise WorkflowError(f"config: {exc}") from None
+    # the message names a key path of the merged config: its file, line and column in front
+    said = vyamlplace.located(str(exc), workflow.configfiles)
+    raise WorkflowError(said if said != str(exc) else f"config: {exc}") from None
 
 
 def _executes():

@@ -1,0 +1,88 @@
+"""Where a config error is: the file, line and column of the key path that a config message starts with.
+
+The config checks (the schema, :mod:`vcor.study.config`) name what is wrong by its key path,
+``scenes.my-grid.grid.v0[0]: expected a number, got '36 km/h'``, on the merged mapping Snakemake made
+of its config files. :func:`located` finds that path in the files themselves (the last file that
+holds it: a later ``--configfile`` overrides an earlier one) and puts its place in front::
+
+    config file my.yaml, line 12, column 14: scenes.my-grid.grid.v0[0]: expected a number, got '36 km/h'
+
+The place is that of the deepest part of the path the file holds: the key of a mapping entry, or the
+item of a list (for a key that is not allowed, the key itself). A message that does not start with a
+key path, or whose path no file holds, is returned unchanged.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import re
+from pathlib import Path
+
+__all__ = ["key_path", "locate", "located"]
+
+def key_path(message: str) -> list | None:
+    """The key path a config message starts with (the text before its first ": ", with no spaces), as
+    a list of names (str) and list indices (int); None when it does not start with one."""
+    head, sep, _ = message.partition(": ")
+    if not sep or not head or any(c.isspace() for c in head) or not re.fullmatch(r"[^\[\]]+(\[\d+\]|\.[^.\[\]]+)*",
+                                                                                     head):
+        return None
+    return [int(p[1:-1]) if p.startswith("[") else p for p in re.findall(r"\[\d+\]|[^.\[\]]+", head)]
+
+
+def _walk(node, keys: list):
+    """(line, column), 1-based, of the deepest node of ``node`` along ``keys``, and how many keys were
+    followed. A mapping key may itself hold dots: the longest run of parts that names a key is taken."""
+    import yaml
+
+    place, done, i = None, 0, 0
+    while i < len(keys):
+        if isinstance(node, yaml.SequenceNode) and isinstance(keys[i], int) and keys[i] < len(node.value):
+            node = node.value[keys[i]]
+            place, i = node.start_mark, i + 1
+        elif isinstance(node, yaml.MappingNode) and isinstance(keys[i], str):
+            names = {str(k.value): (k, v) for k, v in node.value}
+            for j in range(len(keys), i, -1):
+                parts = keys[i:j]
+                if all(isinstance(p, str) for p in parts) and ".".join(parts) in names:
+                    key_node, node = names[".".join(parts)]
+                    place, i = key_node.start_mark, j
+                    break
+            else:
+                break
+        else:
+            break
+        done = i
+    return (None if place is None else (place.line + 1, place.column + 1)), done
+
+
+def locate(path, keys: list) -> tuple[tuple[int, int] | None, int]:
+    """((line, column) or None, keys followed) of ``keys`` (:func:`key_path`) in the YAML file ``path``;
+    (None, 0) when the file cannot be read or composed."""
+    import yaml
+
+    try:
+        root = yaml.compose(Path(path).read_text(encoding="utf-8-sig"), Loader=getattr(yaml, "CSafeLoader",
+                                                                                       yaml.SafeLoader))
+    except (OSError, UnicodeDecodeError, yaml.YAMLError):
+        return None, 0
+    return _walk(root, keys) if root is not None else (None, 0)
+
+
+def located(message: str, files) -> str:
+    """``message`` with the place of its leading key path in front (module docstring): searched in
+    ``files`` from the last; the file that holds most of the path wins, the later one on a tie."""
+    keys = key_path(message)
+    if not keys:
+        return message
+    best, depth = None, 0
+    for path in reversed(list(files)):
+        place, done = locate(path, keys)
+        if place is not None and done > depth:
+            best, depth = (path, place), done
+    if best is None:
+        return message
+    path, (line, column) = best
+    with contextlib.suppress(ValueError):  # relative to the working directory (Snakemake keeps them absolute)
+        path = Path(path).resolve().relative_to(Path.cwd().resolve())
+    return f"config file {path}, line {line}, column {column}: {message}"
