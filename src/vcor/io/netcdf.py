@@ -23,8 +23,8 @@ the file, for every writer:
 * a data variable is linked by ``ancillary_variables`` (CF section 3.4) to the status and validity
   flags (``standard_name`` ``status_flag`` / ``quality_flag``) of the same dimensions.
 
-Files written before this encoding (text dimension coordinates, ``_FillValue`` on coordinates) have no
-``vcor_name`` attributes and read as they always did.
+Files in the layout without ``vcor_name`` attributes (text dimension coordinates, ``_FillValue`` on
+coordinates) are read as they are.
 """
 
 from __future__ import annotations
@@ -155,7 +155,7 @@ def decode(ds):
     """The dataset vcor wrote as :func:`encode` gave it to the file: every variable under its
     :data:`NAME_ATTR` name (a label or value list along its own dimension becomes that dimension's index
     again), without the ``ancillary_variables`` the encoding added. A dataset without such attributes
-    (written before this encoding, or by other code) is returned as it is."""
+    (the layout without them, or written by other code) is returned as it is."""
     renamed = {n: v.attrs[NAME_ATTR] for n, v in ds.variables.items() if NAME_ATTR in v.attrs}
     linked = [n for n, v in ds.data_vars.items() if "ancillary_variables" in v.attrs]
     if not renamed and not linked:
@@ -177,8 +177,8 @@ def decode(ds):
 
 def read_dataset(path):
     """The dataset vcor wrote at ``path`` (:func:`write_dataset`), loaded into memory with the names,
-    labels and indexes it had when written (:func:`decode`); a file written before the CF encoding reads
-    the same way.
+    labels and indexes it had when written (:func:`decode`); a file in the layout without
+    ``vcor_name`` attributes reads the same way.
 
     Examples
     --------

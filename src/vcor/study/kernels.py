@@ -76,5 +76,5 @@ def restore_marks(methods, base=".", *, script=None) -> list[str]:
                         f"they compile on first use\n")
         os.utime(path, ns=(dated, dated))
     where = mark(missing[0], base).parent.relative_to(base)
-    return [f"vcor: {where}: the marks of {', '.join(missing)} were missing in a project with results; written "
-            f"again (finished jobs stay finished; kernels compile on first use)"]
+    return [f"vcor: {where}: marks of {', '.join(missing)} written (the project holds results and no marks for "
+            f"them; no action needed: finished jobs stay finished, these kernels compile on first use)"]
