@@ -205,8 +205,9 @@ def explain(error, schema: dict) -> str:
     if rule == "type":
         return f"{where}: expected {_form({'type': error.validator_value})}, got {_short(given)}{text_hint(given)}"
     limits = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}
-    if rule in limits:
-        return f"{where}: must be {limits[rule]} {error.validator_value}, got {_short(given)}"
+    if rule in limits:  # with the property's unit, where the schema names one (its "units" annotation)
+        unit = f" {sub['units']}" if sub.get("units") else ""
+        return f"{where}: must be {limits[rule]} {error.validator_value}{unit}, got {_short(given)}{unit}"
     if rule in ("minItems", "maxItems", "minProperties", "maxProperties"):
         what = "item" if "Items" in rule else "entry"
         bound = "at least" if rule.startswith("min") else "at most"
