@@ -151,6 +151,8 @@ HOSTILE = [
     (_scene(grid={"v0": [1.0], "bta": [600, 1200]}), ["scenes.s.grid.bta", "did you mean 'beta'"]),
     (_scene(grid={"vo": [1.0]}), ["scenes.s.grid", "missing key 'v0'", "'vo' is written: did you mean 'v0'"]),
     ({"shard_size": 0, **_scene()}, ["shard_size", ">= 1"]),
+    (_scene(histories={"v0": 1.0, "runs": [["slx", "direct"]]}),
+     ["scenes.s.histories.runs: 'slx' is not in scenes.s.materials ['sls']; did you mean 'sls'?"]),
     (_scene(histories={"v0": -3, "runs": [["sls", "direct"]]}),
      ["scenes.s.histories.v0: must be > 0 m s-1, got -3 m s-1"]),
     (_scene(geometry={"r": -0.01}), ["scenes.s.geometry.r: must be > 0 m, got -0.01 m"]),

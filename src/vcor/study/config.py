@@ -10,6 +10,7 @@ Every error is a ``ValueError`` whose one-line message starts with the config ke
 
 from __future__ import annotations
 
+import difflib
 import math
 import re
 from pathlib import Path
@@ -268,7 +269,9 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) ->
             raise ValueError(f"{where}.histories.runs: unknown method {method!r}; allowed: "
                              f"{[m for m in METHOD_NAMES if m != 'paper']}")
         if mat not in scene.get("materials", []):
-            raise ValueError(f"{where}.histories.runs: {mat!r} is not in {where}.materials")
+            close = difflib.get_close_matches(str(mat), [str(m) for m in scene.get("materials", [])], n=1, cutoff=0.6)
+            raise ValueError(f"{where}.histories.runs: {mat!r} is not in {where}.materials "
+                             f"{scene.get('materials', [])}" + (f"; did you mean {close[0]!r}?" if close else ""))
         if mat in catalogue.computed():
             continue  # a fit's or calibration's file is written by its rule: its values are checked by the job
         material = catalogue.material(mat)
