@@ -342,6 +342,16 @@ def test_a_maxwell_fluid_gets_a_result_from_every_method(method):
         assert res.validity != 0 and math.isfinite(res.cor)
 
 
+@pytest.mark.parametrize("method", ["direct", "soe", "ive-numba"])
+def test_a_force_creeping_to_zero_is_located_at_its_last_rounding(method):
+    """A Maxwell fluid (alpha = 0, relaxing in a microsecond) on a rigid target: the force creeps to zero
+    over a second and reaches it from 7e-15 N in one step. The separation is located in that step (the
+    bracket is taken at the nodes: the interpolant evaluated there rounded 7e-15 to <= 0 and ive-numba
+    raised RuntimeError 'F does not change sign'); the sphere is captured, COR below 1e-12."""
+    res = vcor.simulate(M.SLS(1.5e7, 0.0, 1e6), 1.0, target="rigid", method=method)
+    assert res.ok and 0.0 <= res.cor < 1e-12 and res.t0 > 1.0, (res.status, res.message, res.cor, res.t0)
+
+
 def test_dma_file_is_checked_before_any_job(tmp_path):
     """A DMA file without its Set column is refused when the config is loaded, naming file and line
     (it failed inside the fit job before)."""

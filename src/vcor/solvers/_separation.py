@@ -105,11 +105,14 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
     t, s, g, F, J, u = nodes
     m, v0 = Body(*body).m, Body(*body).v0
     tn = t[lo:lo + 4]
-    c = _divided(tn, s[lo:lo + 4] if by_overlap else F[lo:lo + 4])
+    y = s if by_overlap else F
+    c = _divided(tn, y[lo:lo + 4])
     a = t[n - 1]
     b = t[n]
-    fa = _newton_value(c, tn, a)
-    fb = _newton_value(c, tn, b)
+    # the bracket's ends are nodes, where the interpolant is the node value; evaluated, a value a few
+    # roundings above zero (a force creeping to zero) could come out <= 0
+    fa = y[n - 1] if lo <= n - 1 else _newton_value(c, tn, a)
+    fb = y[n] if n <= lo + 3 else _newton_value(c, tn, b)
     if not (fa > 0.0 >= fb):
         return False
     t0 = b
