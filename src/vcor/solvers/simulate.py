@@ -3,10 +3,13 @@ the method's runner (``METHODS``, one signature for all) and refines a fixed ste
 
 from __future__ import annotations
 
+import math
+
 from ..contact.impact import GEOMETRY_DEFAULTS, make_impact
 from ..contact.pair import target_inputs
 from . import adaptive, direct, ive, soe
 from .applicability import refusal
+from .common import OUTCOME
 from .options import FIXED_STEP_METHODS, METHOD_NAMES, SolverOptions, solver_options
 from .validity import finalised
 
@@ -126,4 +129,13 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
         res = run(impact, opts.replace(dt=res.t0 / (0.8 * opts.steps_per_contact)), tc, history)
         res.wall_time += wall
         res.message = (res.message + "; " if res.message else "") + "dt refined from the measured t0"
+        if res.ok and res.steps < MIN_STEPS_FRACTION * opts.steps_per_contact:
+            for name in (*OUTCOME, "omega_min"):  # numbers of no contact: none is kept
+                setattr(res, name, math.nan)
+            res.status = "diverged"
+            res.message = (f"the separation came after {res.steps} steps again with dt refined to t0 / "
+                           f"{0.8 * opts.steps_per_contact:g}: it moves with the step (a zero of the force on the "
+                           f"first steps, as on a plate that recedes at once), so it is not a resolved separation; "
+                           f"method adaptive locates a separation on steps far below this one, or reports its step "
+                           f"budget")
     return finalised(res, impact, opts)
