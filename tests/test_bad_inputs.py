@@ -413,3 +413,15 @@ def test_every_number_yaml_reads_as_text_gets_the_fix_in_material_specs_and_in_t
         from_spec({"model": "elastic", "E": value}, name="m")
     with pytest.raises(ValueError, match=rf"scenes\.s\.grid\.v0\[0\].*write {re.escape(fix)}"):
         check_schema({"scenes": {"s": {"materials": ["sls"], "grid": {"v0": [value]}}}}, schema_path())
+
+
+@pytest.mark.filterwarnings("error")
+@pytest.mark.parametrize("spec", [{"model": "fractional", "E0": 1e6, "E1": 0.0},
+                                  {"model": "cerf", "E0": 1e6, "E1": 0.0, "b1": 3.0}])
+@pytest.mark.parametrize("method", ["adaptive", "direct", "soe"])
+def test_a_fractional_or_cerf_law_without_its_transient_is_elastic(spec, method):
+    """E1 = 0 leaves the constant E0: every method solves it as the elastic law of that modulus (same
+    numbers to rounding, no warning); it gave 0/0 RuntimeWarnings and a NaN exponential-sum error."""
+    res = vcor.simulate(spec, 1.0, method=method)
+    ref = vcor.simulate({"model": "elastic", "E": 1e6}, 1.0, method=method)
+    assert res.ok and res.cor == pytest.approx(ref.cor, rel=1e-12, abs=0.0), (res.status, res.message)

@@ -276,6 +276,8 @@ class Impact:
         if g.rigid or g.case == 4:
             return True
         plate = g.plate_material if g.plate_material is not None else self.material
+        if plate.is_elastic:  # (a fractional or CERF law with E1 = 0 too)
+            return True
         if not plate.is_prony:
             return False
         _, e, b = plate.prony_terms()

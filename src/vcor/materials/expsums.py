@@ -145,6 +145,9 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10, from_zero: boo
             e_inf, e, b = material.prony_terms()
             exact = _materials.Prony(float(e_inf), tuple(map(float, e)), tuple(map(float, b)))
         return SOE(material=exact, t_min=t_min, t_max=t_max, bound=0.0, checked_error=0.0, exact=True)
+    if material.is_elastic:  # a law with no transient (a fractional or CERF law with E1 = 0): its constant
+        return SOE(material=_materials.Prony(float(material.relaxation_modulus(t_max)), (), ()), t_min=t_min,
+                   t_max=t_max, bound=0.0, checked_error=0.0, exact=True)
     lo, hi = math.floor(math.log2(t_min)), math.ceil(math.log2(t_max))
     if isinstance(material, _materials.EqOne):
         return _fit_cached(material, lo, hi, tol, bool(from_zero))

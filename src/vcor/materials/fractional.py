@@ -51,6 +51,8 @@ class FractionalPower(Material, kind="fractional"):
 
     def relaxation_modulus(self, t):
         t = np.asarray(t, dtype=float)
+        if self.E1 == 0:  # elastic (0 / 0 at t = 0 otherwise)
+            return np.full_like(t, float(self.E0))
         with np.errstate(divide="ignore"):
             return self.E0 + self.E1 / np.sqrt(math.pi * t)
 
@@ -69,6 +71,8 @@ class FractionalPower(Material, kind="fractional"):
 
     def relaxation_rate(self, t):
         t = np.asarray(t, dtype=float)
+        if self.E1 == 0:
+            return np.zeros_like(t)
         with np.errstate(divide="ignore"):
             return -0.5 * self.E1 / (_SQRT_PI * t**1.5)
 

@@ -109,10 +109,12 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
     c = _divided(tn, y[lo:lo + 4])
     a = t[n - 1]
     b = t[n]
-    # the bracket's ends are nodes, where the interpolant is the node value; evaluated, a value a few
-    # roundings above zero (a force creeping to zero) could come out <= 0
-    fa = y[n - 1] if lo <= n - 1 else _newton_value(c, tn, a)
-    fb = y[n] if n <= lo + 3 else _newton_value(c, tn, b)
+    fa = _newton_value(c, tn, a)
+    fb = _newton_value(c, tn, b)
+    if not (fa > 0.0 >= fb) and lo <= n - 1 and n <= lo + 3:
+        # the bracket's ends are nodes, where the interpolant is the node value; evaluated, a value a few
+        # roundings from zero (a force creeping to zero) may round across it
+        fa, fb = y[n - 1], y[n]
     if not (fa > 0.0 >= fb):
         return False
     t0 = b
