@@ -342,6 +342,22 @@ def test_a_maxwell_fluid_gets_a_result_from_every_method(method):
         assert res.validity != 0 and math.isfinite(res.cor)
 
 
+@pytest.mark.parametrize("method", ["adaptive", "direct", "soe", "ive-numba"])
+def test_a_maxwell_plate_relaxing_within_the_contact_gets_one_verdict(method):
+    """SLS(1.5e7, alpha=0, beta=1e6) on the default plate: its modulus falls below 1e-12 of the glassy value
+    within the contact. Every march is diverged with the same cause and what to do (adaptive said "Newton
+    iteration failed ...; try method adaptive" while its modulus was 1e-112 Pa, above zero)."""
+    res = vcor.simulate(M.SLS(1.5e7, 0.0, 1e6), 1.0, method=method)
+    assert res.status == "diverged" and "relaxed to zero" in res.message and "alpha > 0" in res.message, res.message
+    assert "try method adaptive" not in res.message
+
+
+def test_ive_reports_its_largest_step_and_plain_floats():
+    """ive's result gives its largest solve_ivp step as dt (s; it was NaN on an ok result) and plain floats."""
+    res = vcor.simulate("sls", 1.0, method="ive")
+    assert res.ok and math.isfinite(res.dt) and 0.0 < res.dt < res.t0 and type(res.cor) is float
+
+
 @pytest.mark.parametrize("method", ["direct", "soe", "ive-numba"])
 def test_a_force_creeping_to_zero_is_located_at_its_last_rounding(method):
     """A Maxwell fluid (alpha = 0, relaxing in a microsecond) on a rigid target: the force creeps to zero

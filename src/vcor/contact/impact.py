@@ -31,8 +31,8 @@ from ..checks import interned, number
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 
-__all__ = ["DENSITIES", "GEOMETRY_AXES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "Geometry", "Impact",
-           "make_impact"]
+__all__ = ["DENSITIES", "GEOMETRY_AXES", "GEOMETRY_DEFAULTS", "GLASSY_TIME_CAP", "RANGES", "RELAXED_TO_ZERO",
+           "Geometry", "Impact", "make_impact"]
 
 #: densities (kg/m^3) used when rho_a / rho_b are not given: the viscoelastic body is the paper's polymer
 #: (1100), a stiff elastic one steel (7800). Case 1 and 3: steel sphere on a polymer plate; case 2: both
@@ -49,6 +49,10 @@ RANGE_UNITS = {"r": "m", "rho_a": "kg/m^3", "rho_b": "kg/m^3", "h": "m", "E_plat
 #: estimate has no fixed point; it is then at most this many times the elastic contact time of the
 #: glassy modulus (solids, rubbery modulus > 0, are bounded by their rubbery contact time and not capped)
 GLASSY_TIME_CAP = 1024.0
+#: a plate of a fluid (rubbery modulus 0) whose modulus has fallen below this fraction of its glassy value
+#: has a mobility that no step follows (Zener's mobility grows as E'_b^-1/2): a march that fails there says
+#: so (:meth:`Impact.unbounded_mobility`)
+RELAXED_TO_ZERO = 1e-12
 
 GEOMETRY_DEFAULTS = {
     "r": 0.010,  # sphere radius, m
@@ -288,10 +292,16 @@ class Impact:
         relaxed to zero (a Maxwell fluid, rubbery modulus 0), where Zener's mobility
         sqrt(3 rho_b / E'_b) / (16 rho_b h^2) has no bound."""
         g = self.geometry
-        if g.rigid or g.case == 4 or not math.isfinite(t) or float(self._plate_modulus(t)) > 0.0:
+        if g.rigid or g.case == 4 or not math.isfinite(t):
             return ""
         plate = g.plate_material if g.plate_material is not None else self.material
-        return (f"the plate's modulus E'_b(t) has relaxed to zero by t = {t:.6g} s (plate material {plate.kind} "
+        now = float(self._plate_modulus(t))
+        # zero in floating point, or (a fluid: rubbery modulus 0) below RELAXED_TO_ZERO of its glassy value,
+        # where the mobility outgrows any step
+        if now > 0.0 and not (plate.rubbery == 0.0 and now <= RELAXED_TO_ZERO * float(self._plate_modulus(0.0))):
+            return ""
+        return (f"the plate's modulus E'_b(t) has relaxed to zero ({now:.3g} Pa) by t = {t:.6g} s (plate material "
+                f"{plate.kind} "
                 f"{plate.params()}, rubbery modulus {plate.rubbery:g} Pa: a Maxwell fluid, e.g. SLS alpha = 0), "
                 f"where Zener's plate mobility sqrt(3 rho_b / E'_b) / (16 rho_b h^2) is unbounded: give the plate "
                 f"a rubbery modulus > 0 (SLS alpha > 0), or take a rigid target (rigid=True) or case 4")

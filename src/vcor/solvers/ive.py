@@ -239,7 +239,7 @@ def _record(res, system, sol):
     ts = sol.t
     Fs = np.array([system.parts(tt, yy)[0] for tt, yy in zip(ts, sol.y.T)])
     res.t0 = t0
-    res.cor = abs(g0) / v0
+    res.cor = float(abs(g0) / v0)
     res.s_residual = float(y[0])
     res.w_h = float(w_h)
     res.w_plate = float(w_z - w_h)
@@ -307,7 +307,8 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
                               f"without the contact force returning to zero; raise max_steps, or use method "
                               f"adaptive (it solves long contacts such as thin plates)")
     wall = time.perf_counter() - t_start
-    res = Result(method=name, steps=int(sol.t.size), wall_time=wall, dt=math.nan, soe_error=system.sum_error)
+    largest = float(np.max(np.diff(sol.t))) if sol.t.size > 1 else float(sol.t[-1])  # solve_ivp's largest step
+    res = Result(method=name, steps=int(sol.t.size), wall_time=wall, dt=largest, soe_error=system.sum_error)
     refusal = _refusal(sol, method, t_end, impact)
     if refusal is not None:
         res.status, res.message = refusal

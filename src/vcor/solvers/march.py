@@ -186,9 +186,11 @@ def finish(impact, march: March, *, rule, history, method):
     elif status == STATUS_DIVERGED:
         res.status = "diverged"
         cause = impact.unbounded_mobility(float(t[-1]))
+        instead = ("a smaller step_tol" if method.startswith("adaptive") else
+                   "method adaptive, or a smaller dt (or a larger steps_per_contact)")
         res.message = (f"the march stopped at step {n_done}: {cause}" if cause else
                        f"Newton iteration failed or a non-finite value appeared at step {n_done} "
-                       f"(t = {t[-1]:.6g} s, step {dt:.3g} s); try method adaptive, or a smaller step (dt or step_tol)")
+                       f"(t = {t[-1]:.6g} s, step {dt:.3g} s); try {instead}")
     else:
         res.status = "step-budget"
         res.message = march.budget
