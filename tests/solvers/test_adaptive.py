@@ -567,3 +567,12 @@ def test_a_cerf_plate_of_large_b1_in_closed_form_equals_its_exponential_sum(b1, 
     summed = vcor.simulate(material, 10.0)
     assert closed.ok and summed.ok
     assert closed.cor == pytest.approx(summed.cor, rel=1e-9)
+
+
+def test_a_failed_replay_names_the_users_budget():
+    """A Richardson replay that runs out of steps says which grid it was and its budget as a multiple of
+    the user's max_adaptive_steps (it said "of an ok adaptive run" and a budget the user never set)."""
+    res = vcor.simulate("sls", 1.0, h=1e-9, max_adaptive_steps=2000)
+    assert res.status == "step-budget", (res.status, res.message)
+    assert "replay of the accepted grid with every step divided by" in res.message
+    assert "max_adaptive_steps = 4 x 2000" in res.message or "max_adaptive_steps = 2 x 2000" in res.message

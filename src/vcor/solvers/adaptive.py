@@ -486,8 +486,8 @@ def _run_on_floor(impact, tc, h_base, factor, one_call_path, opts):
         march.wall = time.perf_counter() - t_start
         run = finish(impact, march, rule=rule, history=last, method="adaptive")
         if not run.ok:
-            run.message = (f"the replay on the grid divided by {2**shift} of an ok adaptive run failed: "
-                           f"{run.message}")
+            said = run.message.replace(f"steps = {2**shift * max_steps}", f"steps = {2**shift} x {max_steps}")
+            run.message = f"the replay of the accepted grid with every step divided by {2**shift} failed: {said}"
             return run
         runs.append(run)
     fine = runs[-1]
