@@ -441,3 +441,16 @@ def test_a_fractional_or_cerf_law_without_its_transient_is_elastic(spec, method)
     res = vcor.simulate(spec, 1.0, method=method)
     ref = vcor.simulate({"model": "elastic", "E": 1e6}, 1.0, method=method)
     assert res.ok and res.cor == pytest.approx(ref.cor, rel=1e-12, abs=0.0), (res.status, res.message)
+
+
+@pytest.mark.parametrize("target, words", [
+    ({"sphere": {"r": 1e-12}}, "target.sphere.r must be in [1e-09, 1000] m, got 1e-12"),
+    ({"sphere": {"rho": 1e-6}}, "target.sphere.rho must be in [0.001, 1e+06] kg/m^3, got 1e-06"),
+    ({"plate": {"h": 1e-12}}, "target.plate.h must be in [1e-09, 1000] m, got 1e-12"),
+])
+def test_a_target_body_out_of_range_is_named_as_written(target, words):
+    """The target's own radius, thickness and density are checked against the geometry's ranges and named
+    as the user wrote them (the reduced radius or density of the pair was named before)."""
+    with pytest.raises(ValueError) as err:
+        vcor.simulate("sls", 1.0, target=target)
+    assert str(err.value) == words

@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import functools
 import json
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,7 +43,7 @@ import numpy as np
 from ..materials import models as _materials
 from ..materials.presets import PRESETS, get
 from ..materials.specs import from_spec
-from .impact import DENSITIES, GEOMETRY_DEFAULTS
+from .impact import DENSITIES, GEOMETRY_DEFAULTS, RANGES
 
 __all__ = ["BODY_KEYS", "Body", "body_from_spec", "eq_one", "impact_inputs", "scene_bodies", "series_modulus"]
 
@@ -118,7 +117,7 @@ def body_from_spec(kind: str, spec: dict, swept=None, where: str | None = None) 
     >>> body_from_spec("sphere", {"material": "sls", "r": -1})
     Traceback (most recent call last):
     ...
-    ValueError: sphere.r must be in (0, inf) m, got -1
+    ValueError: sphere.r must be in [1e-09, 1000] m, got -1
     """
     where = where or kind
     if not isinstance(spec, dict):
@@ -134,11 +133,13 @@ def body_from_spec(kind: str, spec: dict, swept=None, where: str | None = None) 
     family = "steel" if stiff else "polymer"
     size_key = "r" if kind == "sphere" else "h"
     size = spec.get(size_key, GEOMETRY_DEFAULTS["r"] if kind == "sphere" else None)
-    if size is not None and not (isinstance(size, (int, float)) and 0 < size < math.inf):
-        raise ValueError(f"{where}.{size_key} must be in (0, inf) m, got {size!r}")
+    lo, hi = RANGES[size_key]  # the ranges of the geometry's own r and h, and of its densities
+    if size is not None and not (isinstance(size, (int, float)) and lo <= size <= hi):
+        raise ValueError(f"{where}.{size_key} must be in [{lo:g}, {hi:g}] m, got {size!r}")
     rho = spec.get("rho", DENSITIES[family])
-    if not (isinstance(rho, (int, float)) and 0 < rho < math.inf):
-        raise ValueError(f"{where}.rho must be in (0, inf) kg/m^3, got {rho!r}")
+    lo, hi = RANGES["rho_a"]
+    if not (isinstance(rho, (int, float)) and lo <= rho <= hi):
+        raise ValueError(f"{where}.rho must be in [{lo:g}, {hi:g}] kg/m^3, got {rho!r}")
     nu = spec.get("nu", NU_DEFAULTS[family])
     if not (isinstance(nu, (int, float)) and -1 < nu <= 0.5):
         raise ValueError(f"{where}.nu must be in (-1, 0.5], got {nu!r}")
