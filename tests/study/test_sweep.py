@@ -74,8 +74,19 @@ def test_bad_input_is_refused_before_any_work_naming_the_argument(monkeypatch, k
 
 def test_a_config_file_is_named_in_its_refusals(tmp_path):
     (tmp_path / "my.yaml").write_text("scenes:\n  s: {materials: [sls], grid: {v0: [1], bta: [2]}}\n")
-    with pytest.raises(ValueError, match=r"^config '.*my.yaml': scenes\.s\.grid\.bta: "):
+    with pytest.raises(ValueError, match=r"^config file .*my.yaml, line 2, column 41: scenes\.s\.grid\.bta: "):
         vcor.sweep("s", config=tmp_path / "my.yaml")
+
+
+def test_inline_material_specs_are_taken_as_simulate_takes_them():
+    """A scene's materials list takes a spec {model: ..., parameters} as simulate does (named like a material
+    object); a bad one is refused naming its place in the list."""
+    spec = {"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0}
+    ds = vcor.sweep({"materials": [spec, "sls"], "grid": {"v0": [1.0]}}, workers=1, progress=False)
+    name = str(ds["material"].values[0])
+    assert name.startswith("sls-") and float(ds["cor"].sel(material=name, v0=1.0)) == vcor.simulate(spec, 1.0).cor
+    with pytest.raises(ValueError, match=r"scene\.materials\[0\]\.E_glassy must be in \(0, inf\) Pa"):
+        vcor.sweep({"materials": [{**spec, "E_glassy": -1.0}], "grid": {"v0": [1.0]}}, progress=False)
 
 
 def test_material_objects_and_numpy_grids_are_taken():

@@ -23,8 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.yamlplace import located
 from ..materials.catalogue import Catalogue, content_hash
 from ..materials.models import Material
+from ..materials.specs import from_spec
 from .config import SCENE_NAME_PATTERN, load_project
 from .project import Project
 from .schema import check_keys, check_schema
@@ -138,6 +140,10 @@ def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None) ->
         text = str(exc)
         if rename is not None:
             text = re.sub(rf"^{re.escape(rename[0])}(?=[.:\[ ]|$)", rename[1], text)
+        elif isinstance(config, (str, Path)):  # an entry of the file: where it is in the file
+            placed = located(text, [config])
+            if placed != text:
+                raise type(exc)(placed) from None
         raise type(exc)(f"{_where(config)}{text}") from None
 
 
@@ -177,14 +183,17 @@ def resolve_entry(section: str, entry, name, config, argument: str) -> Resolved:
 
 
 def _objects_named(scene: dict, cfg: dict) -> dict:
-    """The scene with each material object of its list replaced by a config material's name (added to
-    ``cfg``'s materials block)."""
+    """The scene with each material object or inline spec (a mapping with ``model``, as ``simulate`` takes
+    it) of its list replaced by a config material's name (added to ``cfg``'s materials block)."""
     materials = scene.get("materials")
-    if not isinstance(materials, (list, tuple)) or not any(isinstance(m, Material) for m in materials):
+    inline = (Material, dict)
+    if not isinstance(materials, (list, tuple)) or not any(isinstance(m, inline) for m in materials):
         return scene
     block = dict(cfg.get("materials") or {})
     names = []
-    for m in materials:
+    for i, m in enumerate(materials):
+        if isinstance(m, dict):
+            m = from_spec(m, where=f"scene.materials[{i}]")  # checked, then written as its canonical spec
         if isinstance(m, Material):
             names.append(_object_name(m))
             block[names[-1]] = spec_of(m)
