@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 import vcor
 from vcor.contact import bodies, pair
 from vcor.contact.impact import make_impact
-from vcor.solvers import adaptive
+from vcor.solvers import adaptive, extrapolation
 from vcor.solvers import reference as R
 
 PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
@@ -93,7 +93,7 @@ def test_graded_grids_error_expansion(name, monkeypatch):
     print(f"\n{name}: single-grid orders COR " + " ".join(f"{o:.2f}" for o in orders(cor)) + ", t0 "
           + " ".join(f"{o:.2f}" for o in orders(t0)))
     assert abs(orders(cor)[-1] - 2.0) < 0.15 and abs(orders(t0)[-1] - 2.0) < 0.15
-    lo, hi = adaptive.RICHARDSON_RATIO
+    lo, hi = extrapolation.RICHARDSON_RATIO
     for x in (cor, t0):
         d = np.diff(x[:adaptive.SPLIT_LEVELS + 1])
         assert lo <= d[-2] / d[-1] <= hi

@@ -21,7 +21,8 @@ to the motion's own scale, so that long contacts whose motion has slowed by orde
 their separation time (with v0 as the scale, t0 of the 1 mm SLS plate is 6-12 % off). Steps are not
 refined below h_base (t_c / 65536 .. t_c / 131072), where the test is waived: near t = 0 the exact
 solution's u = s^3/2 makes g'' ~ t^-1/2 and the local errors there are O(h^2.5), far below the
-global error. A separation is located on a step <= t / SEP_STEPS;
+global error. A separation is located on a step <= t / SEP_STEPS (finer where an exact exponential mode
+would relax within it: :func:`separation_steps`);
 the time horizon starts at HORIZON_START t_c and grows by 32 up to MAX_HORIZON t_c (the march is
 restarted with an exponential sum for the longer horizon) before the run ends as ``step-budget``.
 
@@ -63,19 +64,23 @@ from ._records import (
     Stop,
 )
 from .common import OUTCOME, Result, separation_scalars
+from .extrapolation import extrapolate, weights_for
 from .march import N_EXTRA, Arrays, March, finish
 
-__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "RESOLVED_DECAY",
-           "RICHARDSON_WEIGHTS", "SEP_STEPS", "SMOOTH_GRIDS", "SMOOTH_WEIGHTS", "PlateTables", "Tables",
-           "grid_count", "grid_outcomes", "impact_tables", "level_tables", "one_call", "plate_kind", "plate_record",
-           "plate_tables", "richardson_outcome", "run_adaptive", "slope_weights", "smooth_step", "solve"]
+__all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "MAX_SEP_STEPS",
+           "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_DECAY", "SEP_STEPS", "SMOOTH_GRIDS", "SMOOTH_WEIGHTS",
+           "PlateTables", "Tables", "exact_rate", "grid_count", "grid_outcomes", "impact_tables", "level_tables",
+           "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome", "run_adaptive",
+           "separation_steps", "slope_weights", "smooth_step", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
 #: first step, in levels above the floor (t_c / 8192 .. t_c / 16384)
 START_LEVEL = 3
-#: separation is located on a step <= t / SEP_STEPS
+#: separation is located on a step <= t / SEP_STEPS, or finer for fast modes (:func:`separation_steps`)
 SEP_STEPS = 1024
+MAX_SEP_STEPS = 16384
+SEP_DECAY = 0.1
 #: time horizon: start and largest, in contact-time estimates
 HORIZON_START = 64.0
 MAX_HORIZON = 2.0**30
@@ -236,26 +241,38 @@ def plate_record(impact, tables: Tables, kind: int) -> tuple[Plate, float]:
 
 def smooth_step(impact, kind: int | None = None) -> float:
     """The largest step (s) of an accepted grid on which the error has no h^3.5 term
-    (``SMOOTH_EXPONENTS``): RESOLVED_DECAY over the fastest rate (1/s) of the kernel's and the plate's
-    exponential modes, or 0 where the error may have that term at any step:
-    a kernel that is not an exact exponential sum or has a Dirac term (Kelvin-Voigt), an elastic kernel
-    (its force vanishes with the overlap, as ``|t - t0|^1.5``: the step across the separation leaves an error
-    that depends on where t0 falls in it, which three grids do not remove), a plate whose modulus is in
-    closed form (:func:`plate_kind` 2, 3) or not an exact exponential sum. ``kind``: the
+    (``SMOOTH_EXPONENTS``): RESOLVED_DECAY over :func:`exact_rate`, or 0 where the error may have that term
+    at any step: a kernel or plate that is not an exact exponential sum without a Dirac term, an elastic
+    kernel (its force vanishes with the overlap, as ``|t - t0|^1.5``: the step across the separation leaves
+    an error that depends on where t0 falls in it, which three grids do not remove). ``kind``: the
     impact's :func:`plate_kind`, where the caller has it. Also 0 where RESOLVED_DECAY is 0 or the grid
     constants have been set to another number of grids (SMOOTH_GRIDS is then not GRIDS - 1: benchmarks)."""
-    mat = impact.material
-    if (not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or not mat.is_prony or mat.viscosity != 0.0
-            or mat.is_elastic):
+    if not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or impact.material.is_elastic:
         return 0.0
-    kind = plate_kind(impact) if kind is None else kind
-    plate = impact.geometry.plate_material
-    if kind >= 2 or (kind == 1 and plate is not None and not (plate.is_prony and plate.viscosity == 0.0)):
-        return 0.0
-    rate = mat.fastest_rate
-    if kind == 1 and plate is not None:
-        rate = max(rate, plate.fastest_rate)
-    return RESOLVED_DECAY / rate if rate > 0.0 else math.inf
+    rate = exact_rate(impact, plate_kind(impact) if kind is None else kind)
+    return 0.0 if rate < 0.0 else RESOLVED_DECAY / rate if rate > 0.0 else math.inf
+
+
+def exact_rate(impact, kind: int) -> float:
+    """The fastest rate (1/s) of the kernel's and the plate's exponential modes where both are exact
+    exponential sums without a Dirac term (0: no modes), or -1 where not (fractional, CERF, Kelvin-Voigt,
+    a plate in closed form: :func:`plate_kind` 2, 3). ``kind``: the impact's :func:`plate_kind`."""
+    mat, plate = impact.material, impact.geometry.plate_material
+    if (not mat.is_prony or mat.viscosity != 0.0 or kind >= 2
+            or (kind == 1 and plate is not None and not (plate.is_prony and plate.viscosity == 0.0))):
+        return -1.0
+    return max(mat.fastest_rate, plate.fastest_rate) if kind == 1 and plate is not None else mat.fastest_rate
+
+
+def separation_steps(rate: float, tc: float) -> int:
+    """A separation is located on a step <= t / this: SEP_STEPS, doubled (up to MAX_SEP_STEPS) until the
+    fastest exact mode (``rate``, 1/s; :func:`exact_rate`) decays by at most SEP_DECAY over a step of
+    ``tc`` / it (s): a mode relaxing within the separation step leaves t0 with an error that follows no
+    power of the step (bench_grids.py: up to 1e-4 at SEP_STEPS)."""
+    n = SEP_STEPS
+    while n < MAX_SEP_STEPS and n * SEP_DECAY < rate * tc:
+        n *= 2
+    return n
 
 
 def grid_count(largest_step: float, smooth: float) -> int:
@@ -287,7 +304,8 @@ class _Grid:
 
 def _tables_for(impact, h_base, factor, tol, kind):
     """(horizon (s), number of levels, tables, plate record as a plain tuple, largest relative error of
-    the kernel's and the plate's exponential sums, :func:`smooth_step`) for the horizon ``factor`` estimates.
+    the kernel's and the plate's exponential sums, :func:`smooth_step`, :func:`exact_rate`) for the horizon
+    ``factor`` estimates.
     They depend on the impact's material and geometry, not on its speed: cached on those (a sweep's points
     and repeated calls share them). The key also holds the module's grid constants and its
     :func:`level_tables` as they are at the call, so that a benchmark or test that sets them is never
@@ -308,7 +326,8 @@ def impact_tables(material, geometry, h_base, factor, tol, kind, module):
     tables = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                           2.0 * horizon, tol)
     plate, plate_error = plate_record(impact, tables, kind)
-    return horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), smooth_step(impact, kind)
+    return (horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), smooth_step(impact, kind),
+            exact_rate(impact, kind))
 
 
 def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind):
@@ -316,12 +335,13 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
     Returns (March, levels, horizon, factor)."""
     plan = _NO_PLAN if grid.plan is None else grid.plan
     while True:
-        horizon, n_levels, tables, plate, soe_error, _ = _tables_for(impact, grid.h_base, factor, tol, kind)
+        horizon, n_levels, tables, plate, soe_error, _, rate = _tables_for(impact, grid.h_base, factor, tol, kind)
         nk = tables.levels.mode_decay.shape[1]
         modes = tuple(Modes(np.zeros(nk), np.ones(Plate(*plate).moduli.size)))
         first = START_LEVEL if grid.fixed_level is None else int(grid.fixed_level)
         lo, hi = (0, n_levels - 1) if grid.fixed_level is None else (first, first)
-        control = tuple(AdaptiveControl(step_tol, 1.0 / grid.tc, lo, hi, horizon, 1.0 / SEP_STEPS, ghost))
+        control = tuple(AdaptiveControl(step_tol, 1.0 / grid.tc, lo, hi, horizon, 1.0 / separation_steps(rate, grid.tc),
+                                        ghost))
         state = np.array([0, -1, 0, STATUS_RUNNING, 0, 0, first, 0], dtype=np.int64)
         size = INITIAL_SIZE if plan.size == 0 else plan.size + 2 * N_EXTRA + 8
         arr = Arrays(min(size, max_steps))
@@ -368,52 +388,25 @@ def _budget_text(t, n_done, horizon, factor, max_steps):
 #: impact, against the quadratic u' of the newest step) and h^4 (every kernel). The second-order slopes
 #: and the newest step's curvature term (``_adaptive_kernels``) leave no h^3 term, and the grading near
 #: t = 0 (steps of h_base where u = s^{3/2} is not smooth) leaves the h^2.5 term of uniform grids below
-#: the others. Measured at 1 m/s and step_tol 2e-3: the differences of the grids h .. h/32 with the h^2
-#: term removed fall as h^3.2..h^3.8 (fractional, Kelvin-Voigt) and h^3.8..h^4.2 (the other presets)
-#: (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``); against independent
-#: references at 0.001..300 m/s (benchmarks/bench_accuracy.py) the exponents (2, 3.5, 4) leave half the
-#: error of (2, 3, 4) at equal steps
+#: the others: with h^2 removed the grids' differences fall as h^3.3..h^3.8 (fractional, Kelvin-Voigt)
+#: and h^3.8..h^4.5 (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``); against
+#: independent references (bench_accuracy.py) (2, 3.5, 4) leave half the error of (2, 3, 4)
 RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
-#: weights of the grids' values (coarse to fine): w with sum_j w_j 2^(-p j) = 0 for every exponent p
-#: and sum_j w_j = 1 (solved, not inverted: they sum to 1 to rounding)
-def _weights_for(exponents) -> tuple:
-    """Weights of the values on grids h, h/2, h/4, ... (one more grid than exponents) that sum to 1 and
-    remove the error terms h^p of ``exponents`` (solved, not inverted: they sum to 1 to rounding)."""
-    n = len(exponents) + 1
-    rows = np.array([[1.0] + [2.0 ** (-p * j) for p in exponents] for j in range(n)])
-    return tuple(float(w) for w in np.linalg.solve(rows.T, np.eye(n)[0]))
-
-
-RICHARDSON_WEIGHTS = _weights_for(RICHARDSON_EXPONENTS)
+RICHARDSON_WEIGHTS = weights_for(RICHARDSON_EXPONENTS)
 #: Three grids (the accepted grid, every step divided by 2 and 4) eliminating h^2 and h^4, where the error
 #: has no h^3.5 term: a relaxing kernel that is an exact exponential sum (Prony, SLS; no Dirac term, no
 #: t^-1/2 singularity) on a rigid target, a plate of constant mobility or one whose modulus is an exact
 #: exponential sum, and every one of their modes resolved on the accepted grid (rate times the largest
-#: step <= RESOLVED_DECAY; :func:`grid_count`). With h^2 removed, the grids' differences of these kernels
-#: fall as h^3.8..h^4.4 (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``); modes
-#: that relax within a step leave a pre-asymptotic error that three grids do not remove and four do
-#: (``benchmarks/bench_grids.py``: SLS of rates 1e2..1e5 1/s, glassy/rubbery 4 and 50, plate and
-#: sphere pair, 0.001..100 m/s, against scipy Radau at rtol 1e-12)
+#: step <= RESOLVED_DECAY; :func:`grid_count`); modes that relax within a step leave a pre-asymptotic
+#: error that three grids do not remove and four do (``benchmarks/bench_grids.py``, SLS family)
 SMOOTH_EXPONENTS = (2.0, 4.0)
-SMOOTH_WEIGHTS = _weights_for(SMOOTH_EXPONENTS)
+SMOOTH_WEIGHTS = weights_for(SMOOTH_EXPONENTS)
 #: a mode of rate b is resolved on a grid whose largest step h has b h <= RESOLVED_DECAY (it decays by at
 #: most 10 % over any step); the three grids' largest COR error on bench_grids.py's SLS family at step_tol
 #: 4e-4 stays below 1e-7 up to b h = 0.1 and reaches 1.5e-7..2.2e-7 at b h = 0.5..1
 RESOLVED_DECAY = 0.1
-#: ... only where t0 and the COR each show that the grids are in the asymptotic range: either the
-#: coarse and the finest grid agree to RICHARDSON_GAP (t0 relative; COR relative plus COR_FLOOR
-#: absolute), or the ratio of successive differences of the three finest grids,
-#: (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for the leading h^2 error; measured
-#: 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two error terms of opposite sign the
-#: ratio alone can leave the band where the grids agree closely, which the gap test covers). Otherwise
-#: (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens of per cent apart, erratic
-#: ratios) the values of the finest grid are kept and the message says so
-RICHARDSON_GAP = 1e-3
-COR_FLOOR = 1e-9
-RICHARDSON_RATIO = (2.5, 8.0)
 #: scalars of a Result that are Richardson-extrapolated: all of a separation's outcome (omega_min follows t0)
 EXTRAPOLATED = OUTCOME
-_COR, _T0 = OUTCOME.index("cor"), OUTCOME.index("t0")
 
 
 def run_adaptive(impact, tc, *, step_tol, max_steps, rule="force", history=False, ghost=0.0, tol=1e-10,
@@ -522,8 +515,8 @@ def grid_outcomes(impact, tc, n_grids, *, step_tol, max_steps, rule, tol, fewer=
 def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth):
     """(rows, the exponential sums' relative error) of :func:`grid_outcomes`; rows None where declined.
     ``smooth``: :func:`smooth_step` (None: the impact's, cached with its tables), or 0 for all ``n_grids``."""
-    horizon, n_levels, tables, plate, soe_error, own = _tables_for(impact, h_base, HORIZON_START, tol, kind)
-    control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / SEP_STEPS, 0.0)  # an AdaptiveControl
+    horizon, n_levels, tables, plate, soe_error, own, rate = _tables_for(impact, h_base, HORIZON_START, tol, kind)
+    control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / separation_steps(rate, tc), 0.0)  # AdaptiveControl
     out = np.empty((max(GRIDS, n_grids), 11))
     done = adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, _STOPS[rule],
                           max_steps, START_LEVEL, INITIAL_SIZE, out, own if smooth is None else smooth)
@@ -546,55 +539,6 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
 
 
 def richardson_outcome(runs):
-    """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (GRIDS rows with
-    ``RICHARDSON_WEIGHTS``, or SMOOTH_GRIDS rows with ``SMOOTH_WEIGHTS``; per grid, coarse to fine, its
-    OUTCOME values in that order; further values ignored; lists of floats or an array) and "", or, where
-    the grids are not in the asymptotic range (RICHARDSON_GAP, RICHARDSON_RATIO) or the extrapolated COR
-    is negative, the finest grid's values and a message saying why (values: a list)."""
-    rows = runs.tolist() if isinstance(runs, np.ndarray) else runs
-    first, last = rows[0], rows[-1]
-    n = len(OUTCOME)
-    weights = RICHARDSON_WEIGHTS if len(rows) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS
-    if len(rows) != len(weights):
-        raise ValueError(f"{len(rows)} grids: Richardson weights are for {len(RICHARDSON_WEIGHTS)} or "
-                         f"{len(SMOOTH_WEIGHTS)}")
-    extrapolated = _weighted(weights, rows)[:n]
-    cor = extrapolated[_COR]
-    if cor < 0.0:
-        # a COR of ~1e-11 (a creeping thin plate) within COR_FLOOR on every grid: the extrapolation
-        # may leave the physical range; keep the finest grid's value rather than store a negative COR
-        return last[:n], (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
-                          f"{', '.join(f'{r[_COR]:.3g}' for r in rows)}); values of the finest grid")
-    gap_t0, gap_cor = abs(last[_T0] - first[_T0]) / last[_T0], abs(last[_COR] - first[_COR])
-    lo, hi = RICHARDSON_RATIO
-    if not ((gap_t0 <= RICHARDSON_GAP or lo <= _difference_ratio(rows, _T0) <= hi)
-            and (gap_cor <= RICHARDSON_GAP * last[_COR] + COR_FLOOR or lo <= _difference_ratio(rows, _COR) <= hi)):
-        # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
-        return last[:n], (
-            f"not Richardson-extrapolated: the grid and the finest grid (every step divided by "
-            f"{2**(len(rows) - 1)}) differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} (COR), and the "
-            f"differences between the three finest grids do not shrink as h^2 (ratios "
-            f"{_difference_ratio(rows, _T0):.3g} for t0, {_difference_ratio(rows, _COR):.3g} for the COR; "
-            f"asymptotically 4); values of the finest grid")
-    return extrapolated, ""
-
-
-
-def _weighted(weights, rows):
-    """sum_j weights[j] rows[j], element by element (rows: lists of floats; written out for three and four
-    grids, where numpy's call overhead would be most of the work)."""
-    if len(rows) == 3:
-        w0, w1, w2 = weights
-        return [w0 * a + w1 * b + w2 * c for a, b, c in zip(*rows)]
-    if len(rows) == 4:
-        w0, w1, w2, w3 = weights
-        return [w0 * a + w1 * b + w2 * c + w3 * d for a, b, c, d in zip(*rows)]
-    return (np.array(weights) @ np.array(rows)).tolist()
-
-
-def _difference_ratio(rows, i):
-    """(x0 - x1) / (x1 - x2) of the values ``rows[j][i]`` on the three finest grids h, h/2, h/4 (4 for h^2
-    errors)."""
-    a, b, c = (r[i] for r in rows[-3:])
-    d1, d2 = a - b, b - c
-    return d1 / d2 if d2 != 0.0 else math.inf
+    """(values, message) of :func:`vcor.solvers.extrapolation.extrapolate` for ``runs`` (GRIDS rows, coarse to
+    fine: ``RICHARDSON_WEIGHTS``; SMOOTH_GRIDS rows: ``SMOOTH_WEIGHTS``)."""
+    return extrapolate(runs, (RICHARDSON_WEIGHTS, SMOOTH_WEIGHTS))
