@@ -576,3 +576,19 @@ def test_a_failed_replay_names_the_users_budget():
     assert res.status == "step-budget", (res.status, res.message)
     assert "replay of the accepted grid with every step divided by" in res.message
     assert "max_adaptive_steps = 4 x 2000" in res.message or "max_adaptive_steps = 2 x 2000" in res.message
+
+
+@pytest.mark.parametrize("rate, v0, target", [(3.16e6, 0.001, {"sphere": {}}), (3.16e6, 1.0, "plate"),
+                                              (1e7, 10.0, "plate")])
+def test_the_separation_step_resolves_the_fastest_mode(rate, v0, target):
+    """SLS laws whose mode relaxes within a tenth of the accepted grid's step (glassy/rubbery 4): the
+    separation is located on steps the mode decays by at most SEP_DECAY over (``separation_steps``), so
+    that t0 is within 1e-5 of ive (rtol 1e-12); on steps of t / SEP_STEPS alone it was 1.1e-4, 2.7e-5 and
+    1.3e-5 off (bench_grids.py, the SLS family)."""
+    material = vcor.materials.SLS(1.5e7, rate / 4.0, rate)
+    res = vcor.simulate(material, v0, target=target)
+    ref = vcor.simulate(material, v0, target=target, method="ive", rtol=1e-12)
+    assert res.ok and abs(res.t0 / ref.t0 - 1.0) < 1e-5 and abs(res.cor / ref.cor - 1.0) < 3e-7
+    imp = make_impact(material, v0, {}) if target == "plate" else None
+    if imp is not None:
+        assert adaptive.separation_steps(rate, imp.contact_time_estimate()) > adaptive.SEP_STEPS
