@@ -571,7 +571,7 @@ def test_a_cerf_plate_of_large_b1_in_closed_form_equals_its_exponential_sum(b1, 
 
 def test_a_failed_replay_names_the_users_budget():
     """A Richardson replay that runs out of steps says which grid it was and its budget as a multiple of
-    the user's max_adaptive_steps (it said "of an ok adaptive run" and a budget the user never set)."""
+    the user's max_adaptive_steps."""
     res = vcor.simulate("sls", 1.0, h=1e-9, max_adaptive_steps=2000)
     assert res.status == "step-budget", (res.status, res.message)
     assert "replay of the accepted grid with every step divided by" in res.message
@@ -583,8 +583,8 @@ def test_a_failed_replay_names_the_users_budget():
 def test_the_separation_step_resolves_the_fastest_mode(rate, v0, target):
     """SLS laws whose mode relaxes within a tenth of the accepted grid's step (glassy/rubbery 4): the
     separation is located on steps the mode decays by at most SEP_DECAY over (``separation_steps``), so
-    that t0 is within 1e-5 of ive (rtol 1e-12); on steps of t / SEP_STEPS alone it was 1.1e-4, 2.7e-5 and
-    1.3e-5 off (bench_grids.py, the SLS family)."""
+    that t0 is within 1e-5 of ive (rtol 1e-12), which steps of t / SEP_STEPS alone do not reach (the SLS
+    family of bench_grids.py)."""
     material = vcor.materials.SLS(1.5e7, rate / 4.0, rate)
     res = vcor.simulate(material, v0, target=target)
     ref = vcor.simulate(material, v0, target=target, method="ive", rtol=1e-12)

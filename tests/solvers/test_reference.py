@@ -304,3 +304,16 @@ def test_references_among_themselves(name):
     soe, form_a = R.soe_reference(impact, dt, budget, (budget + 8) * dt), R.direct_reference(impact, dt, budget)
     for a, b in ((prony, form_b), (soe, form_a)):
         assert a["cor"] == pytest.approx(b["cor"], rel=RTOL) and a["t0"] == pytest.approx(b["t0"], rel=RTOL)
+
+
+def test_adaptive_grid_of_a_mode_relaxing_within_the_separation_step():
+    """A stiff SLS (rate 3.16e6 1/s) whose separation step the kernel refines below t / SEP_STEPS
+    (``adaptive.separation_steps``): the reference takes the same separation step and the same levels."""
+    impact = make_impact(vcor.materials.SLS(1.5e7, 3.16e6 / 4.0, 3.16e6), 1.0, {})
+    tc = impact.contact_time_estimate()
+    grid = R.AdaptiveGrid.of(impact, tc)
+    assert 1.0 / grid.sep_frac == adaptive.separation_steps(3.16e6, tc) > adaptive.SEP_STEPS
+    res = adaptive.run_adaptive(impact, tc, step_tol=STEP_TOL, max_steps=10**6, history=True, ghost=0.0)
+    ref = R.adaptive_reference(impact, tc, STEP_TOL)
+    assert np.array_equal(ref["levels"], levels_of(res.history.t, grid.h_base)) and res.steps == ref["n_sep"]
+    check_scalars("adaptive grid", impact, ref, res)

@@ -114,8 +114,8 @@ def test_datasets_and_the_cli_carry_the_flags(capsys):
 def test_a_separation_that_moves_with_the_fixed_step_is_not_ok(method, h):
     """Plates 1 nm and 100 nm thin recede at once: a fixed-step march finds the force at zero after 2 steps,
     and again after 2 steps with dt refined from that t0 (t0 falls with the step: no contact time is
-    resolved). Such a run is diverged with no numbers, its message saying why and what to use; it was
-    ok with COR 0.8 (direct, soe) or up to 7.9e13 (paper)."""
+    resolved; the numbers of such a march are COR 0.8 (direct, soe) or up to 7.9e13 (paper)). Such a run is
+    diverged with no numbers, its message saying why and what to use."""
     res = vcor.simulate("butyl-fc", 1.0, h=h, method=method)
     assert res.status == "diverged" and "moves with the step" in res.message and "adaptive" in res.message
     assert math.isnan(res.cor) and math.isnan(res.t0)

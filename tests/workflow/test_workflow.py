@@ -337,6 +337,9 @@ def test_a_config_error_names_its_file_line_and_column(make_project, smk, tmp_pa
     out = smk(path, "-n", "-j1", "--configfile", "my.yaml", check=False)
     said = out.stdout + out.stderr
     assert "config file my.yaml, line 2, column 3: scenes.mine: point" in said, said
+    out = smk(path, "-n", "-j1", "--config", "job_seconds=-1", check=False)
+    said = out.stdout + out.stderr  # set on the command line: no file holds it
+    assert "config: job_seconds: must be > 0 s, got -1 s" in said and "config file config.yaml, line" not in said, said
 
 
 @pytest.mark.parametrize(

@@ -37,8 +37,10 @@ try:
     vschema.check_schema(config, SCHEMA)  # fills in the schema's defaults
     PROJECT = vconfig.load_project(config, base_dir=".")
 except ValueError as exc:
-    # the message names a key path of the merged config: its file, line and column in front
-    said = vyamlplace.located(str(exc), workflow.configfiles)
+    # the message names a key path of the merged config: its file, line and column in front (not for a
+    # key set on the command line with --config, which no file holds)
+    keys = vyamlplace.key_path(str(exc)) or [None]
+    said = str(exc) if keys[0] in (workflow.config_settings.config or {}) else vyamlplace.located(str(exc), workflow.configfiles)
     raise WorkflowError(said if said != str(exc) else f"config: {exc}") from None
 
 
@@ -280,7 +282,7 @@ def get_shard_rows(wildcards):
 def shard_materials(wildcards):
     """The materials a shard's job is given (vcor.study.shards.shard_materials)."""
     sc = SCENES[wildcards.scene]
-    return vshards.shard_materials(get_shard_points(wildcards), sc.used_materials(), sc.materials)
+    return vshards.shard_materials(get_shard_points(wildcards), sc.body_materials())
 
 
 def get_shard_catalogue(wildcards):

@@ -295,10 +295,10 @@ class Impact:
         if g.rigid or g.case == 4 or not math.isfinite(t):
             return ""
         plate = g.plate_material if g.plate_material is not None else self.material
-        now = float(self._plate_modulus(t))
-        # zero in floating point, or (a fluid: rubbery modulus 0) below RELAXED_TO_ZERO of its glassy value,
-        # where the mobility outgrows any step
-        if now > 0.0 and not (plate.rubbery == 0.0 and now <= RELAXED_TO_ZERO * float(self._plate_modulus(0.0))):
+        now, glassy = float(self._plate_modulus(t)), float(self._plate_modulus(0.0))
+        # zero in floating point, or (a fluid: rubbery modulus 0, finite glassy modulus) below RELAXED_TO_ZERO
+        # of its glassy value, where the mobility outgrows any step
+        if now > 0.0 and not (plate.rubbery == 0.0 and math.isfinite(glassy) and now <= RELAXED_TO_ZERO * glassy):
             return ""
         return (f"the plate's modulus E'_b(t) has relaxed to zero ({now:.3g} Pa) by t = {t:.6g} s (plate material "
                 f"{plate.kind} "

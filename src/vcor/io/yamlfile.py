@@ -31,8 +31,9 @@ def _message(where: str, key, first: int | None, second: int | None, column: int
     if first is None:
         return f"{where}: key {key!r} is given twice in one object: only the last would be read; remove or rename one"
     lines = f"lines {first} and {second}" if first != second else f"both on line {second}"
-    return (f"{where}, line {second}, column {column}: key {key!r} is given twice in one mapping ({lines}): only the "
-            f"last would be read; remove or rename one")
+    at = f", line {second}" + (f", column {column}" if column is not None else "")
+    return (f"{where}{at}: key {key!r} is given twice in one mapping ({lines}): only the last would be read; "
+            f"remove or rename one")
 
 
 class _Repeated(Exception):

@@ -2,8 +2,9 @@
 
 The config checks (the schema, :mod:`vcor.study.config`) name what is wrong by its key path,
 ``scenes.my-grid.grid.v0[0]: expected a number, got '36 km/h'``, on the merged mapping Snakemake made
-of its config files. :func:`located` finds that path in the files themselves (the last file that
-holds it: a later ``--configfile`` overrides an earlier one) and puts its place in front::
+of its config files. :func:`located` finds that path in the files themselves (the file that holds
+most of it; on a tie the later one, as a later ``--configfile`` overrides an earlier one) and puts its
+place in front::
 
     config file my.yaml, line 12, column 14: scenes.my-grid.grid.v0[0]: expected a number, got '36 km/h'
 
@@ -19,6 +20,7 @@ import re
 from pathlib import Path
 
 __all__ = ["key_path", "locate", "located"]
+
 
 def key_path(message: str) -> list | None:
     """The key path a config message starts with (the text before its first ": ", with no spaces), as

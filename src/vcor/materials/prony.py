@@ -7,6 +7,7 @@ the standard linear solid (:mod:`vcor.materials.sls`) and the elastic solid
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from dataclasses import dataclass
@@ -105,8 +106,8 @@ class Prony(Material, kind="prony"):
     def is_prony(self) -> bool:
         return True
 
-    @property
-    def is_elastic(self) -> bool:
+    @functools.cached_property
+    def is_elastic(self) -> bool:  # (cached: the adaptive method asks per impact, and the terms never change)
         return all(e == 0 or b == 0 for e, b in zip(self.E, self.beta))
 
     @property

@@ -265,10 +265,10 @@ def exact_rate(impact, kind: int) -> float:
 
 
 def separation_steps(rate: float, tc: float) -> int:
-    """A separation is located on a step <= t / this: SEP_STEPS, doubled (up to MAX_SEP_STEPS) until the
-    fastest exact mode (``rate``, 1/s; :func:`exact_rate`) decays by at most SEP_DECAY over a step of
-    ``tc`` / it (s): a mode relaxing within the separation step leaves t0 with an error that follows no
-    power of the step (bench_grids.py: up to 1e-4 at SEP_STEPS)."""
+    """A separation is located on a step <= t / this (and not below the smallest step, h_base): SEP_STEPS,
+    doubled (up to MAX_SEP_STEPS) until the fastest exact mode (``rate``, 1/s; :func:`exact_rate`) decays
+    by at most SEP_DECAY over a step of ``tc`` / it (s): a mode relaxing within the separation step leaves
+    t0 with an error that follows no power of the step (the SLS family of bench_grids.py)."""
     n = SEP_STEPS
     while n < MAX_SEP_STEPS and n * SEP_DECAY < rate * tc:
         n *= 2

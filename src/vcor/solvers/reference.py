@@ -566,7 +566,8 @@ class AdaptiveGrid:
         n_levels = round(math.log2(a.MAX_STEP_FRACTION * horizon / h_base)) + 1
         window = (h_base * 2.0**-a.SPLIT_LEVELS, 2.0 * horizon, soe_tol)
         rep = soe(impact.material, *window).material
-        return cls(h_base, a.START_LEVEL, 0, n_levels - 1, horizon, 1.0 / a.SEP_STEPS, rep, window)
+        sep = a.separation_steps(a.exact_rate(impact, a.plate_kind(impact)), tc)
+        return cls(h_base, a.START_LEVEL, 0, n_levels - 1, horizon, 1.0 / sep, rep, window)
 
 
 class ExponentialSumHistory:

@@ -125,11 +125,11 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
     res = run(impact, opts, tc, history)
     if (opts.dt is None and opts.method in FIXED_STEP_METHODS and res.ok
             and res.steps < MIN_STEPS_FRACTION * opts.steps_per_contact):
-        wall = res.wall_time
+        wall, first_t0 = res.wall_time, res.t0
         res = run(impact, opts.replace(dt=res.t0 / (0.8 * opts.steps_per_contact)), tc, history)
         res.wall_time += wall
         res.message = (res.message + "; " if res.message else "") + "dt refined from the measured t0"
-        if res.ok and res.steps < MIN_STEPS_FRACTION * opts.steps_per_contact:
+        if res.ok and res.steps < MIN_STEPS_FRACTION * opts.steps_per_contact and res.t0 < 0.5 * first_t0:
             for name in (*OUTCOME, "omega_min"):  # numbers of no contact: none is kept
                 setattr(res, name, math.nan)
             res.status = "diverged"

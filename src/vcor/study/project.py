@@ -80,10 +80,13 @@ class Scene:
     def used_materials(self) -> list[str]:
         """Names of the catalogue the scene uses (swept, tabulated, convergence and body materials)."""
         cfg = self.config
-        bodies = [(cfg.get(k) or {}).get("material") for k in ("sphere", "plate")]
         return sorted(set(self.materials) | set(cfg.get("moduli", []))
-                      | set(cfg.get("convergence", {}).get("materials", []))
-                      | {b for b in bodies if isinstance(b, str) and b != "rigid"})
+                      | set(cfg.get("convergence", {}).get("materials", [])) | set(self.body_materials()))
+
+    def body_materials(self) -> list[str]:
+        """Names of the catalogue the scene's sphere and plate name (not ``rigid``, not inline specs)."""
+        bodies = [(self.config.get(k) or {}).get("material") for k in ("sphere", "plate")]
+        return sorted({b for b in bodies if isinstance(b, str) and b != "rigid"})
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -14,8 +14,8 @@ recomputes exactly those shards and ``snakemake -n`` lists them. Planning reuses
 shard whose settings hash matches, that holds still-wanted points and none of a changed or removed
 material, and groups only the points not yet covered into new shards, so extending a grid never
 recomputes finished points; a changed material recomputes its points and those that shared their
-shards. A job is given only the materials its points name (:func:`shard_materials`): editing one
-material re-runs no job without its points.
+shards. A job is given only the materials its points and the scene's sphere and plate name
+(:func:`shard_materials`): editing one material re-runs no job without its points.
 
 A point's name (:func:`vcor.study.grid.point_key`) leaves out its grid index, which moves when a grid
 is extended; every shard still records the index of each point when it was written (its ``index``
@@ -82,12 +82,11 @@ def identified_points(scene, identities: dict, grid: Grid | None = None) -> list
     return [{**p, "material_id": identities[p["material"]]} for p in grid.points()]
 
 
-def shard_materials(points, used: list, swept) -> list[str]:
-    """The materials a shard's job is given: the scene's ``used`` ones less the ``swept`` materials that
-    none of the shard's points names, so that a changed material re-runs no shard without its points
+def shard_materials(points, bodies) -> list[str]:
+    """The materials a shard's job is given: those its points name and the scene's ``bodies`` (the
+    materials its sphere and plate name), so that a changed material re-runs no shard without its points
     (their jobs' params and inputs do not name it)."""
-    named = {p["material"] for p in points}
-    return [m for m in used if m not in swept or m in named]
+    return sorted({p["material"] for p in points} | set(bodies))
 
 
 def check_current(points, catalogue, shard: str) -> None:
@@ -196,7 +195,7 @@ def plan_shards(scene, shard_dir: str | Path, shard_size: int | None, identities
                 on_invalid(nc, str(exc))
             continue
         rows = matcher.rows(pts)
-        if not any(r in matcher.todo for r in rows) or any(identities.get(p["material"]) != p["material_id"]
+        if not any(r in matcher.todo for r in rows) or any(identities.get(p["material"]) != p.get("material_id")
                                                             for p in pts):
             continue
         reason = receipts.problem(nc, idx.stem)
