@@ -89,7 +89,7 @@ def test_missing_kernel_marks_rerun_nothing(smk, tiny_run):
         p.unlink()
     out = smk(tiny_run, "-n", "-j1")
     text = out.stdout + out.stderr
-    marks = "results/.kernels: the marks of adaptive, direct, ive-numba, paper, soe were"
+    marks = "results/.kernels: marks of adaptive, direct, ive-numba, paper, soe written (the project holds results"
     assert "Nothing to be done" in text and marks in text, text
     assert (tiny_run / "results/.kernels/adaptive.ready").exists()
     out = smk(tiny_run, "-n", "-j1")  # the marks written back keep the project up to date

@@ -40,7 +40,11 @@ except ValueError as exc:
     # the message names a key path of the merged config: its file, line and column in front (not for a
     # key set on the command line with --config, which no file holds)
     keys = vyamlplace.key_path(str(exc)) or [None]
-    said = str(exc) if keys[0] in (workflow.config_settings.config or {}) else vyamlplace.located(str(exc), workflow.configfiles)
+    said = (
+        str(exc)
+        if keys[0] in (workflow.config_settings.config or {})
+        else vyamlplace.located(str(exc), workflow.configfiles)
+    )
     raise WorkflowError(said if said != str(exc) else f"config: {exc}") from None
 
 

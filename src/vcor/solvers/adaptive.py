@@ -179,12 +179,14 @@ def plate_kind(impact) -> int:
     form, 2 for the fractional law (``Material.sqrt_law``) and 3 for the CERF law
     (``Material.erfcx_law``; its ~100 modes would cost a third of the impact)."""
     g = impact.geometry
-    plate = impact.material if g.plate_material is None else g.plate_material
-    if g.rigid or g.case == 4 or plate.is_elastic:
+    if g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
         return 0
-    if plate.sqrt_law() is not None:
-        return 2
-    return 3 if plate.erfcx_law() is not None else 1
+    plate = impact.material if g.plate_material is None else g.plate_material
+    if plate.sqrt_law() is not None:  # (E1 = 0: the law is elastic, of constant mobility)
+        return 0 if plate.is_elastic else 2
+    if plate.erfcx_law() is not None:
+        return 0 if plate.is_elastic else 3
+    return 1
 
 
 @dataclass(kw_only=True, frozen=True)
@@ -541,4 +543,4 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
 def richardson_outcome(runs):
     """(values, message) of :func:`vcor.solvers.extrapolation.extrapolate` for ``runs`` (GRIDS rows, coarse to
     fine: ``RICHARDSON_WEIGHTS``; SMOOTH_GRIDS rows: ``SMOOTH_WEIGHTS``)."""
-    return extrapolate(runs, (RICHARDSON_WEIGHTS, SMOOTH_WEIGHTS))
+    return extrapolate(runs, RICHARDSON_WEIGHTS if len(runs) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS)

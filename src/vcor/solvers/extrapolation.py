@@ -36,19 +36,17 @@ def weights_for(exponents) -> tuple:
     return tuple(float(w) for w in np.linalg.solve(rows.T, np.eye(n)[0]))
 
 
-def extrapolate(runs, weight_sets):
+def extrapolate(runs, weights):
     """(values, message): the OUTCOME values Richardson-extrapolated from ``runs`` (per grid, coarse to
-    fine, its OUTCOME values in that order; further values ignored; lists of floats or an array) with the
-    one of ``weight_sets`` (:func:`weights_for`) that has a weight per grid, and "", or, where the grids
+    fine, its OUTCOME values in that order; further values ignored; lists of floats or an array) with
+    ``weights`` (:func:`weights_for`, one per grid), and "", or, where the grids
     are not in the asymptotic range (module docstring) or the extrapolated COR is negative, the finest
     grid's values and a message saying why (values: a list)."""
     rows = runs.tolist() if isinstance(runs, np.ndarray) else runs
     first, last = rows[0], rows[-1]
     n = len(OUTCOME)
-    weights = next((w for w in weight_sets if len(w) == len(rows)), None)
-    if weights is None:
-        sizes = " or ".join(str(len(w)) for w in weight_sets)
-        raise ValueError(f"{len(rows)} grids: Richardson weights are for {sizes}")
+    if len(weights) != len(rows):
+        raise ValueError(f"{len(rows)} grids: the Richardson weights are for {len(weights)}")
     extrapolated = _weighted(weights, rows)[:n]
     cor = extrapolated[_COR]
     if cor < 0.0:
