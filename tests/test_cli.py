@@ -414,3 +414,14 @@ def test_every_geometry_option_states_its_range_in_the_help(capsys):
         lo, hi = RANGES.get(key, (None, None))
         want = f"in [{lo:g}, {hi:g}]" if key in RANGES else "in (-1, 0.5]"
         assert f"{cli.GEOMETRY_FLAGS[key][0]}, {want}" in text, key
+
+
+@pytest.mark.parametrize("argv", [["impact", "--material", "sls", "--v0", "1", "--bogus"], ["materials", "--bogus"]])
+def test_an_unknown_option_is_refused_with_its_commands_usage(argv, capsys):
+    """An option the command does not take is refused by that command (its usage, exit code 2), not by the
+    top-level parser."""
+    with pytest.raises(SystemExit) as stop:
+        cli.main(argv)
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and f"usage: vcor {argv[0]}" in err
+    assert f"vcor {argv[0]}: error: unrecognized arguments: --bogus" in err

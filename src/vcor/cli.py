@@ -241,6 +241,7 @@ def build_parser() -> argparse.ArgumentParser:
     exp.add_argument("--csv", default=None, help="output file [no unit; default: standard output]")
     add_study_commands(sub)
     _add_plugin(sub)
+    p.commands = sub.choices  # name -> its parser: an unknown option is reported with its command's usage
     return p
 
 
@@ -484,7 +485,10 @@ def _export(args) -> int:
 
 def main(argv=None) -> int:
     """Run the command line; returns the exit code (module docstring)."""
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        parser.commands[args.command].error(f"unrecognized arguments: {' '.join(extra)}")
     run = {"impact": _impact, "materials": _materials, "export": _export, "lammps-plugin": _plugin,
            **STUDY_COMMANDS}[args.command]
     try:
