@@ -179,14 +179,12 @@ def plate_kind(impact) -> int:
     form, 2 for the fractional law (``Material.sqrt_law``) and 3 for the CERF law
     (``Material.erfcx_law``; its ~100 modes would cost a third of the impact)."""
     g = impact.geometry
-    if g.rigid or g.case == 4 or (g.plate_material is not None and g.plate_material.is_elastic):
-        return 0
     plate = impact.material if g.plate_material is None else g.plate_material
-    if plate.sqrt_law() is not None:  # (E1 = 0: the law is elastic, of constant mobility)
-        return 0 if plate.is_elastic else 2
-    if plate.erfcx_law() is not None:
-        return 0 if plate.is_elastic else 3
-    return 1
+    if g.rigid or g.case == 4 or plate.is_elastic:  # (is_elastic: cached per material)
+        return 0
+    if plate.sqrt_law() is not None:
+        return 2
+    return 3 if plate.erfcx_law() is not None else 1
 
 
 @dataclass(kw_only=True, frozen=True)
