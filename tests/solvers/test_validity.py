@@ -57,6 +57,23 @@ def test_a_sphere_still_approaching_at_separation_is_flagged(material, v0, h):
         assert vcor.simulate(material, v0).validity == 0
 
 
+def test_a_captured_sphere_whose_grids_disagree_is_flagged():
+    """A Kelvin-Voigt sphere of tau = 1e3 s at 1 m/s is captured (COR ~5e-11): its force creeps to zero,
+    so t0 is ill-conditioned. adaptive's grids differ by tens of per cent in t0 and do not shrink as
+    h^2: the result keeps the finest grid's values, is ok (the COR is zero to 1e-9) and carries
+    grids_disagree, whose sentence says why; ive's t0 differs from adaptive's by more than 10 %. An
+    impact whose grids converge carries no such flag (test_flags)."""
+    kv = M.KelvinVoigt(1e7, 1e3)
+    r = vcor.simulate(kv, 1.0)
+    assert r.ok and r.cor < 1e-9, (r.cor, r.message)
+    assert r.validity & validity.FLAGS["grids_disagree"], r.validity_message
+    assert "not Richardson-extrapolated" in r.message
+    assert "asymptotic range" in r.validity_message and "finest grid" in r.validity_message
+    other = vcor.simulate(kv, 1.0, method="ive")
+    assert abs(other.t0 / r.t0 - 1) > 0.1, (other.t0, r.t0)
+    assert not vcor.simulate("butyl-fc", 1.0).validity & validity.FLAGS["grids_disagree"]
+
+
 def test_direct_on_kelvin_voigt_says_when_it_is_not_accurate():
     """Kelvin-Voigt with tau = 1 s (the preset's modulus; the viscous force stops the sphere within
     5 us, the COR is ~2e-6): fixed-step direct is 2 % off in the COR and 16 % in the peak force and

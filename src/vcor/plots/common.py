@@ -129,7 +129,8 @@ def flag_reasons(flags: int) -> str:
              "fast_impact": f"fast impact, v0 > {V.MAX_SPEED_FRACTION:g} c (wave speed)",
              "energy_residual": f"energy balance off by > {V.MAX_ENERGY_RESIDUAL:g}",
              "under_resolved": "damping under-resolved by the fixed step",
-             "no_rebound": "no rebound, sphere still approaching"}
+             "no_rebound": "no rebound, sphere still approaching",
+             "grids_disagree": "t0 ill-conditioned, grids disagree"}
     out = [words.get(name, name.replace("_", " ")) for name, mask in V.FLAGS.items() if flags & mask]
     known = sum(V.FLAGS.values())
     if flags & ~known:

@@ -66,6 +66,7 @@ from ._records import (
 from .common import OUTCOME, Result, separation_scalars
 from .extrapolation import extrapolate, weights_for
 from .march import N_EXTRA, Arrays, March, finish
+from .validity import FLAGS
 
 __all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "MAX_SEP_STEPS",
            "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_DECAY", "SEP_STEPS", "SMOOTH_GRIDS", "SMOOTH_WEIGHTS",
@@ -488,6 +489,8 @@ def _run_on_floor(impact, tc, h_base, factor, one_call_path, opts):
     values, message = richardson_outcome([[float(getattr(r, k)) for k in OUTCOME] for r in runs])
     fine.__dict__.update(separation_scalars(values))
     fine.message = "; ".join(m for m in (fine.message, message) if m)
+    if message:
+        fine.validity |= FLAGS["grids_disagree"]
     return fine
 
 
@@ -535,6 +538,8 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
     res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
                  method="adaptive", soe_error=soe_error)
     res.message = message
+    if message:
+        res.validity |= FLAGS["grids_disagree"]
     return res
 
 

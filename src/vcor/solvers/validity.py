@@ -2,7 +2,8 @@
 
 A result can be computed accurately and still lie outside what the model describes. Each check sets
 one bit of ``Result.validity`` (CF ``flag_masks``) and adds a sentence to ``Result.validity_message``;
-the status stays ``ok`` (the number is the model's), the flag says how far to trust the model:
+the status stays ``ok`` (the number is the model's), the flag says how far to trust the model or, for
+the flags the solver sets (``SOLVER_FLAGS``), the number:
 
 =======================  ====  =====================================================================
 flag                     mask  set when
@@ -21,6 +22,12 @@ no_rebound               16    the sphere still moves towards the target at sepa
                                sphere (thin viscoelastic plates, whose deflection keeps growing as
                                they relax); the COR describes this contact only, not the sphere's
                                final rebound (a plate of bounded deflection is struck again)
+grids_disagree           32    method ``adaptive``: its nested grids are not in the asymptotic range
+                               of the Richardson extrapolation (``vcor.solvers.extrapolation``),
+                               so the values are the finest grid's and their error is not held to
+                               the method's accuracy (the message gives the grids' differences): a
+                               separation time that is ill-conditioned, as where a creeping force
+                               returns to zero over hours and the sphere is captured
 =======================  ====  =====================================================================
 
 A result whose outputs are not finite is never ``ok``: :func:`finalised` gives it the status
@@ -40,11 +47,14 @@ from ..materials.expsums import FIT_ACCEPT
 from .common import OUTCOME
 from .options import SUM_TOL
 
-__all__ = ["FLAGS", "MAX_ENERGY_RESIDUAL", "MAX_INDENTATION", "MAX_SPEED_FRACTION", "MIN_DAMPING_STEPS", "cf_attrs",
-           "damping_time", "finalised"]
+__all__ = ["FLAGS", "MAX_ENERGY_RESIDUAL", "MAX_INDENTATION", "MAX_SPEED_FRACTION", "MIN_DAMPING_STEPS", "SOLVER_FLAGS",
+           "cf_attrs", "damping_time", "finalised"]
 
 #: flag name -> bit mask (stable: archived datasets keep their meaning)
-FLAGS = {"large_indentation": 1, "fast_impact": 2, "energy_residual": 4, "under_resolved": 8, "no_rebound": 16}
+FLAGS = {"large_indentation": 1, "fast_impact": 2, "energy_residual": 4, "under_resolved": 8, "no_rebound": 16,
+         "grids_disagree": 32}
+#: the flags a method sets on its result (:func:`finalised` keeps them and says why)
+SOLVER_FLAGS = FLAGS["grids_disagree"]
 MAX_INDENTATION = 0.1
 MAX_SPEED_FRACTION = 0.1
 MAX_ENERGY_RESIDUAL = 1e-4
@@ -96,7 +106,12 @@ def finalised(res, impact, options):
             f"the exponential sum of the contact modulus of the two bodies reaches a relative error of "
             f"{res.soe_error:.2g}, not the tolerance {tol:g}: no fit of this pair does in double precision "
             f"(the best within {FIT_ACCEPT:g} is taken); the results carry an error of about that size")) if m)
-    notes, flags = [], 0
+    notes, flags = [], res.validity & SOLVER_FLAGS
+    if flags & FLAGS["grids_disagree"]:
+        notes.append("the nested grids of method adaptive are not in the asymptotic range of its Richardson "
+                     "extrapolation (their differences are in the message): the values are the finest grid's, "
+                     "their error is not held to the method's accuracy (an ill-conditioned separation time, as of "
+                     "a force creeping to zero)")
     r = impact.geometry.r
     if res.s_max / r > MAX_INDENTATION:
         flags |= FLAGS["large_indentation"]
