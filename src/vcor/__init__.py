@@ -38,3 +38,9 @@ def __getattr__(name):
     if name in _SUBMODULES:
         return import_module(f"vcor.{name}")
     raise AttributeError(f"module 'vcor' has no attribute {name!r}")
+
+
+def __dir__():
+    """The public names, the lazy ones included (tab completion in IPython and Jupyter lists them)."""
+    loaded = (k for k in globals() if not k.startswith("_") and k not in ("TYPE_CHECKING", "import_module"))
+    return sorted({*__all__, *_SUBMODULES, *loaded})

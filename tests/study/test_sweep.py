@@ -89,6 +89,23 @@ def test_inline_material_specs_are_taken_as_simulate_takes_them():
         vcor.sweep({"materials": [{**spec, "E_glassy": -1.0}], "grid": {"v0": [1.0]}}, progress=False)
 
 
+def test_an_inline_spec_keeps_its_shift_function_for_a_temperature_axis():
+    """An inline spec with ``shift`` sweeps a T axis as the same material of a config's materials block
+    does (the same numbers); the shift is part of its name, so the spec without it is another material."""
+    shift = {"model": "wlf", "C1": 8.86, "C2": 101.6, "T_ref": 20.0}
+    spec = {"model": "fractional", "E0": 2.28e6, "E1": 0.885e6}
+    ds = vcor.sweep({"materials": [{**spec, "shift": shift}], "grid": {"v0": [1.0], "T": [10.0, 30.0]}},
+                    workers=1, progress=False)
+    cfg = {"materials": {"mine": {**spec, "shift": shift}}}
+    ref = vcor.sweep({"materials": ["mine"], "grid": {"v0": [1.0], "T": [10.0, 30.0]}}, config=cfg, workers=1,
+                     progress=False)
+    np.testing.assert_array_equal(ds["cor"].values, ref["cor"].values)
+    assert ds["cor"].sel(T=10.0).item() != ds["cor"].sel(T=30.0).item()
+    both = vcor.sweep({"materials": [spec, {**spec, "shift": shift}], "grid": {"v0": [1.0]}}, workers=1,
+                      progress=False)
+    assert both.sizes["material"] == 2
+
+
 def test_material_objects_and_numpy_grids_are_taken():
     mat = vcor.materials.SLS(15e6, 300.0, 1200.0)
     ds = vcor.sweep({"materials": [mat], "grid": {"v0": np.array([1.0, 10.0])}}, workers=1, progress=False)
@@ -214,3 +231,33 @@ def test_the_progress_bar_shows_on_a_terminal_and_not_in_a_pipe():
     piped = subprocess.run([sys.executable, "-c", code], env=ENV, capture_output=True, text=True, check=True)
     assert "done" in piped.stdout
     assert piped.stderr == "" and "\r" not in piped.stdout
+
+
+def test_dir_lists_the_public_names_loaded_on_first_use():
+    """Tab completion (IPython, Jupyter) asks dir(vcor): the lazily loaded functions are in it."""
+    out = subprocess.run([sys.executable, "-c", "import vcor; print(' '.join(dir(vcor)))"], capture_output=True,
+                         text=True, check=True).stdout.split()
+    assert {"simulate", "sweep", "fit", "calibrate", "dem_export", "Result", "SolverOptions"} <= set(out)
+    assert "import_module" not in out and "TYPE_CHECKING" not in out
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: vcor.sweep({"materials": ["sls"], "grid": {"v0": [1]}, "figures": {"fig4": {"material": "sls"}}}),
+     r"^scene\.figures\.fig4 needs a sweep with a grid axis beta: add scene\.grid\.beta$"),
+    (lambda: vcor.fit("butyl-prony-n3"), r"^fit: 'butyl-prony-n3' names an entry of a config's fits block, but no "
+                                         r"config was given: pass config="),
+    (lambda: vcor.sweep({"materials": [{"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0,
+                                        "shift": {"model": "wlf", "C1": 8}}], "grid": {"v0": [1]}}),
+     r"^scene\.materials\[0\]\.shift \(wlf\): missing \['C2', 'T_ref'\]; takes"),
+    (lambda: vcor.sweep({"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 2, "num": 10**9}}}),
+     r"^scene\.grid: 1000000000 points in one sweep job \(no shard_size\)"),
+])
+def test_refusals_of_study_calls_name_the_argument(call, message):
+    """Each refusal names the key as the call wrote it (scene., fit:), before any work."""
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_workers_takes_any_integer_type():
+    ds = vcor.sweep({"materials": ["sls"], "grid": {"v0": [1.0]}}, workers=np.int64(1), progress=False)
+    assert ds["cor"].item() == vcor.simulate("sls", 1.0).cor

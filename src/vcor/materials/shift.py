@@ -109,8 +109,8 @@ class ShiftFunction:
         extra = set(spec) - set(need) - {"model"}
         missing = [k for k in need if k not in spec]
         if missing or extra:
-            raise ValueError(f"{where} ({spec['model']}): missing {missing}, unknown {sorted(extra)}; "
-                             f"takes {list(need)}")
+            problems = [f"missing {missing}" if missing else "", f"unknown {sorted(extra)}" if extra else ""]
+            raise ValueError(f"{where} ({spec['model']}): {'; '.join(p for p in problems if p)}; takes {list(need)}")
         T_ref = number(f"{where}.T_ref", spec["T_ref"], -ZERO_CELSIUS, unit="deg C")
         if spec["model"] == "table":
             _check_table(spec["T"], spec["log_aT"], T_ref, where)

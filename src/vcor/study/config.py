@@ -228,7 +228,9 @@ def _check_size(where: str, scene: dict, shard_size: int | None) -> None:
         raise ValueError(f"{where}.grid.{exc}") from None
     jobs = 1 if shard_size is None else -(-n // shard_size)
     if n > MAX_POINTS or jobs > MAX_JOBS:
-        raise ValueError(f"{where}.grid: {n} points in {jobs} sweep jobs (shard_size {shard_size}); a scene may "
+        split = ("in one sweep job (no shard_size)" if shard_size is None
+                 else f"in {jobs} sweep jobs (shard_size {shard_size})")
+        raise ValueError(f"{where}.grid: {n} points {split}; a scene may "
                          f"have at most {MAX_POINTS} points and {MAX_JOBS} jobs: split the study into scenes, "
                          f"or raise shard_size")
 

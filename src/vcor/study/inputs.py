@@ -83,8 +83,8 @@ def spec_of(material: Material) -> dict:
     return {"model": d.pop("kind"), **d}
 
 
-def _object_name(material: Material) -> str:
-    spec = spec_of(material)
+def _object_name(spec: dict) -> str:
+    """The name of an inline material (its canonical spec, with its ``shift`` when it has one)."""
     return f"{spec['model']}-{content_hash(spec, 8)}"
 
 
@@ -139,7 +139,8 @@ def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None) ->
     except ValueError as exc:
         text = str(exc)
         if rename is not None:
-            text = re.sub(rf"^{re.escape(rename[0])}(?=[.:\[ ]|$)", rename[1], text)
+            # every key path under the entry, also one the message advises ("add scenes.<name>.grid.beta")
+            text = re.sub(rf"(?<![\w.-]){re.escape(rename[0])}(?=[.:\[ ]|$)", rename[1], text)
         elif isinstance(config, (str, Path)):  # an entry of the file: where it is in the file
             placed = located(text, [config])
             if placed != text:
@@ -177,6 +178,10 @@ def resolve_entry(section: str, entry, name, config, argument: str) -> Resolved:
     if name not in _entries(project, section):
         # a dem study holds the named entry only: the config's own block lists them all
         known = sorted(_entries(project, section) if section != "dem" else (cfg.get("dem") or {}))
+        if config is None and isinstance(entry, str):
+            raise ValueError(f"{argument}: {name!r} names an entry of a config's {section} block, but no config was "
+                             f"given: pass config= (the config file, or its mapping, that defines it), or give the "
+                             f"entry itself as a mapping")
         raise ValueError(f"{_where(config)}{argument}: {name!r} is not an entry of the config's {section} block "
                          f"({known or 'it has none'})")
     return Resolved(name=name, project=project, base_dir=base)
@@ -192,11 +197,13 @@ def _objects_named(scene: dict, cfg: dict) -> dict:
     block = dict(cfg.get("materials") or {})
     names = []
     for i, m in enumerate(materials):
-        if isinstance(m, dict):
-            m = from_spec(m, where=f"scene.materials[{i}]")  # checked, then written as its canonical spec
-        if isinstance(m, Material):
-            names.append(_object_name(m))
-            block[names[-1]] = spec_of(m)
+        if isinstance(m, (dict, Material)):
+            # checked, then written as its canonical spec; a spec's shift function goes with it (a T axis
+            # needs it), as in a config's materials block
+            shift = {"shift": plain(m["shift"])} if isinstance(m, dict) and "shift" in m else {}
+            spec = {**spec_of(from_spec(m, where=f"scene.materials[{i}]") if isinstance(m, dict) else m), **shift}
+            names.append(_object_name(spec))
+            block[names[-1]] = spec
         else:
             names.append(m)
     cfg["materials"] = block

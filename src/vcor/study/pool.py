@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 import multiprocessing
+import numbers
 import os
 import queue
 import signal
@@ -59,10 +60,10 @@ def check_workers(workers) -> int:
     else ValueError naming the argument."""
     if workers is None:
         return available_cores()
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+    if isinstance(workers, bool) or not isinstance(workers, numbers.Integral) or workers < 1:
         raise ValueError(f"workers must be an integer >= 1 (processes; None: the {available_cores()} cores "
                          f"available), got {workers!r}")
-    return workers
+    return int(workers)
 
 
 def chunks_of(points: Sequence[dict], settings: dict, workers: int,
