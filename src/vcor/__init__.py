@@ -3,7 +3,8 @@
 The public surface: :func:`simulate` (one impact, method ``adaptive`` by default), :class:`Result`,
 :class:`SolverOptions`; the study functions, one per capability of the workflow (:mod:`vcor.study.api`):
 :func:`sweep` (a scene's grid, in parallel, the dataset the workflow archives), :func:`fit`,
-:func:`calibrate` and :func:`dem_export`; and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
+:func:`calibrate`, :func:`dem_export`, :func:`histories`, :func:`moduli`, :func:`viscoelastic_spheres` and
+:func:`convergence`; and the subpackages :mod:`~vcor.materials`, :mod:`~vcor.contact`,
 :mod:`~vcor.solvers`, :mod:`~vcor.fitting`, :mod:`~vcor.study`, :mod:`~vcor.io`, :mod:`~vcor.plots`
 and the modules :mod:`~vcor.spheres` and :mod:`~vcor.status`.
 
@@ -20,12 +21,14 @@ if TYPE_CHECKING:  # what the lazy names are, for type checkers (loaded on first
     from .solvers.common import Result
     from .solvers.options import SolverOptions
     from .solvers.simulate import simulate
-    from .study.api import calibrate, dem_export, fit, sweep
+    from .study.api import calibrate, convergence, dem_export, fit, histories, moduli, sweep, viscoelastic_spheres
 
-__all__ = ["Result", "SolverOptions", "__version__", "calibrate", "dem_export", "fit", "materials", "simulate", "sweep"]
+__all__ = ["Result", "SolverOptions", "__version__", "calibrate", "convergence", "dem_export", "fit", "histories",
+           "materials", "moduli", "simulate", "sweep", "viscoelastic_spheres"]
 
 _NAMES = {"Result": "vcor.solvers.common", "simulate": "vcor.solvers.simulate", "SolverOptions": "vcor.solvers.options",
-          **dict.fromkeys(("sweep", "fit", "calibrate", "dem_export"), "vcor.study.api")}
+          **dict.fromkeys(("sweep", "fit", "calibrate", "dem_export", "histories", "moduli", "viscoelastic_spheres",
+                           "convergence"), "vcor.study.api")}
 _SUBMODULES = ("checks", "cli", "cli_study", "contact", "fitting", "io", "materials", "plots", "provenance", "solvers",
                "spheres", "status", "study")
 

@@ -22,6 +22,7 @@ import vcor
 from vcor.study import api, pool, scene
 
 ROOT = Path(__file__).resolve().parents[2]
+REPO_CONFIG = ROOT / "config.yaml"
 ENV = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
 
 # two materials, a geometry axis, the error estimate (whose finer runs end at the step budget), flagged points
@@ -261,3 +262,18 @@ def test_refusals_of_study_calls_name_the_argument(call, message):
 def test_workers_takes_any_integer_type():
     ds = vcor.sweep({"materials": ["sls"], "grid": {"v0": [1.0]}}, workers=np.int64(1), progress=False)
     assert ds["cor"].item() == vcor.simulate("sls", 1.0).cor
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: vcor.sweep("convergence", config=REPO_CONFIG),
+     r"scenes\.convergence\.grid: the scene has no grid for vcor\.sweep \(add grid: .*\); it has convergence "
+     r"\(vcor\.convergence\)$"),
+    (lambda: vcor.histories({"materials": ["sls"], "grid": {"v0": [1.0]}}),
+     r"^scene\.histories: the scene has no histories for vcor\.histories \(add histories: .*\); it has grid "
+     r"\(vcor\.sweep\)$"),
+    (lambda: vcor.viscoelastic_spheres({"materials": ["sls"]}), r"^scene\.spheres: the scene has no spheres"),
+    (lambda: vcor.convergence({"materials": ["sls"]}), r"^scene\.convergence: the scene has no convergence"),
+])
+def test_a_scene_without_the_block_a_function_needs_is_refused_naming_it(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()

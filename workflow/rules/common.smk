@@ -356,8 +356,7 @@ def get_scene_fit_files(wildcards):
 
 
 def get_moduli_materials(wildcards):
-    sc = SCENES[wildcards.scene]
-    return sc.config.get("moduli", sc.materials)
+    return SCENES[wildcards.scene].moduli_materials()
 
 
 def figure_inputs(scene):

@@ -13,6 +13,13 @@ function                    takes (as a config has it)    returns (what the work
                                                           material file), the material
 :func:`dem_export`          a DEM entry (``dem.<name>``)  :class:`DemExport`: ``results/dem/<name>.nc``,
                                                           and its tables, LAMMPS deck and Yade script
+:func:`histories`           a scene with ``histories``    ``results/<scene>/histories.nc``
+:func:`moduli`              a scene (its ``moduli`` or    ``results/<scene>/moduli.nc``
+                            ``materials``)
+:func:`viscoelastic_        a scene with ``spheres``      ``results/<scene>/spheres.nc``
+spheres`
+:func:`convergence`         a scene with ``convergence``  ``results/<scene>/convergence.nc`` (the
+                                                          work-precision study)
 ==========================  ============================  =============================================
 
 Each takes its entry as a mapping (the keys of its config section) or as the name of one in
@@ -20,8 +27,9 @@ Each takes its entry as a mapping (the keys of its config section) or as the nam
 (presets, and a config's materials, fits and calibrations) or material objects. Every argument is
 checked by the workflow's own checks before any work (:mod:`vcor.study.inputs`): a refusal is a
 ``ValueError`` whose one line names the key. The workflow's jobs run the same code: its scripts call
-:func:`fit`, :func:`calibrate` and :func:`dem_export`, and its sweep jobs the two halves of
-:func:`sweep` (:mod:`vcor.study.sweep`).
+:func:`fit`, :func:`calibrate` and :func:`dem_export`, its sweep jobs the two halves of :func:`sweep`
+(:mod:`vcor.study.sweep`), and its histories, moduli, spheres and work-precision jobs the builders of
+:mod:`vcor.study.scene_datasets` that the functions of the same names return.
 
 This module is part of :mod:`vcor.study`, the layer that knows a project (its config, scenes and
 catalogue) and uses every layer below it (materials, solvers, fitting, DEM); the command line
@@ -30,6 +38,7 @@ catalogue) and uses every layer below it (materials, solvers, fitting, DEM); the
 
 from __future__ import annotations
 
+import contextlib
 import json
 import tempfile
 from dataclasses import dataclass, field
@@ -42,6 +51,7 @@ from .computed import DETERMINISTIC, calibration_archive, fit_archive, ready_cat
 from .inputs import resolve_entry, resolve_scene
 from .pool import check_workers
 from .progress import wanted
+from .scene_datasets import convergence_archive, convergence_case, histories_archive, moduli_archive, spheres_archive
 from .shards import identified_points
 from .sweep import combine, solve_points
 
@@ -52,7 +62,8 @@ if TYPE_CHECKING:
     from ..fitting.prony import FitResult
     from ..materials.models import Material
 
-__all__ = ["Calibrated", "DemExport", "Fitted", "calibrate", "dem_export", "fit", "sweep", "sweep_archive"]
+__all__ = ["Calibrated", "DemExport", "Fitted", "calibrate", "convergence", "dem_export", "fit", "histories", "moduli",
+           "sweep", "sweep_archive", "viscoelastic_spheres"]
 
 
 def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
@@ -235,8 +246,7 @@ def calibrate(calibration: dict | str, *, config: Any = None, name: str | None =
     catalogue = study.project.catalogue
     spec = catalogue.calibrations[study.name]
     start = spec.get("material")
-    with tempfile.TemporaryDirectory(prefix="vcor-materials-") as folder:
-        ready = ready_catalogue(catalogue, [start] if isinstance(start, str) else [], None, Path(folder))
+    with _ready(catalogue, [start] if isinstance(start, str) else []) as ready:
         archive, cal = calibration_archive(study.name, spec, ready)
     return Calibrated(name=study.name, calibration=cal, material=cal.material, archive=archive,
                       dataset=archive.loaded(command="vcor.fitting.calibrate"))
@@ -302,10 +312,126 @@ def dem_export(dem: dict | str, *, config: Any = None, name: str | None = None) 
     study = resolve_entry("dem", dem, name, config, "dem")
     project, spec = study.project, study.project.dem[study.name]
     load_kernels([solver_method(spec)])
-    with tempfile.TemporaryDirectory(prefix="vcor-materials-") as folder:
-        ready = ready_catalogue(project.catalogue, project.dem_materials(study.name), None, Path(folder))
+    with _ready(project.catalogue, project.dem_materials(study.name)) as ready:
         collisions, fits, temps = run_dem(study.name, spec, ready)
     ds = dem_dataset(study.name, collisions, fits, temps, config=spec)
     archive = Archive(dataset=ds, title=f"vcor DEM parameters, {study.name}")
     return DemExport(name=study.name, dataset=archive.loaded(command="vcor.dem_export"), archive=archive,
                      files=project.dem_files(study.name), collisions=collisions, temperatures=temps)
+
+
+@contextlib.contextmanager
+def _ready(catalogue, names):
+    """:func:`~vcor.study.computed.ready_catalogue` for ``names``, with a temporary material folder that
+    holds the computed materials the project's folder lacks, for the duration of the block."""
+    with tempfile.TemporaryDirectory(prefix="vcor-materials-") as folder:
+        yield ready_catalogue(catalogue, list(names), None, Path(folder))
+
+
+def histories(scene: dict | str, *, config: Any = None, name: str | None = None) -> xarray.Dataset:
+    """Time histories of a scene's ``histories`` runs: the dataset ``results/<scene>/histories.nc``.
+
+    Parameters
+    ----------
+    scene : dict or str
+        A scene as under ``scenes.<name>`` of a config, or the name of a scene of ``config``.
+    config : str, path, dict or Catalogue, optional
+        Where material names are looked up (as :func:`sweep`); None: presets only.
+    name : str, optional
+        The name of a scene given as a mapping (default ``sweep``, as :func:`sweep`), in the dataset's
+        attributes and title.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``run`` (``material/method``) and ``sample``: t, s, s', F, J, z', U with units, the ghost
+        part after separation marked, each run's outcome, status and validity, and the solver settings.
+
+    Examples
+    --------
+    >>> import vcor
+    >>> ds = vcor.histories({"materials": ["sls"], "histories": {"v0": 1.0, "runs": [["sls", "adaptive"]]}})
+    >>> str(ds["run"].values[0]), ds["F"].attrs["units"]
+    ('sls/adaptive', 'N')
+    """
+    study = resolve_scene(scene, config, name, "histories")
+    sc = study.project.scenes[study.name]
+    spec = sc.config["histories"]
+    with _ready(study.project.catalogue, sorted({run[0] for run in spec["runs"]})) as ready:
+        archive = histories_archive(study.name, spec, sc.settings, ready)
+    return archive.loaded(command="vcor.histories")
+
+
+def moduli(scene: dict | str, *, config: Any = None, name: str | None = None) -> xarray.Dataset:
+    """Relaxation modulus E(t) and complex modulus E*(omega) of a scene's materials (its ``moduli`` list,
+    else its ``materials``): the dataset ``results/<scene>/moduli.nc``.
+
+    Parameters
+    ----------
+    scene, config, name
+        As :func:`histories` (a scene with a ``moduli`` list or ``materials``, or its name in ``config``;
+        where names are looked up; the name of a scene given as a mapping).
+
+    Returns
+    -------
+    xarray.Dataset
+        E(t) on a log time grid and storage, loss modulus and tan delta on a log frequency grid, per
+        material, in Pa, s and rad/s.
+    """
+    study = resolve_scene(scene, config, name, "moduli")
+    names = study.project.scenes[study.name].moduli_materials()
+    with _ready(study.project.catalogue, names) as ready:
+        archive = moduli_archive(names, ready)
+    return archive.loaded(command="vcor.moduli")
+
+
+def viscoelastic_spheres(scene: dict | str, *, config: Any = None, name: str | None = None) -> xarray.Dataset:
+    """The COR eps(b) of viscoelastic spheres (Ramirez et al. 1999) for a scene's ``spheres`` block:
+    numerics, series and Pade approximants, the hereditary variant and the ice fit; the dataset
+    ``results/<scene>/spheres.nc``.
+
+    Parameters
+    ----------
+    scene, config, name
+        As :func:`histories` (a scene with a ``spheres`` block, or its name in ``config``; where names are looked
+        up; the name of a scene given as a mapping).
+
+    Returns
+    -------
+    xarray.Dataset
+        eps against the dimensionless damping b per separation rule and method.
+    """
+    study = resolve_scene(scene, config, name, "spheres")
+    return spheres_archive(study.name, study.project.scenes[study.name].config["spheres"]).loaded(
+        command="vcor.viscoelastic_spheres")
+
+
+def convergence(scene: dict | str, *, config: Any = None, name: str | None = None) -> xarray.Dataset:
+    """The work-precision study of a scene's ``convergence`` block: every solver on a ladder of steps or
+    tolerances per material and impact speed, its COR and t0 error against an independent reference and
+    its wall time; the dataset ``results/<scene>/convergence.nc``
+    (:func:`vcor.study.convergence.orders_table` gives its table of observed orders). The materials are
+    solved one after another in this process: the wall times are the measurement, and solves running
+    beside each other would disturb them.
+
+    Parameters
+    ----------
+    scene, config, name
+        As :func:`histories` (a scene with a ``convergence`` block, or its name in ``config``; where names are looked
+        up; the name of a scene given as a mapping).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions (material, v0, solver, level): cor, t0, wall_time (s), the ladder's parameter, steps,
+        err_cor, err_t0 (s), status and message, and the references.
+    """
+    from ..solvers import METHODS
+    from ..solvers.backend import load_kernels
+
+    study = resolve_scene(scene, config, name, "convergence")
+    spec = study.project.scenes[study.name].config["convergence"]
+    load_kernels(METHODS)  # compiled before the timings, as the workflow's jobs do
+    with _ready(study.project.catalogue, spec["materials"]) as ready:
+        cases = [convergence_case(m, spec["v0"], ready).loaded(command="vcor.convergence") for m in spec["materials"]]
+    return convergence_archive(spec, cases).loaded(command="vcor.convergence")

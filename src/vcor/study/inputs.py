@@ -31,8 +31,8 @@ from .config import SCENE_NAME_PATTERN, load_project
 from .project import Project
 from .schema import check_keys, check_schema
 
-__all__ = ["SCENE_NAME", "Resolved", "as_config", "plain", "read_config", "resolve_entry", "resolve_scene",
-           "schema_path", "spec_of"]
+__all__ = ["SCENE_BLOCKS", "SCENE_NAME", "Resolved", "as_config", "plain", "read_config", "resolve_entry",
+           "resolve_scene", "schema_path", "spec_of"]
 
 #: the name of a scene given as a mapping that is not one of its config's scenes
 SCENE_NAME = "sweep"
@@ -236,16 +236,34 @@ def _scene_entry(scene, cfg: dict, config, name=None) -> tuple[str, dict, bool]:
     return (same[0] if same else SCENE_NAME), given, False
 
 
-def resolve_scene(scene, config=None, name=None) -> Resolved:
+#: a scene's dataset -> (the block that defines it, how to add one, the study function that computes it)
+SCENE_BLOCKS = {
+    "sweep": ("grid", "grid: {v0: [...]}", "vcor.sweep"),
+    "histories": ("histories", "histories: {v0: ..., runs: [[material, method], ...]}", "vcor.histories"),
+    "spheres": ("spheres", "spheres: {b: [...], rules: [overlap, force]}", "vcor.viscoelastic_spheres"),
+    "convergence": ("convergence", "convergence: {materials: [...], v0: [...]}", "vcor.convergence"),
+    "moduli": ("materials", "materials: [...] or moduli: [...]", "vcor.moduli"),
+}
+
+
+def resolve_scene(scene, config=None, name=None, dataset: str = "sweep") -> Resolved:
     """The checked study of ``scene`` (its name in ``config``, or a mapping, named ``name``) with ``config``'s
-    materials, fits and calibrations; ValueError (one line naming the key: module docstring) before any work."""
+    materials, fits and calibrations, for its ``dataset`` (a key of SCENE_BLOCKS); ValueError (one line
+    naming the key: module docstring) before any work, also when the scene lacks the block that dataset
+    needs (saying which of its blocks it has, and the functions that compute them)."""
     cfg, base = as_config(config)
     name, entry, by_name = _scene_entry(scene, cfg, config, name)
     study = {k: cfg[k] for k in _SHARED if k in cfg}
     study["scenes"] = {name: plain(entry)}
     key = f"scenes.{name}"
     project = _checked(study, base, config, None if by_name else (key, "scene"))
-    if project.scenes[name].grid is None:
-        raise ValueError(f"{_where(config)}{key if by_name else 'scene'}.grid: the scene has no grid to sweep "
-                         f"(add grid: {{v0: [...]}})")
+    sc = project.scenes[name]
+    block, add, _ = SCENE_BLOCKS[dataset]
+    has = {"sweep": sc.grid is not None, "moduli": bool(sc.moduli_materials())}
+    if not has.get(dataset, block in sc.config):
+        others = [f"{SCENE_BLOCKS[d][0]} ({SCENE_BLOCKS[d][2]})" for d in SCENE_BLOCKS
+                  if d not in (dataset, "moduli") and SCENE_BLOCKS[d][0] in sc.config]
+        said = f"; it has {', '.join(others)}" if others else ""
+        raise ValueError(f"{_where(config)}{key if by_name else 'scene'}.{block}: the scene has no {block} for "
+                         f"{SCENE_BLOCKS[dataset][2]} (add {add}){said}")
     return Resolved(name=name, project=project, base_dir=base)

@@ -83,6 +83,10 @@ class Scene:
         return sorted(set(self.materials) | set(cfg.get("moduli", []))
                       | set(cfg.get("convergence", {}).get("materials", [])) | set(self.body_materials()))
 
+    def moduli_materials(self) -> list[str]:
+        """The materials whose moduli the scene tabulates: its ``moduli`` list, else its swept materials."""
+        return list(self.config.get("moduli", self.materials))
+
     def body_materials(self) -> list[str]:
         """Names of the catalogue the scene's sphere and plate name (not ``rigid``, not inline specs)."""
         bodies = [(self.config.get(k) or {}).get("material") for k in ("sphere", "plate")]
