@@ -175,7 +175,9 @@ def fit(fit: dict | str, *, config: Any = None, name: str | None = None) -> Fitt
         ``{model: prony, data: {file, T_ref, ...}}``; the user guide's Materials and DMA pages), or the name
         of one in ``config`` (a member of a fit family too, e.g. ``butyl-prony-n3``).
     config : str, path, dict or Catalogue, optional
-        The config the name is looked up in; a data file's path is taken from its folder.
+        The config the name is looked up in. A data file's path is relative to the config's folder (for a
+        mapping, or no config, the current directory) and inside it, as every path of a workflow project
+        is (the files a result depends on belong to the project): link or copy outside data there.
     name : str, optional
         The material's name when ``fit`` is a mapping (default ``fit``).
 
@@ -232,8 +234,9 @@ def calibrate(calibration: dict | str, *, config: Any = None, name: str | None =
         ``material``: a name or a spec, ``free``: the parameters with their bounds, optional ``geometry`` and
         ``solver``; the user guide's Calibration page), or the name of one in ``config``.
     config : str, path, dict or Catalogue, optional
-        Where the data file (relative to its folder) and a named start material are found; a start material
-        that is a fit is fitted for the call unless the config's material folder holds its file.
+        Where the data file (relative to its folder, for a mapping or no config the current directory, and
+        inside it: as :func:`fit`) and a named start material are found; a start material that is a fit is
+        fitted for the call unless the config's material folder holds its file.
     name : str, optional
         The calibrated material's name when ``calibration`` is a mapping (default ``calibration``).
 
