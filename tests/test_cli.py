@@ -228,6 +228,27 @@ def test_a_reader_that_stops_early_is_not_an_error():
     assert proc.wait() == 0 and "Traceback" not in err, err
 
 
+def test_impact_takes_simulates_targets(capsys):
+    """--target takes what vcor.simulate's target takes (a sphere or a plate of a named material or a spec;
+    rigid), with the same numbers; bad ones are refused in one line naming the flag."""
+    cases = [("{sphere: {material: sls, r: 0.005}}", {"sphere": {"material": "sls", "r": 0.005}}),
+             ("{plate: {material: {model: elastic, E: 7.0e+10}, h: 0.01}}",
+              {"plate": {"material": {"model": "elastic", "E": 7e10}, "h": 0.01}}),
+             ("rigid", "rigid")]
+    for text, target in cases:
+        assert cli.main(["impact", "--material", "sls", "--v0", "1", "--target", text, "--json"]) == 0
+        out = json.loads(capsys.readouterr().out)
+        assert out["cor"]["value"] == vcor.simulate("sls", 1.0, target=target).cor, text
+    for argv, message in [(["--target", "{sphere: {material: slss}}"], "--target sphere.material: unknown material"),
+                          (["--target", "{sphre: {}}"], "--target must be plate, rigid"),
+                          (["--target", "{plate: [1"], "--target: not YAML"),
+                          (["--target", "{sphere: {}}", "--rigid"], "--rigid and --target"),
+                          (["--target", "{sphere: {}}", "--h", "0.01"], "geometry keywords ['h']")]:
+        assert cli.main(["impact", "--material", "sls", "--v0", "1", *argv]) == 2
+        err = capsys.readouterr().err
+        assert message in err and len(err.strip().splitlines()) == 1, err
+
+
 def test_every_option_of_impact_names_its_unit_or_says_it_has_none():
     for action in cli.impact_options():
         if action.dest == "help":

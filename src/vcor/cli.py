@@ -206,6 +206,12 @@ def _add_impact(sub) -> list:
               "a stiff plate [no unit; default 3]")
     _add(actions, imp, "--rigid", action="store_true", help="rigid, immovable target (plate mobility 0) [no unit; "
          "default off]")
+    _add(actions, imp, "--target", default=None,
+         help="what the sphere hits, as vcor.simulate's target: plate (the geometry flags' plate), rigid, or a "
+              "YAML mapping {sphere: {material, r, rho, nu}} (a second sphere, head-on) or {plate: {material, h, "
+              "rho, nu}} (a plate of another material); material: a name as --material takes it, or a spec "
+              "{model: ..., <parameters>}; omitted keys are the impacting sphere's [unit m for r and h, kg/m^3 "
+              "for rho; default plate]")
     _add(actions, imp, "--json", action="store_true", help="print JSON, every number with its unit, full precision "
          "[no unit; default off]")
     return actions
@@ -315,15 +321,43 @@ def _kernel_watch(stream):
         yield record
 
 
-def _solve(material, v0, options, geometry):
+def _solve(material, v0, options, geometry, target="plate"):
     """(Result, kernel load time in s): the result's wall_time is the solve alone (module docstring)."""
     from .solvers.simulate import simulate
 
     with _kernel_watch(sys.stderr) as watch:
-        res = simulate(material, v0, options=options, **geometry)
+        res = simulate(material, v0, options=options, target=target, **geometry)
     if watch["seconds"] > 0:
-        res = simulate(material, v0, options=options, **geometry)
+        res = simulate(material, v0, options=options, target=target, **geometry)
     return res, watch["seconds"]
+
+
+def _target(args, catalogue):
+    """``vcor.simulate``'s target of ``--target`` (and ``--rigid``), its material names looked up in
+    ``catalogue`` as ``--material``'s; ValueError naming the flag otherwise."""
+    text = args.target
+    if text is None or text in ("plate", "rigid"):
+        if args.rigid and text == "plate":
+            raise ValueError("--rigid and --target plate contradict each other: give one")
+        return "rigid" if args.rigid else (text or "plate")
+    if args.rigid:
+        raise ValueError(f"--rigid and --target {text!r} contradict each other: give one")
+    import yaml
+
+    try:
+        target = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        raise ValueError(f"--target: not YAML ({str(exc).splitlines()[0]}): write plate, rigid, '{{sphere: "
+                         f"{{material: sls, r: 0.005}}}}' or '{{plate: {{material: sls, h: 0.02}}}}'") from None
+    if not (isinstance(target, dict) and len(target) == 1 and next(iter(target)) in ("sphere", "plate")
+            and isinstance(next(iter(target.values())), dict)):
+        raise ValueError(f"--target must be plate, rigid, {{sphere: {{...}}}} or {{plate: {{...}}}}, got {text!r}")
+    (kind, spec), = target.items()
+    name = spec.get("material")
+    if isinstance(name, str):
+        catalogue.check(name, f"--target {kind}.material")
+        spec = {**spec, "material": catalogue.material(name)}
+    return {kind: spec}
 
 
 def _fmt(value, digits: int = 5) -> str:
@@ -384,9 +418,8 @@ def _impact_lines(res, load_time: float) -> list[str]:
 def _impact(args) -> int:
     from .materials.files import from_file
 
-    geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if getattr(args, k, None) is not None}
-    if args.rigid:
-        geometry["rigid"] = True
+    # (--rigid goes to simulate as its target: _target)
+    geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if k != "rigid" and getattr(args, k, None) is not None}
     options = {k: getattr(args, k) for k in SolverOptions.names() if getattr(args, k, None) is not None}
     catalogue = _catalogue(args.config)
     name = args.material
@@ -397,7 +430,7 @@ def _impact(args) -> int:
     else:
         catalogue.check(name, "--material")
         material = catalogue.material(name)
-    res, load_time = _solve(material, args.v0, options, geometry)
+    res, load_time = _solve(material, args.v0, options, geometry, _target(args, catalogue))
     if args.json:
         print(json.dumps(_impact_json(res, load_time), indent=2))
     else:
