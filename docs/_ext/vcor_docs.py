@@ -263,13 +263,15 @@ class FigureTable(Directive):
 # ----------------------------------------------------------------------------- validity flags
 class ValidityTable(Directive):
     def run(self):
-        from vcor.solvers import validity
+        from vcor.solvers import extrapolation, validity
 
         limits = {"large_indentation": f"s_max / r > {validity.MAX_INDENTATION:g}",
                   "fast_impact": f"v0 > {validity.MAX_SPEED_FRACTION:g} sqrt(E(t0/4) / rho)",
                   "energy_residual": f"abs(energy residual) > {validity.MAX_ENERGY_RESIDUAL:g}",
                   "under_resolved": f"fixed step, Kelvin-Voigt, t_d / dt < {validity.MIN_DAMPING_STEPS}",
-                  "no_rebound": "sphere_velocity z'(t0) > 0 (still towards the target)"}
+                  "no_rebound": "sphere_velocity z'(t0) > 0 (still towards the target)",
+                  "grids_disagree": (f"adaptive: grids differ by > {extrapolation.RICHARDSON_GAP:g}, their differences "
+                                     f"not shrinking as h^2 (ratio not in {extrapolation.RICHARDSON_RATIO})")}
         if set(limits) != set(validity.FLAGS):
             raise self.error(f"validity flags differ from the table: {sorted(set(limits) ^ set(validity.FLAGS))}")
         rows = [[f"`{name}`", str(mask), f"`{limits[name]}`"] for name, mask in validity.FLAGS.items()]

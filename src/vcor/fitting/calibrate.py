@@ -503,10 +503,10 @@ def _start_material(spec, where, catalogue):
 
 
 def check_spec(spec: dict, *, catalogue, where: str = "calibration", pending=()) -> CorData:
-    """Everything about a calibration spec that can be checked before solving: its keys, the data file
-    (file, line, column), the start material (a name of ``catalogue``, a
-    :class:`vcor.materials.Catalogue`, or an inline spec), the free parameters' names, bounds and start
-    values, and the number of points. ``pending``: material names whose files do not exist yet (fits,
+    """A calibration spec's keys, the data file (file, line, column), the start material (a name of
+    ``catalogue``, a :class:`vcor.materials.Catalogue`, or an inline spec), the free parameters' names, bounds
+    and start values, and the number of points (its geometry and solver: the config's schema and
+    ``vcor.study.config``). ``pending``: material names whose files do not exist yet (fits,
     calibrations): only their names are checked. Returns the data."""
     if not isinstance(spec, dict):
         raise ValueError(f"{where}: a mapping with keys {sorted(SPEC_KEYS)}, got {spec!r}")  # noqa: TRY004 (config values)

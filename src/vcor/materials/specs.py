@@ -78,16 +78,28 @@ def read_prony_csv(path) -> dict:
     return out
 
 
+def _table_path(key: str, value, base_dir) -> Path:
+    """The path of a Prony table ``value`` (relative: to ``base_dir``, the project folder); ValueError naming
+    ``key`` and the folder it was looked for in when there is no such file."""
+    if not isinstance(value, (str, Path)) or not str(value).strip():
+        raise ValueError(f"{key}: the path of a CSV file (tau or beta, E or g), got {value!r}")
+    path = Path(value)
+    full = path if path.is_absolute() else Path(base_dir) / path
+    if not full.is_file():
+        folder = "" if path.is_absolute() else (f" in {str(Path(base_dir).resolve())!r} (the project folder, which "
+                                                f"relative paths are taken from)")
+        raise ValueError(f"{key}: the Prony table {str(value)!r} does not exist{folder}")
+    return full
+
+
 def _prony(where, spec, base_dir):
     keys = set(spec) - {"model"}
     table = dict(spec)
     if "file" in keys:
-        path = Path(spec["file"])
-        path = path if path.is_absolute() else Path(base_dir) / path
         clash = keys & {"E", "beta", "tau", "g"}
         if clash:
             raise ValueError(f"{where}: give the terms either in file or as {sorted(clash)}, not both")
-        table.update(read_prony_csv(path))
+        table.update(read_prony_csv(_table_path(f"{where}.file", spec["file"], base_dir)))
     if "tau" in table and "beta" in table:
         raise ValueError(f"{where}: give relaxation times tau (s) or rates beta (1/s), not both")
     if "tau" in table:

@@ -2,25 +2,24 @@
 workflow writes (exported from :mod:`vcor`: ``vcor.sweep``, ``vcor.fit``, ``vcor.calibrate``,
 ``vcor.dem_export``).
 
-==========================  ============================  =============================================
-function                    takes (as a config has it)    returns (what the workflow writes)
-==========================  ============================  =============================================
-:func:`sweep`               a scene (``scenes.<name>``)   ``results/<scene>/sweep.nc``, an xarray.Dataset
-:func:`fit`                 a fit (``fits.<name>``)       :class:`Fitted`: ``<material_dir>/<name>.nc``
-                                                          (and its ``.txt`` table), the material
-:func:`calibrate`           a calibration                 :class:`Calibrated`: the calibration record
-                            (``calibrations.<name>``)     (``results/calibrations/<name>.nc``, also the
-                                                          material file), the material
-:func:`dem_export`          a DEM entry (``dem.<name>``)  :class:`DemExport`: ``results/dem/<name>.nc``,
-                                                          and its tables, LAMMPS deck and Yade script
-:func:`histories`           a scene with ``histories``    ``results/<scene>/histories.nc``
-:func:`moduli`              a scene (its ``moduli`` or    ``results/<scene>/moduli.nc``
-                            ``materials``)
-:func:`viscoelastic_        a scene with ``spheres``      ``results/<scene>/spheres.nc``
-spheres`
-:func:`convergence`         a scene with ``convergence``  ``results/<scene>/convergence.nc`` (the
-                                                          work-precision study)
-==========================  ============================  =============================================
+===============================  ============================  =============================================
+function                         takes (as a config has it)    returns (what the workflow writes)
+===============================  ============================  =============================================
+:func:`sweep`                    a scene (``scenes.<name>``)   ``results/<scene>/sweep.nc``, an xarray.Dataset
+:func:`fit`                      a fit (``fits.<name>``)       :class:`Fitted`: ``<material_dir>/<name>.nc``
+                                                               (and its ``.txt`` table), the material
+:func:`calibrate`                a calibration                 :class:`Calibrated`: the calibration record
+                                 (``calibrations.<name>``)     (``results/calibrations/<name>.nc``, also the
+                                                               material file), the material
+:func:`dem_export`               a DEM entry (``dem.<name>``)  :class:`DemExport`: ``results/dem/<name>.nc``,
+                                                               and its tables, LAMMPS deck and Yade script
+:func:`histories`                a scene with ``histories``    ``results/<scene>/histories.nc``
+:func:`moduli`                   a scene (its ``moduli`` or    ``results/<scene>/moduli.nc``
+                                 ``materials``)
+:func:`viscoelastic_spheres`     a scene with ``spheres``      ``results/<scene>/spheres.nc``
+:func:`convergence`              a scene with ``convergence``  ``results/<scene>/convergence.nc`` (the
+                                                               work-precision study)
+===============================  ============================  =============================================
 
 Each takes its entry as a mapping (the keys of its config section) or as the name of one in
 ``config``: a config file, a mapping or a :class:`~vcor.materials.Catalogue`; materials are names

@@ -23,7 +23,7 @@ from ..materials.presets import PRESETS
 from ..materials.specs import from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.applicability import refusal
-from ..solvers.options import METHOD_NAMES
+from ..solvers.options import METHOD_NAMES, solver_options
 from .dem import check_dem
 from .grid import Grid, canon
 from .project import BUILDS, DATASETS, DEFAULTS, Project, Scene
@@ -130,8 +130,36 @@ def _catalogue(config: dict, base_dir: Path) -> Catalogue:
     catalogue = Catalogue(specs=specs, fits=fits, calibrations=calibrations,
                           material_dir=_material_dir(config, base_dir), base_dir=str(base_dir))
     for name, spec in calibrations.items():
-        check_spec(spec, catalogue=catalogue, where=f"calibrations.{name}", pending=catalogue.computed())
+        _check_calibration(f"calibrations.{name}", spec, catalogue)
     return catalogue
+
+
+def _check_calibration(where: str, spec: dict, catalogue: Catalogue) -> None:
+    """A calibration spec (:func:`vcor.fitting.calibrate.check_spec`: keys, data, start, free parameters) and
+    its forward model, as a scene's corner points are checked: the solver options, and the start material's
+    impacts at the data's lowest and highest speed with the calibration's geometry, by a method that can
+    solve them. The schema has checked the geometry's and the solver's keys, types and ranges (a scene's)."""
+    data = check_spec(spec, catalogue=catalogue, where=where, pending=catalogue.computed())
+    try:
+        options = solver_options(spec.get("solver") or {})
+    except ValueError as exc:
+        raise ValueError(f"{where}.solver: {exc}") from None
+    start = spec["material"]
+    if isinstance(start, str) and start in catalogue.computed():
+        return  # a fit's or calibration's file is written by its rule: its values are checked by the job
+    material = (catalogue.material(start) if isinstance(start, str)
+                else from_spec(start, base_dir=catalogue.base_dir, where=f"{where}.material"))
+    geometry = dict(spec.get("geometry") or {})
+    for v0 in (float(data.v0.min()), float(data.v0.max())):
+        try:
+            impact = make_impact(material, v0, geometry)
+        except ValueError as exc:  # the message starts with the keyword it is about, where it is one
+            word = str(exc).split(" ", 1)[0]
+            key = f"{where}.geometry" + (f".{word}" if word in geometry else "")
+            raise ValueError(f"{key}: {exc} (the start material at v0 = {v0:g} m/s, a speed of the data)") from None
+        why = refusal(impact.material, options)
+        if why:
+            raise ValueError(f"{where}.solver.method: {why}")
 
 
 def _check_figures(name: str, scene: dict, catalogue: Catalogue, grid: Grid | None) -> None:

@@ -1,0 +1,95 @@
+"""A calibration's geometry and solver are checked before any job as a scene's are (the schema's keys, ranges
+and units, then the start material's impacts and the method), in one line naming the key; a config
+material's missing Prony table names its key, its place in the file and the folder it was looked for in
+(docs: Calibration, Scenes)."""
+
+import re
+from pathlib import Path
+
+import pytest
+
+import vcor
+from vcor.fitting import calibrate as C
+from vcor.study.config import load_project
+from vcor.study.schema import check_schema
+
+ROOT = Path(__file__).resolve().parents[2]
+SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+DATA = "v0,cor\n1.0,0.40\n3.0,0.41\n10.0,0.43\n"
+SPEC = {"data": "cor.csv", "material": "sls", "free": {"beta": [100.0, 1.0e5]}}
+
+
+def _project(tmp_path, spec):
+    (tmp_path / "cor.csv").write_text(DATA)
+    return load_project(check_schema({"calibrations": {"c": {**SPEC, **spec}}}, SCHEMA), tmp_path)
+
+
+@pytest.mark.parametrize("spec, words", [
+    ({"geometry": {"radius": 0.01}}, "calibrations.c.geometry.radius: unknown key; allowed: ['E_plate', 'case', 'h'"),
+    ({"geometry": {"r": -0.01}}, "calibrations.c.geometry.r: must be > 0 m, got -0.01 m"),
+    ({"geometry": {"case": 5}}, "calibrations.c.geometry.case: 5 is not allowed; allowed: [1, 2, 3, 4]"),
+    ({"geometry": {"r": 2000.0}}, "calibrations.c.geometry.r: r must be in [1e-09, 1000] m, got 2000.0"),
+    ({"geometry": {"E_plate": 1.0e9}}, "calibrations.c.geometry.E_plate: E_plate is the elastic plate's modulus of "
+                                       "case 4 only"),
+    ({"solver": {"methd": "adaptive"}}, "calibrations.c.solver.methd: unknown key; allowed: ['c2', 'dt'"),
+    ({"solver": {"method": "adaptiv"}}, "calibrations.c.solver.method: 'adaptiv' is not allowed"),
+    ({"solver": {"step_tol": 0.5}}, "calibrations.c.solver.step_tol: must be < 0.01, got 0.5"),
+    ({"solver": {"dt": 1.0e-6}}, "calibrations.c.solver: solver option dt is not used by method 'adaptive'"),
+    ({"material": "butyl-fc", "free": {"E0": [1.0e5, 1.0e8]}, "solver": {"method": "ive"}},
+     "calibrations.c.solver.method: method 'ive' needs a Prony kernel"),
+])
+def test_a_calibrations_geometry_and_solver_are_refused_at_planning_naming_the_key(tmp_path, spec, words):
+    with pytest.raises(ValueError) as exc:
+        _project(tmp_path, spec)
+    text = str(exc.value)
+    assert "\n" not in text and len(text) < 400, text
+    assert text.startswith(words), (words, text)
+
+
+def test_a_good_calibration_geometry_and_solver_pass(tmp_path):
+    project = _project(tmp_path, {"geometry": {"r": 0.005, "h": 0.02}, "solver": {"method": "direct"}})
+    assert project.catalogue.calibrations["c"]["solver"]["method"] == "direct"
+
+
+def _no_solving(monkeypatch):
+    def no_work(*args, **kw):
+        raise AssertionError("solving started")
+
+    monkeypatch.setattr(C, "_solve", no_work)
+
+
+@pytest.mark.parametrize("spec, words", [
+    ({"geometry": {"radius": 0.01}}, r"^calibration\.geometry\.radius: unknown key; allowed: "),
+    ({"geometry": {"r": -0.01}}, r"^calibration\.geometry\.r: must be > 0 m, got -0\.01 m$"),
+    ({"solver": {"methd": "adaptive"}}, r"^calibration\.solver\.methd: unknown key; .*did you mean 'method'\?$"),
+])
+def test_vcor_calibrate_refuses_a_bad_geometry_or_solver_before_any_work(tmp_path, monkeypatch, spec, words):
+    _no_solving(monkeypatch)
+    (tmp_path / "cor.csv").write_text(DATA)
+    with pytest.raises(ValueError, match=words):
+        vcor.calibrate({**SPEC, "data": str(tmp_path / "cor.csv"), **spec})
+
+
+def test_a_calibration_of_a_config_file_is_refused_at_its_line_and_column(tmp_path, monkeypatch):
+    _no_solving(monkeypatch)
+    (tmp_path / "cor.csv").write_text(DATA)
+    (tmp_path / "my.yaml").write_text("calibrations:\n  x:\n    data: cor.csv\n    material: sls\n"
+                                      "    free: {beta: [100, 1.0e+5]}\n    geometry: {radius: 0.01}\n")
+    with pytest.raises(ValueError, match=r"^config file .*my\.yaml, line 6, column 16: "
+                                         r"calibrations\.x\.geometry\.radius: unknown key"):
+        vcor.calibrate("x", config=tmp_path / "my.yaml")
+
+
+def test_a_missing_prony_table_names_its_key_its_place_and_the_folder(tmp_path):
+    """The config's materials are checked whole: a material whose table is missing refuses the config, also
+    for an entry that does not use it (as the workflow refuses it)."""
+    (tmp_path / "bad.yaml").write_text(
+        "materials:\n  csvmat: {model: prony, E_inf: 3.0e+6, file: data/missing.csv}\n"
+        "dem:\n  d: {sphere: {material: sls}, v0: [1.0, 2.0]}\n")
+    with pytest.raises(ValueError) as exc:
+        vcor.dem_export("d", config=tmp_path / "bad.yaml")
+    text = str(exc.value)
+    folder = re.escape(repr(str(tmp_path.resolve())))
+    assert "\n" not in text
+    assert re.match(rf"^config file .*bad\.yaml, line 2, column 41: materials\.csvmat\.file: the Prony table "
+                    rf"'data/missing\.csv' does not exist in {folder} \(the project folder", text), text
