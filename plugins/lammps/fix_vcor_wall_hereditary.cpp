@@ -12,7 +12,8 @@
 // of the walls on the group (N, 3 components), the number of touching contacts and the smallest n
 // of the time-step rule (Store::shortest) among the contacts that have ended since the fix was
 // defined (inf while none has). The walls act in a minimization too (as the pair style does), where
-// the contact does not advance in time (vcor_hereditary.h).
+// the contact does not advance in time (vcor_hereditary.h). Units si only, with a time step > 0 s
+// (init() refuses another unit style and a time step <= 0 s).
 //
 // This file is part of vcor's LAMMPS plugin and is distributed under the GNU General Public
 // License version 2 (see LICENSE in this folder).
@@ -50,13 +51,14 @@ FixVcorWallHereditary::FixVcorWallHereditary(LAMMPS *lmp, int narg, char **arg) 
     dim = 2;
   else
     error->all(FLERR, "fix vcor/wall/hereditary: wall style '{}' is not xplane, yplane or zplane; {}", style, usage);
-  if (std::strcmp(arg[4], "NULL") != 0) {
-    has_lo = true;
-    lo = utils::numeric(FLERR, arg[4], false, lmp);
-  }
-  if (std::strcmp(arg[5], "NULL") != 0) {
-    has_hi = true;
-    hi = utils::numeric(FLERR, arg[5], false, lmp);
+  for (int k = 0; k < 2; ++k) {
+    const char *text = arg[4 + k];
+    if (std::strcmp(text, "NULL") == 0) continue;
+    double &where = k == 0 ? lo : hi;
+    if (!vcor::parse_number(text, where))
+      error->all(FLERR, "fix vcor/wall/hereditary: {} = '{}' is not a finite number (m) or NULL; {}",
+                 k == 0 ? "lo" : "hi", text, usage);
+    (k == 0 ? has_lo : has_hi) = true;
   }
   if (!has_lo && !has_hi) error->all(FLERR, "fix vcor/wall/hereditary: both walls are NULL; {}", usage);
   if (has_lo && has_hi && lo >= hi)
@@ -87,6 +89,8 @@ int FixVcorWallHereditary::setmask()
 
 void FixVcorWallHereditary::init()
 {
+  vcor::require_si_units(lmp, "fix vcor/wall/hereditary");
+  vcor::require_positive_time_step(lmp, "fix vcor/wall/hereditary");
   vcor::require_one_rank_radii_ids(lmp, "fix vcor/wall/hereditary");
 }
 
@@ -116,6 +120,8 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
   tagint *tag = atom->tag;
   int *mask = atom->mask;
   const int nlocal = atom->nlocal;
+  // before the history: a step <= 0 s would otherwise show as a jump of the time (jump_message)
+  vcor::require_positive_time_step(lmp, "fix vcor/wall/hereditary");
   store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, law.nterms(), vcor::clock_of(lmp));
   wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
   double contacts = 0.0;

@@ -9,7 +9,9 @@
 // in Pa and 1/s, in the effective plane-strain form: for two spheres of one material of Young's
 // relaxation modulus E(t) and Poisson ratio nu, E_c = E / (2 (1 - nu^2)). The force between
 // spheres i and j with overlap delta is 4/3 sqrt(R) (E_inf u + sum_i q_i), u = delta^1.5,
-// R = r_i r_j / (r_i + r_j), clipped at zero; no tangential force, no potential energy.
+// R = r_i r_j / (r_i + r_j), clipped at zero; no tangential force, no potential energy. Units si
+// only, with a time step > 0 s: init_style() refuses another unit style (the coefficients are not
+// converted) and a time step <= 0 s.
 // compute pair vcor/hereditary gives two numbers: [1] the contacts evaluated in the last force
 // evaluation, [2] the smallest n of the time-step rule (Store::shortest) among the contacts that have
 // ended since the pair style was defined (inf while none has).
@@ -105,6 +107,8 @@ void PairVcorHereditary::coeff(int narg, char **arg)
 
 void PairVcorHereditary::init_style()
 {
+  vcor::require_si_units(lmp, "pair_style vcor/hereditary");
+  vcor::require_positive_time_step(lmp, "pair_style vcor/hereditary");
   vcor::require_one_rank_radii_ids(lmp, "pair_style vcor/hereditary");
 
   neighbor->add_request(this, NeighConst::REQ_SIZE);
@@ -167,6 +171,8 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   int *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
 
+  // before the history: a step <= 0 s would otherwise show as a jump of the time (jump_message)
+  vcor::require_positive_time_step(lmp, "pair_style vcor/hereditary");
   store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, maxterms, vcor::clock_of(lmp));
   long touching = 0;
 

@@ -61,8 +61,7 @@ static std::string show(double x)
   return s.str();
 }
 
-// a finite number, or false
-static bool number(const std::string &text, double &out)
+bool parse_number(const std::string &text, double &out)
 {
   if (text.empty()) return false;
   const char *start = text.c_str();
@@ -79,7 +78,8 @@ std::string parse_law(const std::vector<std::string> &args, Law &law)
   const std::size_t nprony = args.size() - 1;
   if (nprony % 2 != 0)
     return "the Prony numbers after E_inf come in pairs E_i beta_i: got " + std::to_string(nprony) +
-        " numbers after E_inf (an odd count: E_" + std::to_string(nprony / 2 + 1) + " has no beta_" +
+        (nprony == 1 ? " number" : " numbers") + " after E_inf (an odd count: E_" + std::to_string(nprony / 2 + 1) +
+        " has no beta_" +
         std::to_string(nprony / 2 + 1) + ")";
   Law out;
   for (std::size_t k = 0; k < args.size(); ++k) {
@@ -87,7 +87,7 @@ std::string parse_law(const std::vector<std::string> &args, Law &law)
     const std::string name = k == 0 ? "E_inf" : (is_beta ? "beta_" : "E_") + std::to_string((k + 1) / 2);
     const std::string unit = is_beta ? "1/s" : "Pa";
     double x = 0.0;
-    if (!number(args[k], x))
+    if (!parse_number(args[k], x))
       return name + " = '" + args[k] + "' is not a finite number (" + unit + ")";
     if (is_beta) {
       if (x <= 0.0)
@@ -118,6 +118,22 @@ void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
                     who, lmp->comm->nprocs);
   if (!lmp->atom->radius_flag) lmp->error->all(FLERR, "{} needs atom radii (atom_style sphere)", who);
   if (!lmp->atom->tag_enable) lmp->error->all(FLERR, "{} needs atom IDs (atom_modify id yes)", who);
+}
+
+void require_si_units(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
+{
+  const char *style = lmp->update->unit_style;
+  if (!style || std::strcmp(style, "si") != 0)
+    lmp->error->all(FLERR,
+                    "{}: the run has units {}, but the coefficients are in Pa and 1/s and the lengths in m: use "
+                    "units si",
+                    who, style ? style : "(none)");
+}
+
+void require_positive_time_step(LAMMPS_NS::LAMMPS *lmp, const std::string &who)
+{
+  const double dt = lmp->update->dt;
+  if (!(dt > 0.0)) lmp->error->all(FLERR, "{}: the time step must be > 0 s, got {} s (timestep)", who, dt);
 }
 
 // Update::whichflag: 0 unset, 1 dynamics (run, rerun), 2 minimization (update.h)

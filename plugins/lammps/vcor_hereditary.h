@@ -72,6 +72,17 @@ struct Law {
 // rank and not migrated with the atoms) and the atoms have radii and IDs.
 void require_one_rank_radii_ids(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
 
+// Stop LAMMPS (error->all, naming `who`) unless it runs in units si: the coefficients are in Pa and
+// 1/s and the lengths in m, and LAMMPS does not convert a pair style's or a fix's own parameters.
+void require_si_units(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
+
+// Stop LAMMPS (error->all, naming `who`) unless the time step is > 0 s: the internal variables relax
+// over the elapsed time, which a step <= 0 s would run backwards or hold still.
+void require_positive_time_step(LAMMPS_NS::LAMMPS *lmp, const std::string &who);
+
+// A finite number (the whole text, as strtod reads it): true and out set, else false.
+bool parse_number(const std::string &text, double &out);
+
 // The simulation time (s) at the current time step (LAMMPS's atime, carried over changes of the step).
 // During a minimization, LAMMPS's atime itself: the minimizer counts its iterations as time steps (and
 // min_style fire changes update->dt), but the run after it starts again from atime (Integrate::init

@@ -18,8 +18,9 @@
 #error "define VCOR_LAMMPS_VERSION: the LAMMPS version string the headers belong to, e.g. \"22 Jul 2025\""
 #endif
 
+// the vcor version the plugin comes with (vcor lammps-plugin build and CMakeLists.txt define it)
 #ifndef VCOR_PLUGIN_VERSION
-#define VCOR_PLUGIN_VERSION "unknown"
+#define VCOR_PLUGIN_VERSION "built outside vcor lammps-plugin build"
 #endif
 
 extern "C" {

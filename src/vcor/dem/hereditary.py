@@ -43,11 +43,18 @@ _HEADER = """\
 # plane-strain form ({form}), from results/dem/{name}.nc: {source}.
 # Time step: the fixed point of dt = t_H(Ebar(dt)) / nsteps, t_H(E) = 3.2181 (m_eff/K)^(2/5) v0^(-1/5),
 # K = 4/3 E sqrt(R_eff), Ebar(h) = E_inf + sum_i E_i (1 - exp(-beta_i h))/(beta_i h) (vcor.dem.hereditary_law);
-# -var nsteps <n> (default {nsteps}).{t_note}
+# -var nsteps <n>, an integer >= 1 (default {nsteps}; the plugin warns below n = 10). -var v0 > 0 m/s.{t_note}
+# A value out of its range stops the deck with one line on standard error naming it (exit 2); a word
+# that is not a number stops LAMMPS with its own line naming the variable ("Non-numeric variable value").
 variable v0      index 1.0
 variable plugin  index NONE
 variable nsteps  index {nsteps}
-{t_var}units            si
+{t_var}if "$(!(v_v0 > 0.0))" then &
+   "print 'v0 must be > 0 m/s (the approach speed), got ${{v0}}' append /dev/stderr screen no" "quit 2"
+if "$(!(v_nsteps >= 1 && v_nsteps == floor(v_nsteps)))" then &
+   "print 'nsteps must be an integer >= 1 (time steps per Hertz contact time, default {nsteps}), got ${{nsteps}}' &
+append /dev/stderr screen no" "quit 2"
+units            si
 atom_style       sphere
 dimension        3
 boundary         f f f
@@ -113,11 +120,14 @@ def _selection(laws: list) -> str:
         return ("variable T       index NONE\n"
                 "if \"x${T} != xNONE\" then \"print 'T: this entry has no temperatures (no T in its dem config), got "
                 "${T}' append /dev/stderr screen no\" \"quit 2\"\n" + _law_lines(laws[0][1]))
+    # compared in a formula ($(v_T == ...)): a word that is not a number stops LAMMPS naming T (the if
+    # command's own comparison of a word with a number is an error that names neither)
     allowed = " ".join(f"{T:g}" for T, _ in laws)
-    branches = [f'"${{T}} == {T!r}"{" then" if i == 0 else ""} "jump SELF series_{i + 1}"'
+    branches = [f'"$(v_T == {T!r})"{" then" if i == 0 else ""} "jump SELF series_{i + 1}"'
                 for i, (T, _) in enumerate(laws)]
     text = ("if " + " &\n   elif ".join(branches)
-            + f" &\n   else \"print 'T must be one of: {allowed} (deg C)' append /dev/stderr screen no\" \"quit 2\"\n")
+            + f" &\n   else \"print 'T must be one of: {allowed} (deg C), got ${{T}}' append /dev/stderr screen no\" "
+              f"\"quit 2\"\n")
     for i, (_, law) in enumerate(laws):
         text += f"label            series_{i + 1}\n{_law_lines(law)}jump             SELF series_chosen\n"
     return text + "label            series_chosen\n"

