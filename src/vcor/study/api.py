@@ -1,6 +1,7 @@
 """The study functions: every capability of the workflow as one public function, returning what the
 workflow writes (exported from :mod:`vcor`: ``vcor.sweep``, ``vcor.fit``, ``vcor.calibrate``,
-``vcor.dem_export``).
+``vcor.dem_export``, ``vcor.histories``, ``vcor.moduli``, ``vcor.viscoelastic_spheres``,
+``vcor.convergence``).
 
 ===============================  ============================  =============================================
 function                         takes (as a config has it)    returns (what the workflow writes)
