@@ -252,15 +252,15 @@ def test_a_cmake_build_folder_of_other_sources_is_started_afresh(tmp_path, capsy
     build_dir.mkdir(parents=True)
     (build_dir / "stale.o").write_text("")
     (build_dir / "CMakeCache.txt").write_text(f"CMAKE_HOME_DIRECTORY:INTERNAL={src}\n")
-    plugin._fresh_build_folder(build_dir, src)
+    plugin.fresh_build_folder(build_dir, src)
     assert (build_dir / "stale.o").exists() and capsys.readouterr().err == ""
     (build_dir / "CMakeCache.txt").write_text(f"CMAKE_HOME_DIRECTORY:INTERNAL={tmp_path / 'elsewhere'}\n")
-    plugin._fresh_build_folder(build_dir, src)
+    plugin.fresh_build_folder(build_dir, src)
     err = capsys.readouterr().err
     assert not build_dir.exists() and err.count("\n") == 1
     assert err == f"vcor lammps-plugin: {build_dir} was configured for the sources {tmp_path / 'elsewhere'}; " \
                   f"starting it afresh for {src}\n"
-    plugin._fresh_build_folder(tmp_path / "none", src)  # no build folder: nothing to do
+    plugin.fresh_build_folder(tmp_path / "none", src)  # no build folder: nothing to do
     assert capsys.readouterr().err == ""
 
 

@@ -26,8 +26,8 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["PLUGIN_FILE", "SOURCES", "BuildError", "LammpsInstall", "build", "find_lammps", "plugin_sources",
-           "version_string"]
+__all__ = ["PLUGIN_FILE", "SOURCES", "BuildError", "LammpsInstall", "build", "find_lammps", "fresh_build_folder",
+           "plugin_sources", "version_string"]
 
 #: the plugin's shared object (LAMMPS's LAMMPS_PLUGIN_PATH loads files ending in plugin.so)
 PLUGIN_FILE = "vcorplugin.so"
@@ -179,7 +179,7 @@ def _cache_source(build_dir: Path) -> str | None:
     return match.group(1).strip() if match else None
 
 
-def _fresh_build_folder(build_dir: Path, src: Path) -> None:
+def fresh_build_folder(build_dir: Path, src: Path) -> None:
     """CMake refuses a build folder configured for another source folder: remove it, saying so in one
     line on standard error."""
     old = _cache_source(build_dir)
@@ -216,7 +216,7 @@ def build(out="vcor-lammps-plugin", *, lammps=None, source=None, builder: str = 
         raise BuildError(f"--out {out} cannot be created ({exc.strerror or exc}): give a folder that can be "
                          f"written") from None
     if builder == "cmake":
-        _fresh_build_folder(out / "build", src)
+        fresh_build_folder(out / "build", src)
     say(f"vcor's LAMMPS plugin (GPL-2.0, sources {src}) for LAMMPS {lmp.version}: headers {lmp.include}, "
         f"mpi.h {lmp.mpi_include}; {builder} with {cxx}")
     target = out / PLUGIN_FILE
