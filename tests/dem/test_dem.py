@@ -175,8 +175,11 @@ def _with(**changes):
     (_with(sphere={"material": {"model": "prony", "file": "../x.nc"}}), ["dem.d.sphere.material.file", "inside"]),
     (_with(solver={"methd": "direct"}),
      ["dem.d.solver", "unknown solver option(s) ['methd']", "did you mean 'method'"]),
+    (_with(target={"plate": {"material": "sls", "h": -0.01}}), ["dem.d.target.plate.h: must be in [1e-09, 1000] m"]),
+    (_with(target={"sphere": {"h": 0.01}}), ["dem.d.target.sphere: unknown key(s) ['h']"]),
 ], ids=["two kinds", "reversed range", "zero speed", "one speed", "T without shift", "unknown model",
-        "unknown material", "no material", "Kelvin-Voigt partner", "unknown key", "file outside", "solver key"])
+        "unknown material", "no material", "Kelvin-Voigt partner", "unknown key", "file outside", "solver key",
+        "target key range", "target unknown key"])
 def test_bad_dem_entries_are_refused_before_any_job(cfg, words):
     with pytest.raises(ValueError) as err:
         load_project(cfg, ".")

@@ -23,6 +23,8 @@ temperature and the laws fitted to each. Without ``models``, an entry has every 
 
 from __future__ import annotations
 
+import re
+
 from ..contact.bodies import NU_DEFAULTS
 from ..contact.impact import make_impact
 from ..contact.pair import target_inputs
@@ -199,10 +201,18 @@ def check_dem(name: str, spec: dict, catalogue: Catalogue) -> None:
                 mat, geo = target_inputs(material, _target_at(spec, catalogue, T, where), geometry)
                 impact = make_impact(mat, v, geo)
             except ValueError as exc:
-                raise ValueError(f"{where}: {exc}") from None
+                raise ValueError(_under(where, exc)) from None
             why = refusal(impact.material, options)
             if why:
                 raise ValueError(f"{where}.solver.method: {why}")
+
+
+def _under(where: str, exc: ValueError) -> str:
+    """The message of a body's refusal under the entry's key ``where``: one that starts with the body's own
+    key path (``target.plate.h must be ...``, ``target: ...``) as ``<where>.target.plate.h: must be ...``, so
+    that a config file's refusal points at that key; others as ``<where>: ...``."""
+    match = re.match(r"((?:sphere|target)(?:\.\w+)*)(?:: (.*)| (must .*))", str(exc), re.DOTALL)
+    return f"{where}.{match.group(1)}: {match.group(2) or match.group(3)}" if match else f"{where}: {exc}"
 
 
 def run_dem(name: str, spec: dict, catalogue: Catalogue):
