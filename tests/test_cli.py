@@ -228,12 +228,17 @@ def test_a_reader_that_stops_early_is_not_an_error():
     assert proc.wait() == 0 and "Traceback" not in err, err
 
 
-def test_impact_takes_simulates_targets(capsys):
-    """--target takes what vcor.simulate's target takes (a sphere or a plate of a named material or a spec;
-    rigid), with the same numbers; bad ones are refused in one line naming the flag."""
+def test_impact_takes_simulates_targets(capsys, tmp_path):
+    """--target takes what vcor.simulate's target takes (a sphere or a plate of a named material, a material
+    file, rigid or a spec; rigid), with the same numbers; bad ones are refused in one line naming the flag."""
+    fitted = vcor.fit({"model": "prony", "n_terms": 3}, name="p3")
+    fitted.write(tmp_path / "p3.nc")
     cases = [("{sphere: {material: sls, r: 0.005}}", {"sphere": {"material": "sls", "r": 0.005}}),
              ("{plate: {material: {model: elastic, E: 7.0e+10}, h: 0.01}}",
               {"plate": {"material": {"model": "elastic", "E": 7e10}, "h": 0.01}}),
+             (f"{{plate: {{material: {tmp_path / 'p3.nc'}, h: 0.01}}}}", {"plate": {"material": fitted.material,
+                                                                                  "h": 0.01}}),
+             ("{plate: {material: rigid}}", {"plate": {"material": "rigid"}}),
              ("rigid", "rigid")]
     for text, target in cases:
         assert cli.main(["impact", "--material", "sls", "--v0", "1", "--target", text, "--json"]) == 0

@@ -209,7 +209,7 @@ def _add_impact(sub) -> list:
     _add(actions, imp, "--target", default=None,
          help="what the sphere hits, as vcor.simulate's target: plate (the geometry flags' plate), rigid, or a "
               "YAML mapping {sphere: {material, r, rho, nu}} (a second sphere, head-on) or {plate: {material, h, "
-              "rho, nu}} (a plate of another material); material: a name as --material takes it, or a spec "
+              "rho, nu}} (a plate of another material); material: as --material takes it, rigid, or a spec "
               "{model: ..., <parameters>}; omitted keys are the impacting sphere's [unit m for r and h, kg/m^3 "
               "for rho; default plate]")
     _add(actions, imp, "--json", action="store_true", help="print JSON, every number with its unit, full precision "
@@ -354,10 +354,22 @@ def _target(args, catalogue):
         raise ValueError(f"--target must be plate, rigid, {{sphere: {{...}}}} or {{plate: {{...}}}}, got {text!r}")
     (kind, spec), = target.items()
     name = spec.get("material")
-    if isinstance(name, str):
-        catalogue.check(name, f"--target {kind}.material")
-        spec = {**spec, "material": catalogue.material(name)}
+    if isinstance(name, str) and name != "rigid":  # (a rigid body, as vcor.simulate takes it)
+        spec = {**spec, "material": _named_material(name, catalogue, f"--target {kind}.material")}
     return {kind: spec}
+
+
+def _named_material(name: str, catalogue, flag: str):
+    """The material ``name`` names: a material file (.nc or .json), else a name of ``catalogue``;
+    ValueError naming ``flag`` otherwise."""
+    from .materials.files import from_file
+
+    if name.endswith((".nc", ".json")) and Path(name).is_file():
+        return from_file(name)
+    if name.endswith((".nc", ".json")) and name not in _names(catalogue):
+        raise ValueError(f"{flag} {name!r}: no such file (a material file .nc or .json, or a material name)")
+    catalogue.check(name, flag)
+    return catalogue.material(name)
 
 
 def _fmt(value, digits: int = 5) -> str:
@@ -416,20 +428,11 @@ def _impact_lines(res, load_time: float) -> list[str]:
 
 
 def _impact(args) -> int:
-    from .materials.files import from_file
-
     # (--rigid goes to simulate as its target: _target)
     geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if k != "rigid" and getattr(args, k, None) is not None}
     options = {k: getattr(args, k) for k in SolverOptions.names() if getattr(args, k, None) is not None}
     catalogue = _catalogue(args.config)
-    name = args.material
-    if name.endswith((".nc", ".json")) and Path(name).is_file():
-        material = from_file(name)
-    elif name.endswith((".nc", ".json")) and name not in _names(catalogue):
-        raise ValueError(f"--material {name!r}: no such file (a material file .nc or .json, or a material name)")
-    else:
-        catalogue.check(name, "--material")
-        material = catalogue.material(name)
+    material = _named_material(args.material, catalogue, "--material")
     res, load_time = _solve(material, args.v0, options, geometry, _target(args, catalogue))
     if args.json:
         print(json.dumps(_impact_json(res, load_time), indent=2))

@@ -93,3 +93,13 @@ def test_a_missing_prony_table_names_its_key_its_place_and_the_folder(tmp_path):
     assert "\n" not in text
     assert re.match(rf"^config file .*bad\.yaml, line 2, column 41: materials\.csvmat\.file: the Prony table "
                     rf"'data/missing\.csv' does not exist in {folder} \(the project folder", text), text
+
+
+def test_a_forward_model_that_fails_names_the_parameters_as_numbers(tmp_path, monkeypatch):
+    """A geometry inside its ranges on which the forward model ends step-budget (a 1 nm plate): the refusal
+    gives the speed and the parameters' values as numbers (no NumPy reprs)."""
+    (tmp_path / "cor.csv").write_text(DATA)
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=r"forward model at v0 = 1 m/s, beta = 1200: step-budget") as err:
+        vcor.calibrate({**SPEC, "geometry": {"h": 1e-9}})
+    assert "np." not in str(err.value)

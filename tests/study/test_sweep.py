@@ -252,6 +252,10 @@ def test_dir_lists_the_public_names_loaded_on_first_use():
      r"^scene\.materials\[0\]\.shift \(wlf\): missing \['C2', 'T_ref'\]; takes"),
     (lambda: vcor.sweep({"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 2, "num": 10**9}}}),
      r"^scene\.grid: 1000000000 points in one sweep job \(no shard_size\)"),
+    (lambda: vcor.sweep({"materials": ["sls", {"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0,
+                                               "shift": {"model": "table", "T": [0, 20], "log_aT": [1, 0],
+                                                         "T_ref": 20}}], "grid": {"v0": [1], "T": [10]}}),
+     r"^scene\.materials\[1\]\.shift\.model: 'table' is not allowed"),
 ])
 def test_refusals_of_study_calls_name_the_argument(call, message):
     """Each refusal names the key as the call wrote it (scene., fit:), before any work."""

@@ -282,8 +282,8 @@ class _Model:
             r = simulate(mat, float(v), options=self.options, **self.geometry)
             self.nfev += 1
             if r.status != "ok":
-                raise ValueError(f"calibration: the forward model at v0 = {v:g} m/s with "
-                                 f"{dict(zip(self.names, self.params(x)))} ended {r.status}: {r.message}")
+                at = ", ".join(f"{k} = {float(p):.6g}" for k, p in zip(self.names, self.params(x)))
+                raise ValueError(f"calibration: the forward model at v0 = {v:g} m/s, {at}: {r.status}: {r.message}")
             out.append(r)
         return out
 

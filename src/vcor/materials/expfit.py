@@ -133,7 +133,6 @@ def _least_squares(rates, t, e):
     return weights[keep], np.concatenate(([0.0], rates))[keep]
 
 
-@threadpool_limits.wrap(limits=1, user_api="blas")
 def fit_exponential_sum(modulus, combined, t_min: float, t_max: float, tol: float, from_zero: bool = False,
                         accept: float | None = None):
     """(ExponentialSum, checked relative error) of the callable ``modulus`` (E(t) in Pa, t in s, > 0 on
@@ -142,7 +141,15 @@ def fit_exponential_sum(modulus, combined, t_min: float, t_max: float, tol: floa
     the internal-variable methods, which integrate the kernel from t = 0). The first rate set of
     :data:`ATTEMPTS` that reaches ``tol`` is taken; when none does, the best of them if it is within
     ``accept`` (default: ``tol``), with the larger of its checked error and its rounding loss as its error,
-    else ValueError (the message gives the best error reached)."""
+    else ValueError (the message gives the best error reached). Runs with one BLAS thread."""
+    import scipy.linalg  # noqa: F401 (loads scipy's BLAS first: threadpool_limits limits the libraries loaded)
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _fit(modulus, combined, t_min, t_max, tol, from_zero, accept)
+
+
+def _fit(modulus, combined, t_min, t_max, tol, from_zero, accept):
+    """:func:`fit_exponential_sum`'s work, within its BLAS thread limit."""
     samples = {}  # per density: (t, E(t), check times, E there)
     best = math.inf
     for step, order in ATTEMPTS:

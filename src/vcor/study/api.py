@@ -15,8 +15,8 @@ function                         takes (as a config has it)    returns (what the
 :func:`dem_export`               a DEM entry (``dem.<name>``)  :class:`DemExport`: ``results/dem/<name>.nc``,
                                                                and its tables, LAMMPS deck and Yade script
 :func:`histories`                a scene with ``histories``    ``results/<scene>/histories.nc``
-:func:`moduli`                   a scene (its ``moduli`` or    ``results/<scene>/moduli.nc``
-                                 ``materials``)
+:func:`moduli`                   a scene (its ``moduli``, else ``results/<scene>/moduli.nc``
+                                 its ``materials``)
 :func:`viscoelastic_spheres`     a scene with ``spheres``      ``results/<scene>/spheres.nc``
 :func:`convergence`              a scene with ``convergence``  ``results/<scene>/convergence.nc`` (the
                                                                work-precision study)
@@ -372,8 +372,8 @@ def moduli(scene: dict | str, *, config: Any = None, name: str | None = None) ->
     Parameters
     ----------
     scene, config, name
-        As :func:`histories` (a scene with a ``moduli`` list or ``materials``, or its name in ``config``;
-        where names are looked up; the name of a scene given as a mapping).
+        As :func:`histories` (a scene, which has ``materials``, or its name in ``config``; where names are
+        looked up; the name of a scene given as a mapping).
 
     Returns
     -------

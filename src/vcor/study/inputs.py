@@ -130,9 +130,10 @@ class Resolved:
         return self.project.scenes[self.name]
 
 
-def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None) -> Project:
+def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None, inline=()) -> Project:
     """The project of ``study`` (the workflow's checks); a refusal names ``config``'s file and, for an entry
-    given as a mapping, writes its key from the argument (``rename``: (key prefix, argument))."""
+    given as a mapping, writes its key from the argument (``rename``: (key prefix, argument); ``inline``:
+    more such pairs, for the materials a scene's list gave inline)."""
     try:
         check_schema(study, schema_path())
         return load_project(study, base_dir=base, require_targets=False)
@@ -140,7 +141,8 @@ def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None) ->
         text = str(exc)
         if rename is not None:
             # every key path under the entry, also one the message advises ("add scenes.<name>.grid.beta")
-            text = re.sub(rf"(?<![\w.-]){re.escape(rename[0])}(?=[.:\[ ]|$)", rename[1], text)
+            for prefix, argument in (rename, *inline):
+                text = re.sub(rf"(?<![\w.-]){re.escape(prefix)}(?=[.:\[ ]|$)", argument, text)
         elif isinstance(config, (str, Path)):  # an entry of the file: where it is in the file
             placed = located(text, [config])
             if placed != text:
@@ -187,13 +189,14 @@ def resolve_entry(section: str, entry, name, config, argument: str) -> Resolved:
     return Resolved(name=name, project=project, base_dir=base)
 
 
-def _objects_named(scene: dict, cfg: dict) -> dict:
-    """The scene with each material object or inline spec (a mapping with ``model``, as ``simulate`` takes
-    it) of its list replaced by a config material's name (added to ``cfg``'s materials block)."""
+def _objects_named(scene: dict, cfg: dict) -> tuple[dict, list]:
+    """(the scene with each material object or inline spec (a mapping with ``model``, as ``simulate`` takes
+    it) of its list replaced by a config material's name (added to ``cfg``'s materials block), and the pairs
+    (``materials.<that name>``, ``scene.materials[<index>]``) that say the keys as the call wrote them)."""
     materials = scene.get("materials")
     inline = (Material, dict)
     if not isinstance(materials, (list, tuple)) or not any(isinstance(m, inline) for m in materials):
-        return scene
+        return scene, []
     block = dict(cfg.get("materials") or {})
     names = []
     for i, m in enumerate(materials):
@@ -207,12 +210,15 @@ def _objects_named(scene: dict, cfg: dict) -> dict:
         else:
             names.append(m)
     cfg["materials"] = block
-    return {**scene, "materials": names}
+    keys = [(f"materials.{n}", f"scene.materials[{i}]") for i, (n, m) in enumerate(zip(names, materials))
+            if isinstance(m, inline)]
+    return {**scene, "materials": names}, keys
 
 
-def _scene_entry(scene, cfg: dict, config, name=None) -> tuple[str, dict, bool]:
-    """(name, scene mapping, given by name) of the ``scene`` argument; ``name`` names a scene given as a
-    mapping (default: the config's scene that equals it, else SCENE_NAME)."""
+def _scene_entry(scene, cfg: dict, config, name=None) -> tuple[str, dict, bool, list]:
+    """(name, scene mapping, given by name, the keys of its inline materials: :func:`_objects_named`) of the
+    ``scene`` argument; ``name`` names a scene given as a mapping (default: the config's scene that equals
+    it, else SCENE_NAME)."""
     scenes = cfg.get("scenes") or {}
     if name is not None and not (isinstance(name, str) and re.fullmatch(SCENE_NAME_PATTERN, name)):
         raise ValueError(f"name must be a text of letters, digits, - and _ (a scene's name), got {name!r}")
@@ -225,15 +231,16 @@ def _scene_entry(scene, cfg: dict, config, name=None) -> tuple[str, dict, bool]:
         if scene not in scenes:
             raise ValueError(f"{_where(config)}scene: {scene!r} is not a scene of the config "
                              f"({sorted(scenes) if scenes else 'it has none'})")
-        return scene, scenes[scene], True
+        return scene, scenes[scene], True, []
     if not isinstance(scene, dict):
         raise ValueError(f"scene must be a mapping (as under scenes.<name> of a config) or the name of a scene "
                          f"of config, got {type(scene).__name__}")
-    given = plain(_objects_named(dict(scene), cfg))
+    named, keys = _objects_named(dict(scene), cfg)
+    given = plain(named)
     if name is not None:
-        return name, given, False
+        return name, given, False, keys
     same = [n for n, s in scenes.items() if s == given]
-    return (same[0] if same else SCENE_NAME), given, False
+    return (same[0] if same else SCENE_NAME), given, False, keys
 
 
 #: a scene's dataset -> (the block that defines it, how to add one, the study function that computes it)
@@ -242,7 +249,7 @@ SCENE_BLOCKS = {
     "histories": ("histories", "histories: {v0: ..., runs: [[material, method], ...]}", "vcor.histories"),
     "spheres": ("spheres", "spheres: {b: [...], rules: [overlap, force]}", "vcor.viscoelastic_spheres"),
     "convergence": ("convergence", "convergence: {materials: [...], v0: [...]}", "vcor.convergence"),
-    "moduli": ("materials", "materials: [...] or moduli: [...]", "vcor.moduli"),
+    "moduli": ("materials", "materials: [...], and moduli: [...] for others than those", "vcor.moduli"),
 }
 
 
@@ -252,11 +259,11 @@ def resolve_scene(scene, config=None, name=None, dataset: str = "sweep") -> Reso
     naming the key: module docstring) before any work, also when the scene lacks the block that dataset
     needs (saying which of its blocks it has, and the functions that compute them)."""
     cfg, base = as_config(config)
-    name, entry, by_name = _scene_entry(scene, cfg, config, name)
+    name, entry, by_name, inline = _scene_entry(scene, cfg, config, name)
     study = {k: cfg[k] for k in _SHARED if k in cfg}
     study["scenes"] = {name: plain(entry)}
     key = f"scenes.{name}"
-    project = _checked(study, base, config, None if by_name else (key, "scene"))
+    project = _checked(study, base, config, None if by_name else (key, "scene"), inline)
     sc = project.scenes[name]
     block, add, _ = SCENE_BLOCKS[dataset]
     has = {"sweep": sc.grid is not None, "moduli": bool(sc.moduli_materials())}
