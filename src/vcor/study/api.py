@@ -15,7 +15,7 @@ function                         takes (as a config has it)    returns (what the
 :func:`dem_export`               a DEM entry (``dem.<name>``)  :class:`DemExport`: ``results/dem/<name>.nc``,
                                                                and its tables, LAMMPS deck and Yade script
 :func:`histories`                a scene with ``histories``    ``results/<scene>/histories.nc``
-:func:`moduli`                   a scene (its ``moduli``, else ``results/<scene>/moduli.nc``
+:func:`moduli`                   a scene (``moduli``, else     ``results/<scene>/moduli.nc``
                                  its ``materials``)
 :func:`viscoelastic_spheres`     a scene with ``spheres``      ``results/<scene>/spheres.nc``
 :func:`convergence`              a scene with ``convergence``  ``results/<scene>/convergence.nc`` (the
