@@ -103,3 +103,9 @@ def test_a_forward_model_that_fails_names_the_parameters_as_numbers(tmp_path, mo
     with pytest.raises(ValueError, match=r"forward model at v0 = 1 m/s, beta = 1200: step-budget") as err:
         vcor.calibrate({**SPEC, "geometry": {"h": 1e-9}})
     assert "np." not in str(err.value)
+
+
+def test_a_missing_data_file_names_its_key(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=r"^calibration\.data: the COR data file 'nope\.csv' does not exist$"):
+        vcor.calibrate({**SPEC, "data": "nope.csv"})

@@ -80,11 +80,11 @@ class CorData:
     lines: tuple = ()
 
 
-def read_cor_data(path) -> CorData:
-    """Read ``v0,cor[,cor_std]`` (module docstring); every error names the file, the line and the column:
-    a missing or unknown column, a non-numeric or non-finite cell (NaN), v0 <= 0, a COR outside (0, 1],
-    cor_std <= 0."""
-    rows = read_rows(path, "COR data file")
+def read_cor_data(path, what: str = "COR data file") -> CorData:
+    """Read ``v0,cor[,cor_std]`` (module docstring); every error names the file (a missing one as ``what``),
+    the line and the column: a missing or unknown column, a non-numeric or non-finite cell (NaN), v0 <= 0,
+    a COR outside (0, 1], cor_std <= 0."""
+    rows = read_rows(path, what)
     header = column_names(path, rows)
     for col in ("v0", "cor"):
         if col not in header:
@@ -517,7 +517,7 @@ def check_spec(spec: dict, *, catalogue, where: str = "calibration", pending=())
                          f"unknown {sorted(unknown)}, missing {sorted(missing)}")
     if not isinstance(spec["data"], str):
         raise ValueError(f"{where}.data: the path of a CSV file (v0,cor[,cor_std]), got {spec['data']!r}")  # noqa: TRY004 (config values)
-    data = read_cor_data(Path(catalogue.base_dir) / spec["data"])
+    data = read_cor_data(Path(catalogue.base_dir) / spec["data"], f"{where}.data: the COR data file")
     if isinstance(spec["material"], str) and spec["material"] in pending:
         catalogue.check(spec["material"], f"{where}.material")
         return data
