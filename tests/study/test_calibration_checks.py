@@ -109,3 +109,22 @@ def test_a_missing_data_file_names_its_key(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     with pytest.raises(ValueError, match=r"^calibration\.data: the COR data file 'nope\.csv' does not exist$"):
         vcor.calibrate({**SPEC, "data": "nope.csv"})
+
+
+@pytest.mark.parametrize("calibrations, message", [
+    ({"c": {**SPEC, "material": "c"}}, r"calibrations\.c\.material: the calibration starts from itself \(c -> c\)"),
+    ({"c": {**SPEC, "material": "d"}, "d": {**SPEC, "material": "c"}},
+     r"calibrations\.c\.material: the calibration starts from itself \(c -> d -> c\)"),
+])
+def test_a_calibration_that_starts_from_itself_is_refused(tmp_path, calibrations, message):
+    """Directly or through another calibration (the material would need itself first)."""
+    (tmp_path / "cor.csv").write_text(DATA)
+    with pytest.raises(ValueError, match=message):
+        load_project(check_schema({"calibrations": calibrations}, SCHEMA), tmp_path)
+
+
+def test_an_unknown_start_is_not_offered_the_calibration_itself(tmp_path):
+    (tmp_path / "cor.csv").write_text(DATA)
+    with pytest.raises(ValueError, match=r"unknown material 'slss'") as err:
+        _project(tmp_path, {"material": "slss"})
+    assert "calibrations" not in str(err.value).split("unknown material", 1)[1], str(err.value)

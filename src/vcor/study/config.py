@@ -13,6 +13,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
+from dataclasses import replace
 from pathlib import Path
 
 from ..contact.impact import make_impact
@@ -130,16 +131,35 @@ def _catalogue(config: dict, base_dir: Path) -> Catalogue:
     catalogue = Catalogue(specs=specs, fits=fits, calibrations=calibrations,
                           material_dir=_material_dir(config, base_dir), base_dir=str(base_dir))
     for name, spec in calibrations.items():
-        _check_calibration(f"calibrations.{name}", spec, catalogue)
+        _check_start_chain(name, calibrations)
+        _check_calibration(name, spec, catalogue)
     return catalogue
 
 
-def _check_calibration(where: str, spec: dict, catalogue: Catalogue) -> None:
+def _check_start_chain(name: str, calibrations: dict) -> None:
+    """A calibration starts from a material that is not, through other calibrations, itself: ValueError
+    naming the chain otherwise (the workflow could never build the first of them)."""
+    spec = calibrations.get(name)
+    chain, start = [name], spec.get("material") if isinstance(spec, dict) else None
+    while isinstance(start, str) and start in calibrations and isinstance(calibrations[start], dict):
+        chain.append(start)
+        if start == name:
+            raise ValueError(f"calibrations.{name}.material: the calibration starts from itself "
+                             f"({' -> '.join(chain)}); start it from another material")
+        if chain.count(start) > 1:
+            return  # a loop of others: reported at their own names
+        start = calibrations[start].get("material")
+
+
+def _check_calibration(name: str, spec: dict, catalogue: Catalogue) -> None:
     """A calibration spec (:func:`vcor.fitting.calibrate.check_spec`: keys, data, start, free parameters) and
     its forward model, as a scene's corner points are checked: the solver options, and the start material's
     impacts at the data's lowest and highest speed with the calibration's geometry, by a method that can
     solve them. The schema has checked the geometry's and the solver's keys, types and ranges (a scene's)."""
-    data = check_spec(spec, catalogue=catalogue, where=where, pending=catalogue.computed())
+    where = f"calibrations.{name}"
+    # its start is looked up among the other materials (a calibration is not its own start)
+    others = replace(catalogue, calibrations={k: v for k, v in catalogue.calibrations.items() if k != name})
+    data = check_spec(spec, catalogue=others, where=where, pending=catalogue.computed())
     try:
         options = solver_options(spec.get("solver") or {})
     except ValueError as exc:
