@@ -246,7 +246,9 @@ def test_impact_takes_simulates_targets(capsys, tmp_path):
         assert out["cor"]["value"] == vcor.simulate("sls", 1.0, target=target).cor, text
     for argv, message in [(["--target", "{sphere: {material: slss}}"], "--target sphere.material: unknown material"),
                           (["--target", "{sphre: {}}"], "--target must be plate, rigid"),
-                          (["--target", "{plate: [1"], "--target: not YAML"),
+                          (["--target", "{plate: [1"], "--target, line 2, column 1: not valid YAML"),
+                          (["--target", "{plate: {h: 0.02, h: 0.001}}"], "key 'h' is given twice"),
+                          (["--target", "{plate: {h: 1e-3}}"], "got '1e-3': text, not a number"),
                           (["--target", "{sphere: {}}", "--rigid"], "--rigid and --target"),
                           (["--target", "{sphere: {}}", "--h", "0.01"], "geometry keywords ['h']")]:
         assert cli.main(["impact", "--material", "sls", "--v0", "1", *argv]) == 2

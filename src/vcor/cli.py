@@ -342,13 +342,15 @@ def _target(args, catalogue):
         return "rigid" if args.rigid else (text or "plate")
     if args.rigid:
         raise ValueError(f"--rigid and --target {text!r} contradict each other: give one")
-    import yaml
+    from .io.yamlfile import RepeatedKeyError, loads_yaml
 
     try:
-        target = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise ValueError(f"--target: not YAML ({str(exc).splitlines()[0]}): write plate, rigid, '{{sphere: "
-                         f"{{material: sls, r: 0.005}}}}' or '{{plate: {{material: sls, h: 0.02}}}}'") from None
+        target = loads_yaml(text, "--target")
+    except RepeatedKeyError:
+        raise
+    except ValueError as exc:
+        raise ValueError(f"{exc}: write plate, rigid, '{{sphere: {{material: sls, r: 0.005}}}}' or '{{plate: "
+                         f"{{material: sls, h: 0.02}}}}'") from None
     if not (isinstance(target, dict) and len(target) == 1 and next(iter(target)) in ("sphere", "plate")
             and isinstance(next(iter(target.values())), dict)):
         raise ValueError(f"--target must be plate, rigid, {{sphere: {{...}}}} or {{plate: {{...}}}}, got {text!r}")

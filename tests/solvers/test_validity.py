@@ -70,6 +70,7 @@ def test_a_captured_sphere_whose_grids_disagree_is_flagged():
     assert "not Richardson-extrapolated" in r.message
     assert "asymptotic range" in r.validity_message and "finest grid" in r.validity_message
     other = vcor.simulate(kv, 1.0, method="ive")
+    print(f"\nCOR {r.cor:.2e}; t0: adaptive {r.t0:.4g} s, ive {other.t0:.4g} s")
     assert abs(other.t0 / r.t0 - 1) > 0.1, (other.t0, r.t0)
     assert not vcor.simulate("butyl-fc", 1.0).validity & validity.FLAGS["grids_disagree"]
 

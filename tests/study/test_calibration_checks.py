@@ -28,8 +28,8 @@ def _project(tmp_path, spec):
     ({"geometry": {"radius": 0.01}}, "calibrations.c.geometry.radius: unknown key; allowed: ['E_plate', 'case', 'h'"),
     ({"geometry": {"r": -0.01}}, "calibrations.c.geometry.r: must be > 0 m, got -0.01 m"),
     ({"geometry": {"case": 5}}, "calibrations.c.geometry.case: 5 is not allowed; allowed: [1, 2, 3, 4]"),
-    ({"geometry": {"r": 2000.0}}, "calibrations.c.geometry.r: r must be in [1e-09, 1000] m, got 2000.0"),
-    ({"geometry": {"E_plate": 1.0e9}}, "calibrations.c.geometry.E_plate: E_plate is the elastic plate's modulus of "
+    ({"geometry": {"r": 2000.0}}, "calibrations.c.geometry.r: must be in [1e-09, 1000] m, got 2000.0"),
+    ({"geometry": {"E_plate": 1.0e9}}, "calibrations.c.geometry.E_plate: is the elastic plate's modulus of "
                                        "case 4 only"),
     ({"solver": {"methd": "adaptive"}}, "calibrations.c.solver.methd: unknown key; allowed: ['c2', 'dt'"),
     ({"solver": {"method": "adaptiv"}}, "calibrations.c.solver.method: 'adaptiv' is not allowed"),

@@ -256,6 +256,12 @@ def test_dir_lists_the_public_names_loaded_on_first_use():
                                                "shift": {"model": "table", "T": [0, 20], "log_aT": [1, 0],
                                                          "T_ref": 20}}], "grid": {"v0": [1], "T": [10]}}),
      r"^scene\.materials\[1\]\.shift\.model: 'table' is not allowed"),
+    (lambda: vcor.sweep({"materials": [{"model": "elastic", "E": 1e9}, {"model": "elastic", "E": 1e9}],
+                         "grid": {"v0": [1]}}), r"^scene\.materials\[1\]: the same material as scene\.materials\[0\]"),
+    (lambda: vcor.sweep({"materials": [{"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0,
+                                        "shift": {"model": "wlf", "C1": 8.86, "C2": 101.6, "T_ref": 20}}],
+                         "grid": {"v0": [1], "T": [-300]}}),
+     r"^scene\.grid\.T: material scene\.materials\[0\]: temperature T must be in"),
 ])
 def test_refusals_of_study_calls_name_the_argument(call, message):
     """Each refusal names the key as the call wrote it (scene., fit:), before any work."""
@@ -281,3 +287,19 @@ def test_workers_takes_any_integer_type():
 def test_a_scene_without_the_block_a_function_needs_is_refused_naming_it(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_histories_load_the_kernels_before_timing_the_runs(monkeypatch):
+    """Each run's wall_time is its solve: the methods' kernels are loaded (numba's cache, or compiled)
+    before the first run is timed, as the work-precision study does."""
+    from vcor.study import scene_datasets
+
+    calls = []
+    from vcor.solvers import backend
+
+    monkeypatch.setattr(backend, "load_kernels", lambda methods: calls.append(("load", list(methods))))
+    solve = scene_datasets.datasets.histories_dataset
+    monkeypatch.setattr(scene_datasets.datasets, "histories_dataset",
+                        lambda *a, **k: calls.append(("solve",)) or solve(*a, **k))
+    vcor.histories({"materials": ["sls"], "histories": {"v0": 1.0, "runs": [["sls", "direct"], ["sls", "adaptive"]]}})
+    assert calls == [("load", ["adaptive", "direct"]), ("solve",)]

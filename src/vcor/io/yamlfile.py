@@ -20,7 +20,7 @@ import functools
 import json
 from pathlib import Path
 
-__all__ = ["RepeatedKeyError", "load_json", "load_yaml"]
+__all__ = ["RepeatedKeyError", "load_json", "load_yaml", "loads_yaml"]
 
 
 class RepeatedKeyError(ValueError):
@@ -145,6 +145,12 @@ def load_yaml(path, *, what: str = "config file"):
         return _json(text, where)
     except json.JSONDecodeError:
         return _yaml(text, where)
+
+
+def loads_yaml(text: str, where: str):
+    """The YAML ``text`` (a command-line value), read as :func:`load_yaml` reads a file: a key given twice in
+    one mapping is :class:`RepeatedKeyError`, text that is not YAML ValueError, each naming ``where``."""
+    return _yaml(text, where)
 
 
 def load_json(path, *, what: str = "JSON file"):

@@ -23,7 +23,8 @@ no_rebound               16    the sphere still moves towards the target at sepa
                                they relax); the COR describes this contact only, not the sphere's
                                final rebound (a plate of bounded deflection is struck again)
 grids_disagree           32    method ``adaptive``: its nested grids are not in the asymptotic range
-                               of the Richardson extrapolation (``vcor.solvers.extrapolation``),
+                               of the Richardson extrapolation, or it would give a negative COR
+                               (``vcor.solvers.extrapolation``),
                                so the values are the finest grid's and their error is not held to
                                the method's accuracy (the message gives the grids' differences): a
                                separation time that is ill-conditioned, as where a creeping force
@@ -109,7 +110,8 @@ def finalised(res, impact, options):
     notes, flags = [], res.validity & SOLVER_FLAGS
     if flags & FLAGS["grids_disagree"]:
         notes.append("the nested grids of method adaptive are not in the asymptotic range of its Richardson "
-                     "extrapolation (their differences are in the message): the values are the finest grid's, "
+                     "extrapolation, or it would give a negative COR (the message says which): the values are "
+                     "the finest grid's, "
                      "their error is not held to the method's accuracy (an ill-conditioned separation time, as of "
                      "a force creeping to zero)")
     r = impact.geometry.r

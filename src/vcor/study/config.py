@@ -174,9 +174,9 @@ def _check_calibration(name: str, spec: dict, catalogue: Catalogue) -> None:
         try:
             impact = make_impact(material, v0, geometry)
         except ValueError as exc:  # the message starts with the keyword it is about, where it is one
-            word = str(exc).split(" ", 1)[0]
-            key = f"{where}.geometry" + (f".{word}" if word in geometry else "")
-            raise ValueError(f"{key}: {exc} (the start material at v0 = {v0:g} m/s, a speed of the data)") from None
+            word, _, rest = str(exc).partition(" ")
+            key, said = (f"{where}.geometry.{word}", rest) if word in geometry else (f"{where}.geometry", str(exc))
+            raise ValueError(f"{key}: {said} (the start material at v0 = {v0:g} m/s, a speed of the data)") from None
         why = refusal(impact.material, options)
         if why:
             raise ValueError(f"{where}.solver.method: {why}")

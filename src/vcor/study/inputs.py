@@ -143,6 +143,8 @@ def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None, in
             # every key path under the entry, also one the message advises ("add scenes.<name>.grid.beta")
             for prefix, argument in (rename, *inline):
                 text = re.sub(rf"(?<![\w.-]){re.escape(prefix)}(?=[.:\[ ]|$)", argument, text)
+            for prefix, argument in inline:  # the generated name, quoted ("material '<model>-<hash>': ...")
+                text = text.replace(f"'{prefix.removeprefix('materials.')}'", argument)
         elif isinstance(config, (str, Path)):  # an entry of the file: where it is in the file
             placed = located(text, [config])
             if placed != text:
@@ -212,6 +214,10 @@ def _objects_named(scene: dict, cfg: dict) -> tuple[dict, list]:
     cfg["materials"] = block
     keys = [(f"materials.{n}", f"scene.materials[{i}]") for i, (n, m) in enumerate(zip(names, materials))
             if isinstance(m, inline)]
+    for i, n in enumerate(names):
+        if n in names[:i]:
+            raise ValueError(f"scene.materials[{i}]: the same material as scene.materials[{names.index(n)}] (a scene "
+                             f"sweeps each material once)")
     return {**scene, "materials": names}, keys
 
 
