@@ -262,6 +262,7 @@ def test_dir_lists_the_public_names_loaded_on_first_use():
                                         "shift": {"model": "wlf", "C1": 8.86, "C2": 101.6, "T_ref": 20}}],
                          "grid": {"v0": [1], "T": [-300]}}),
      r"^scene\.grid\.T: material scene\.materials\[0\]: temperature T must be in"),
+    (lambda: vcor.moduli({"moduli": ["sls"]}), r"^scene: got \{'moduli': \['sls'\]\}; allowed: a mapping with"),
 ])
 def test_refusals_of_study_calls_name_the_argument(call, message):
     """Each refusal names the key as the call wrote it (scene., fit:), before any work."""

@@ -15,6 +15,7 @@ wrapped in its own message), with the same default-filling recipe.
 
 from __future__ import annotations
 
+import copy
 import difflib
 import functools
 from pathlib import Path
@@ -66,10 +67,25 @@ def check_schema(config: dict, schema_path) -> dict:
                           f"materials, ...), got {type(config).__name__} {_short(config)}")
     check_keys(config)
     schema = load_schema(schema_path)
+    given = copy.deepcopy(config)  # the validator fills defaults in as it goes: a refusal shows what was given
     errors = list(_validator(schema).iter_errors(config))
     if errors:
-        raise SchemaError(explain(_most_relevant(errors), schema))
+        error = _most_relevant(errors)
+        error.instance = _given(given, error.absolute_path, error.instance)
+        raise SchemaError(explain(error, schema))
     return config
+
+
+def _given(config, path, instance):
+    """A refused mapping ``instance`` (at ``path``) as ``config`` gave it, without the defaults the validator
+    filled in; ``instance`` itself where it is not a mapping (a refused key name, a value)."""
+    value = config
+    for key in path:
+        try:
+            value = value[key]
+        except (KeyError, IndexError, TypeError):
+            return instance
+    return value if isinstance(instance, dict) and isinstance(value, dict) and set(value) <= set(instance) else instance
 
 
 def check_keys(value, path=()) -> None:
