@@ -248,6 +248,7 @@ def test_impact_takes_simulates_targets(capsys, tmp_path):
                           (["--target", "{sphre: {}}"], "--target must be plate, rigid"),
                           (["--target", "{plate: [1"], "--target, line 2, column 1: not valid YAML"),
                           (["--target", "{plate: {h: 0.02, h: 0.001}}"], "key 'h' is given twice"),
+                          (["--target", "{plate: {h: 1e-3}}"], "--target: target.plate.h must be in"),
                           (["--target", "{plate: {h: 1e-3}}"], "got '1e-3': text, not a number"),
                           (["--target", "{sphere: {}}", "--rigid"], "--rigid and --target"),
                           (["--target", "{sphere: {}}", "--h", "0.01"], "geometry keywords ['h']")]:

@@ -435,7 +435,10 @@ def _impact(args) -> int:
     options = {k: getattr(args, k) for k in SolverOptions.names() if getattr(args, k, None) is not None}
     catalogue = _catalogue(args.config)
     material = _named_material(args.material, catalogue, "--material")
-    res, load_time = _solve(material, args.v0, options, geometry, _target(args, catalogue))
+    try:
+        res, load_time = _solve(material, args.v0, options, geometry, _target(args, catalogue))
+    except ValueError as exc:  # a refusal of the target's keys (target.plate.h ...) names the flag too
+        raise ValueError(f"--target: {exc}" if str(exc).startswith("target") else str(exc)) from None
     if args.json:
         print(json.dumps(_impact_json(res, load_time), indent=2))
     else:
