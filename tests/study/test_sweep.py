@@ -263,6 +263,9 @@ def test_dir_lists_the_public_names_loaded_on_first_use():
                          "grid": {"v0": [1], "T": [-300]}}),
      r"^scene\.grid\.T: material scene\.materials\[0\]: temperature T must be in"),
     (lambda: vcor.moduli({"moduli": ["sls"]}), r"^scene: got \{'moduli': \['sls'\]\}; allowed: a mapping with"),
+    (lambda: vcor.sweep({"materials": [{"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0,
+                                        "shift": {"model": "wlff", "C1": 1}}], "grid": {"v0": [1]}}),
+     r"^scene\.materials\[0\]\.shift\.model: 'wlff' is not allowed; allowed: \['wlf', 'arrhenius'\]"),
 ])
 def test_refusals_of_study_calls_name_the_argument(call, message):
     """Each refusal names the key as the call wrote it (scene., fit:), before any work."""

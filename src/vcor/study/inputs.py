@@ -202,6 +202,12 @@ def _objects_named(scene: dict, cfg: dict) -> tuple[dict, list]:
     block = dict(cfg.get("materials") or {})
     names = []
     for i, m in enumerate(materials):
+        if isinstance(m, dict):  # first the checks of a config's materials block (its schema: shift models)
+            try:
+                check_schema({"materials": {"inline": plain(m)}}, schema_path())
+            except ValueError as exc:
+                said = re.sub(r"^materials\.inline(?=[.:\[ ]|$)", f"scene.materials[{i}]", str(exc))
+                raise ValueError(said) from None
         if isinstance(m, (dict, Material)):
             # checked, then written as its canonical spec; a spec's shift function goes with it (a T axis
             # needs it), as in a config's materials block
