@@ -56,6 +56,7 @@ FLAGS = {"large_indentation": 1, "fast_impact": 2, "energy_residual": 4, "under_
          "grids_disagree": 32}
 #: the flags a method sets on its result (:func:`finalised` keeps them and says why)
 SOLVER_FLAGS = FLAGS["grids_disagree"]
+_GRIDS_DISAGREE = FLAGS["grids_disagree"]  # (a name, not a look-up, on every result's path)
 MAX_INDENTATION = 0.1
 MAX_SPEED_FRACTION = 0.1
 MAX_ENERGY_RESIDUAL = 1e-4
@@ -108,7 +109,7 @@ def finalised(res, impact, options):
             f"{res.soe_error:.2g}, not the tolerance {tol:g}: no fit of this pair does in double precision "
             f"(the best within {FIT_ACCEPT:g} is taken); the results carry an error of about that size")) if m)
     notes, flags = [], res.validity & SOLVER_FLAGS
-    if flags & FLAGS["grids_disagree"]:
+    if flags & _GRIDS_DISAGREE:
         notes.append("the nested grids of method adaptive are not in the asymptotic range of its Richardson "
                      "extrapolation, or it would give a negative COR (the message says which): the values are "
                      "the finest grid's, "
