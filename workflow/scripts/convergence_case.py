@@ -2,14 +2,11 @@
 
 from vcor.io.joblog import count, job_log
 from vcor.materials import Catalogue
-from vcor.solvers import METHODS
-from vcor.solvers.backend import load_kernels
 from vcor.study import convergence, scene_datasets, summary
 
 smk = snakemake  # noqa: F821
 with job_log(smk) as log:
     name, v0s = smk.params.material, [float(v) for v in smk.params.v0]
-    load_kernels(METHODS)  # compiled once per machine (vcor.solvers.backend)
     archive = scene_datasets.convergence_case(name, v0s, Catalogue(**smk.params.catalogue))
     archive.write(smk.output[0], command="snakemake rule convergence_case")
     done = summary.outcome_of(convergence.ladder_runs(archive.dataset))

@@ -125,8 +125,7 @@ def sweep_archive(scene: dict | str, *, config: Any = None, workers: int | None 
     show = wanted(progress)
     study = resolve_scene(scene, config, name)
     sc, project = study.scene, study.project
-    with tempfile.TemporaryDirectory(prefix="vcor-materials-") as folder:
-        catalogue = ready_catalogue(project.catalogue, sc.used_materials(), sc.uncertainty, Path(folder))
+    with _ready(project.catalogue, sc.used_materials(), sc.uncertainty) as catalogue:
         points = identified_points(sc.config, {m: catalogue.identity(m) for m in sc.materials}, sc.grid)
         shard = solve_points(points, sc.settings, catalogue, workers=processes, progress=show,
                              from_data=project.fitted_to_data)
@@ -324,11 +323,12 @@ def dem_export(dem: dict | str, *, config: Any = None, name: str | None = None) 
 
 
 @contextlib.contextmanager
-def _ready(catalogue, names):
-    """:func:`~vcor.study.computed.ready_catalogue` for ``names``, with a temporary material folder that
-    holds the computed materials the project's folder lacks, for the duration of the block."""
+def _ready(catalogue, names, uncertainty: dict | None = None):
+    """:func:`~vcor.study.computed.ready_catalogue` for ``names`` (and ``uncertainty``'s bootstrap samples),
+    with a temporary material folder that holds the computed materials the project's folder lacks, for the
+    duration of the block."""
     with tempfile.TemporaryDirectory(prefix="vcor-materials-") as folder:
-        yield ready_catalogue(catalogue, list(names), None, Path(folder))
+        yield ready_catalogue(catalogue, list(names), uncertainty, Path(folder))
 
 
 def histories(scene: dict | str, *, config: Any = None, name: str | None = None) -> xarray.Dataset:
@@ -429,12 +429,8 @@ def convergence(scene: dict | str, *, config: Any = None, name: str | None = Non
         Dimensions (material, v0, solver, level): cor, t0, wall_time (s), the ladder's parameter, steps,
         err_cor, err_t0 (s), status and message, and the references.
     """
-    from ..solvers import METHODS
-    from ..solvers.backend import load_kernels
-
     study = resolve_scene(scene, config, name, "convergence")
     spec = study.project.scenes[study.name].config["convergence"]
-    load_kernels(METHODS)  # compiled before the timings, as the workflow's jobs do
     with _ready(study.project.catalogue, spec["materials"]) as ready:
         cases = [convergence_case(m, spec["v0"], ready).loaded(command="vcor.convergence") for m in spec["materials"]]
     return convergence_archive(spec, cases).loaded(command="vcor.convergence")
