@@ -16,7 +16,7 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "src" / "vcor"
 #: the architecture from the bottom up: a module may import its own layer and the ones below
 LAYERS = (
-    ("checks", "status", "provenance", "version"),
+    ("checks", "status", "provenance", "threads", "version"),
     ("io",),
     ("materials",),
     ("contact",),

@@ -1,8 +1,5 @@
 """Bodies instead of a case number: vcor.contact.bodies, Green 2026 Eq. 1."""
 
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
@@ -342,12 +339,3 @@ def test_workflow_body_may_name_a_config_material(make_project, smk, tmp_path):
     out = smk(path, "-n", "results/b/sweep.nc")
     assert "sweep_shard" in out.stdout + out.stderr
 
-
-def test_the_first_two_body_fit_of_a_process_is_the_same_as_a_later_one():
-    """The two-body modulus is fitted with one BLAS thread from the first call on (scipy's BLAS is loaded
-    before the thread limit is set): the same digits whether or not scipy.linalg was loaded before."""
-    code = ("import vcor; print(repr(vcor.simulate('sls', 2.0, target={'plate': {'material': 'butyl-prony3', "
-            "'h': 0.01}}).cor))")
-    runs = [subprocess.run([sys.executable, "-c", pre + code], capture_output=True, text=True, check=True).stdout
-            for pre in ("", "import scipy.linalg; ")]
-    assert runs[0] == runs[1] and runs[0].strip(), runs

@@ -71,8 +71,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from ..threads import one_blas_thread
 from . import dma, fits
 from .dma.joint import fit_with_shifts
 from .dma.laws import arrhenius_fit, wlf_fit
@@ -230,7 +230,7 @@ def _size_check(sets, reduced) -> None:
                          f"the merged Prony series: too few data to fit (or resample) a spectrum")
 
 
-@threadpool_limits.wrap(limits=1, user_api="blas")
+@one_blas_thread()
 def refit(data, full):
     """Resampled data fitted again from the full-data fit (module docstring: warm start).
 
@@ -278,7 +278,7 @@ def _checked_indices(n, indices) -> np.ndarray:
     return idx
 
 
-@threadpool_limits.wrap(limits=1, user_api="blas")
+@one_blas_thread()
 def bootstrap(raw, T_ref, n, seed=0, *, mode="wild", log_aT=None, lag=False, full=None, indices=None,
               max_redraws=MAX_REDRAWS):
     """The full-data fit and refits of resampled data (module docstring).

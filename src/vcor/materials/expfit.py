@@ -25,8 +25,9 @@ best within a looser ``accept`` (``vcor.materials.expsums.FIT_ACCEPT``), whose e
 the check's and the rounding's. The weights may be negative, so the result is an
 :class:`ExponentialSum` (a Prony with signed terms), not a material.
 
-The fit runs with one BLAS thread (``threadpoolctl``): its linear algebra is a few small QR
-factorisations, which a multi-threaded BLAS slows down by orders of magnitude on a busy machine.
+The fit runs with one BLAS thread (:func:`vcor.threads.one_blas_thread`): its linear algebra is a few small
+QR factorisations, which a multi-threaded BLAS slows down by orders of magnitude on a busy machine, and
+whose last digits would depend on the number of threads.
 
 Why not a general-purpose fit (scipy.optimize on rates and weights): the problem is linear once the
 rates are fixed, and the rates that matter are known (the bodies' own, and a grid dense enough that the
@@ -41,8 +42,8 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
+from ..threads import one_blas_thread
 from .base import Parameter
 from .prony import Prony
 
@@ -142,9 +143,7 @@ def fit_exponential_sum(modulus, combined, t_min: float, t_max: float, tol: floa
     :data:`ATTEMPTS` that reaches ``tol`` is taken; when none does, the best of them if it is within
     ``accept`` (default: ``tol``), with the larger of its checked error and its rounding loss as its error,
     else ValueError (the message gives the best error reached). Runs with one BLAS thread."""
-    import scipy.linalg  # noqa: F401 (loads scipy's BLAS first: threadpool_limits limits the libraries loaded)
-
-    with threadpool_limits(limits=1, user_api="blas"):
+    with one_blas_thread():
         return _fit(modulus, combined, t_min, t_max, tol, from_zero, accept)
 
 

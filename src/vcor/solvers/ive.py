@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials.expsums import soe
+from ..threads import one_blas_thread
 from ._fixed_kernels import march_prony
 from ._records import Body, Internal, Stop
 from .applicability import IVE_KERNELS, IVE_VOLTERRA
@@ -43,11 +44,13 @@ def solve_fixed(impact, options, tc, history):
 
 def solve_scipy(impact, options, tc, history):
     """Runner of method ``ive`` (scipy ``solve_ivp``; the horizon grows from T_MAX_START to
-    LINEAR_MAX_T_FACTOR contact-time estimates)."""
-    return run_ive_scipy(impact, rtol=options.rtol, method=options.ive_method, tc=tc, t_max=T_MAX_START * tc,
-                         max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=options.ghost, rule=options.rule,
-                         volterra=options.volterra, c2=options.c2 if options.volterra else 0.0,
-                         max_steps=options.max_steps)
+    LINEAR_MAX_T_FACTOR contact-time estimates), with one BLAS thread (:mod:`vcor.threads`: the numbers do
+    not depend on the machine's cores)."""
+    with one_blas_thread():
+        return run_ive_scipy(impact, rtol=options.rtol, method=options.ive_method, tc=tc, t_max=T_MAX_START * tc,
+                             max_t=LINEAR_MAX_T_FACTOR * tc, history=history, ghost=options.ghost, rule=options.rule,
+                             volterra=options.volterra, c2=options.c2 if options.volterra else 0.0,
+                             max_steps=options.max_steps)
 
 
 def kernel_terms(impact, method, horizon):

@@ -26,7 +26,7 @@ E'' (about 17 %); equal weights let those errors set the shifts.
 
 With shift factors given (a shift file), steps 1-2 are skipped and the spectrum is fitted at them.
 
-The fit runs with one BLAS thread (``threadpoolctl``): its linear algebra is many small solves, which
+The fit runs with one BLAS thread (:func:`vcor.threads.one_blas_thread`): its linear algebra is many small solves, which
 BLAS threads only slow down, by an order of magnitude or more on a machine whose cores are busy
 (OpenBLAS's threads then wait for each other).
 """
@@ -39,9 +39,9 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from threadpoolctl import threadpool_limits
 
 from ...materials.models import Prony
+from ...threads import one_blas_thread
 from ..spectrum.model import MARGIN, N_DENSE, PER_DECADE, count_extrema
 from ..spectrum.modes import reduce_modes
 from ..spectrum.smooth import fit_spectrum, loss_weights
@@ -165,7 +165,7 @@ def _smooth_stage(sets, st: _Stages, *, components, grid, smoothing, start_spec)
     st.times["spectrum"] = time.perf_counter() - t1
 
 
-@threadpool_limits.wrap(limits=1, user_api="blas")
+@one_blas_thread()
 def fit_dma(raw, T_ref, *, log_aT=None, kk_refine=True, components=(1.0, LOSS_WEIGHT), per_decade=PER_DECADE,
             margin=MARGIN, modes_per_decade=MODES_PER_DECADE, smoothing=None, start=None, lag=False) -> DMAFit:
     """Shifts, smooth spectrum, merged Prony series and shift functions of raw DMA sets (module docstring).
