@@ -5,10 +5,10 @@ factorisation can depend on the number of threads, and so on the machine and on 
 started: a Snakemake job runs with one thread (``OPENBLAS_NUM_THREADS=1``), a notebook with every core.
 scipy's ``Radau`` and ``BDF`` integrators (method ``ive``) and the exponential-sum fit of two bodies
 (:mod:`vcor.materials.expfit`) run inside :func:`one_blas_thread`, so their numbers are the same
-everywhere (a Prony SLS at 3 m/s under ``ive`` at rtol 1e-4 differed by 2.7e-12 relative), and their
-small factorisations are not slowed by threads. ``threadpoolctl``'s controller is built once, after
-scipy's BLAS is loaded (a limit reaches only the libraries loaded when it is set); entering the limit then
-costs ~10 us, against ~1 ms for a fresh ``threadpool_limits``.
+everywhere (``tests/test_threads.py``), and their small factorisations are not slowed by threads.
+``threadpoolctl``'s controller is built once, after scipy's BLAS is loaded (a limit reaches only the
+libraries loaded when it is set); entering the limit then needs no new scan of the process's libraries,
+which a fresh ``threadpool_limits`` makes every time.
 """
 
 from __future__ import annotations
