@@ -298,14 +298,15 @@ def test_a_time_step_too_large_for_the_rule_warns_once(lmp, vcor_plugin, tmp_pat
         assert {w.split(":")[1].strip() for w in warnings} == {"pair_style vcor/hereditary", "fix vcor/wall/hereditary"}
 
 
-def test_a_temperature_on_an_entry_without_temperatures_is_refused(lmp, vcor_plugin, tmp_path):
+@pytest.mark.parametrize("given", ["20", "20.5", "-3", "warm"])
+def test_a_temperature_on_an_entry_without_temperatures_is_refused(lmp, vcor_plugin, tmp_path, given):
     """-var T on the deck of an entry with one series (no T in its config) stops the deck with one line
-    on standard error naming the entry's lack of temperatures and the value given; without it the deck
-    runs."""
+    on standard error naming the entry's lack of temperatures and the value given, whatever the value (a
+    decimal point or a sign is not taken for arithmetic); without it the deck runs."""
     _, deck = _deck(tmp_path, "sls", "rigid", v0=[1.0])
-    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "T", "20", check=False)
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "T", given, check=False)
     assert out.returncode == 2, out.stdout[-2000:]
-    assert out.stderr.strip() == "T: this entry has no temperatures (no T in its dem config), got 20", out.stderr
+    assert out.stderr.strip() == f"T: this entry has no temperatures (no T in its dem config), got {given}", out.stderr
     assert 0.0 < _cors(lmp, vcor_plugin, deck, [1.0])[0] < 1.0
 
 

@@ -115,11 +115,10 @@ def laws_of(ds) -> list[tuple[float | None, HereditaryLaw]]:
 
 def _selection(laws: list) -> str:
     """The series of the chosen temperature (``-var T``), or the one series."""
-    if laws[0][0] is None:  # one series: a -var T would be ignored, so it is refused (x: LAMMPS's
-        # if compares two texts, never a text with a number)
-        return ("variable T       index NONE\n"
-                "if \"x${T} != xNONE\" then \"print 'T: this entry has no temperatures (no T in its dem config), got "
-                "${T}' append /dev/stderr screen no\" \"quit 2\"\n" + _law_lines(laws[0][1]))
+    if laws[0][0] is None:  # one series: a -var T would be ignored, so it is refused (asked with
+        # is_defined, whatever its value: an if comparing it as text takes 20.5 or -3 for arithmetic)
+        return ("if \"$(is_defined(variable,T))\" then \"print 'T: this entry has no temperatures (no T in its dem "
+                "config), got ${T}' append /dev/stderr screen no\" \"quit 2\"\n" + _law_lines(laws[0][1]))
     # compared in a formula ($(v_T == ...)): a word that is not a number stops LAMMPS naming T (the if
     # command's own comparison of a word with a number is an error that names neither)
     allowed = " ".join(f"{T:g}" for T, _ in laws)
