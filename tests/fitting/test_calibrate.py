@@ -9,6 +9,7 @@ from vcor.fitting import calibrate as C
 from vcor.fitting import g_star as G
 from vcor.io.netcdf import read_dataset
 from vcor.materials import Catalogue
+from vcor.materials.specs import from_spec
 
 TRUE = M.SLS(15e6, 300.0, 1200.0)
 START = M.SLS(10e6, 300.0, 2000.0)
@@ -112,6 +113,19 @@ def test_three_free_parameters_with_scales(clean):
     cal = C.calibrate(C.CorData(v0, cor), TRUE, free)
     print("\n" + cal.report())
     assert cal.estimate[1] == pytest.approx(1.3, rel=1e-3) and cal.estimate[2] == pytest.approx(-0.2, abs=1e-3)
+
+
+def test_a_time_scale_known_to_worse_than_a_decade_is_not_identified():
+    """log_aT is fitted in decades: its 1-sigma limit is log10 of FACTOR_LIMIT (a factor 10 in a_T), as
+    ln(FACTOR_LIMIT) is for the positive parameters. Five speeds of a four-term Prony, both scales free:
+    the two trade off, log_aT's uncertainty spans decades beyond its bounds."""
+    m = from_spec({"model": "prony", "E_inf": 5e6, "E": [12e6, 25e6, 40e6, 60e6],
+                     "tau": [3e-3, 5e-4, 8e-5, 1.2e-5]})
+    v0, cor = np.array([0.2, 0.5, 1.0, 2.0, 3.5]), np.array([0.2648, 0.2576, 0.2485, 0.2351, 0.2278])
+    cal = C.calibrate(C.CorData(v0, cor), m, {"modulus_scale": [0.05, 20.0], "log_aT": [-4.0, 4.0]})
+    print("\n" + cal.report())
+    assert not cal.identified[1] and "factor 10" in cal.notes[1]
+    assert cal.stderr[1] == np.inf and cal.lower95[1] == -np.inf
 
 
 def _csv(tmp_path, text):

@@ -24,7 +24,7 @@ through the model's sensitivities on a grid of speeds.
 Identifiability (flag and note, in the dataset and the log): no parameter with fewer distinct speeds than
 free parameters; else not one whose Jacobian direction is rank-deficient or ill-conditioned (singular
 value below ``COND_LIMIT`` times the largest), whose estimate ends at a bound, or whose standard error
-exceeds a factor of 10 (sigma of ln p > ln 10); its interval is then reported as infinite.
+exceeds a factor of 10 (sigma of ln p > ln 10; of log_aT, a decade); its interval is then reported as infinite.
 
 During the search, a trial point where the material refuses its parameters (e.g. an SLS with
 beta < alpha) returns a large residual so that the trust region rejects it; a trial point where the
@@ -325,7 +325,7 @@ def _identified(names, fit, box, sx, linear, svd, n_speeds):
             identified[i], notes[i] = False, "the estimate is at its bound: the data push it beyond the allowed range"
         elif identified[i] and not math.isfinite(sx[i]):
             identified[i], notes[i] = False, "no degrees of freedom left to estimate the COR errors (give cor_std)"
-        elif identified[i] and sx[i] > math.log(FACTOR_LIMIT) and not linear[i]:
+        elif identified[i] and sx[i] > (math.log10 if linear[i] else math.log)(FACTOR_LIMIT):  # log_aT: decades
             identified[i], notes[i] = False, f"1-sigma uncertainty larger than a factor {FACTOR_LIMIT:g}"
     return identified, notes
 
