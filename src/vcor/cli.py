@@ -281,6 +281,7 @@ def _catalogue(config):
         return Catalogue()
     from .io.yamlfile import load_yaml
     from .study.config import load_project
+    from .study.inputs import project_folder
 
     path = Path(config)
     if not path.is_file():
@@ -288,7 +289,7 @@ def _catalogue(config):
     cfg = load_yaml(path, what="--config") or {}
     if not isinstance(cfg, dict):
         raise ValueError(f"--config {str(path)!r}: not a mapping of config keys")
-    return load_project({**cfg, "scenes": {}}, base_dir=path.parent, require_targets=False).catalogue
+    return load_project({**cfg, "scenes": {}}, base_dir=project_folder(path), require_targets=False).catalogue
 
 
 # ----------------------------------------------------------------------------- one impact

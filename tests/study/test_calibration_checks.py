@@ -3,6 +3,7 @@ and units, then the start material's impacts and the method), in one line naming
 material's missing Prony table names its key, its place in the file and the folder it was looked for in
 (docs: Calibration, Scenes)."""
 
+import math
 import re
 from pathlib import Path
 
@@ -93,6 +94,32 @@ def test_a_missing_prony_table_names_its_key_its_place_and_the_folder(tmp_path):
     assert "\n" not in text
     assert re.match(rf"^config file .*bad\.yaml, line 2, column 41: materials\.csvmat\.file: the Prony table "
                     rf"'data/missing\.csv' does not exist in {folder} \(the project folder", text), text
+
+
+def test_a_config_in_a_subfolder_of_a_project_takes_paths_from_the_project(tmp_path, capsys):
+    """A config file kept below a folder with a Snakefile reads its relative paths from that folder, as
+    ``snakemake --configfile`` (run there) does, in the study functions and the commands alike; a config
+    outside any project from its own folder."""
+    from vcor.cli import main
+
+    (tmp_path / "Snakefile").write_text("")
+    (tmp_path / "tables").mkdir()
+    (tmp_path / "tables" / "terms.csv").write_text("tau,E\n1.0e-3,2.0e+7\n1.0e-4,3.0e+7\n")
+    (tmp_path / "configs").mkdir()
+    text = "materials:\n  tab: {model: prony, E_inf: 3.0e+6, file: tables/terms.csv}\n"
+    (tmp_path / "configs" / "mine.yaml").write_text(text)
+    got = vcor.moduli({"materials": ["tab"]}, config=tmp_path / "configs" / "mine.yaml")
+    t0 = float(got["t"].values[0])
+    exact = 3.0e6 + 2.0e7 * math.exp(-t0 / 1.0e-3) + 3.0e7 * math.exp(-t0 / 1.0e-4)  # the table's terms
+    assert float(got["relaxation_modulus"].sel(material="tab").values[0]) == pytest.approx(exact, rel=1e-12)
+    assert main(["materials", "--config", str(tmp_path / "configs" / "mine.yaml")]) == 0
+    assert "tab" in capsys.readouterr().out
+    alone = tmp_path / "elsewhere"
+    alone.mkdir()
+    (alone / "mine.yaml").write_text(text)
+    (alone / "tables").mkdir()
+    (alone / "tables" / "terms.csv").write_text("tau,E\n1.0e-3,2.0e+7\n")
+    assert main(["materials", "--config", str(alone / "mine.yaml")]) == 0
 
 
 def test_a_forward_model_that_fails_names_the_parameters_as_numbers(tmp_path, monkeypatch):

@@ -31,8 +31,8 @@ from .config import SCENE_NAME_PATTERN, load_project
 from .project import Project
 from .schema import check_keys, check_schema
 
-__all__ = ["SCENE_BLOCKS", "SCENE_NAME", "Resolved", "as_config", "plain", "read_config", "resolve_entry",
-           "resolve_scene", "schema_path", "spec_of"]
+__all__ = ["SCENE_BLOCKS", "SCENE_NAME", "Resolved", "as_config", "plain", "project_folder", "read_config",
+           "resolve_entry", "resolve_scene", "schema_path", "spec_of"]
 
 #: the name of a scene given as a mapping that is not one of its config's scenes
 SCENE_NAME = "sweep"
@@ -88,9 +88,19 @@ def _object_name(spec: dict) -> str:
     return f"{spec['model']}-{content_hash(spec, 8)}"
 
 
+def project_folder(config_file) -> Path:
+    """The project folder of a config file, that its relative paths are taken from: the nearest folder at
+    or above the file's own that holds a ``Snakefile`` (the workflow's project, whose working directory
+    the workflow takes them from, so that a config kept in a subfolder of a project reads the same files
+    in a study function as in ``snakemake --configfile``), else the file's own folder."""
+    own = Path(config_file).resolve().parent
+    return next((folder for folder in (own, *own.parents) if (folder / "Snakefile").is_file()), own)
+
+
 def as_config(config) -> tuple[dict, Path]:
-    """(config mapping, its folder) of ``config``: None (presets only), a path to a YAML file, a mapping
-    or a :class:`~vcor.materials.Catalogue`. The mapping is a copy, plain (:func:`plain`)."""
+    """(config mapping, its project folder) of ``config``: None (presets only), a path to a YAML file
+    (:func:`project_folder`), a mapping (the working directory) or a :class:`~vcor.materials.Catalogue`
+    (its ``base_dir``). The mapping is a copy, plain (:func:`plain`)."""
     if config is None:
         return {}, Path(".")
     if isinstance(config, Catalogue):
@@ -98,7 +108,7 @@ def as_config(config) -> tuple[dict, Path]:
                "material_dir": config.material_dir}
         out = plain(cfg), Path(config.base_dir)
     elif isinstance(config, (str, Path)):
-        out = read_config(config), Path(config).parent
+        out = read_config(config), project_folder(config)
     elif isinstance(config, dict):
         out = plain(config), Path(".")
     else:
