@@ -217,7 +217,12 @@ ROWS = [
         lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file=str(ROOT / "data/pyvisco/freq_user_raw.csv")))),
      ["fits.pyvisco-polymer.data.file", "relative path inside the project", "write 'data/pyvisco/freq_user_raw.csv'"]),
     ("config: DMA file missing", lambda: _validate(_config_with(
-        lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="data/pyvisco/none.csv"))), ["none.csv"]),
+        lambda c: c["fits"]["pyvisco-polymer"]["data"].update(file="data/pyvisco/none.csv"))),
+     [f"fits.pyvisco-polymer.data.file: the DMA file 'data/pyvisco/none.csv' does not exist in {str(ROOT)!r} (the "
+      f"project folder, which relative paths are taken from)"]),
+    ("config: shift-factor file missing", lambda: _validate(_config_with(
+        lambda c: c["fits"]["pyvisco-polymer"]["data"].update(shift_file="none.csv"))),
+     ["fits.pyvisco-polymer.data.shift_file: the shift-factor file 'none.csv' does not exist in", "project folder"]),
     ("fit: instrument_lag not a boolean", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv", "T_ref": -5, "instrument_lag": "yes"}},
         base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "true or false", "'yes'"]),

@@ -32,7 +32,9 @@ def test_reads_pyvisco_files_in_si():
 
 RAW_HEAD = "f,E_stor,E_loss,T,Set\nHz, MPa, MPa, C, -\n"
 BAD = [
-    ("f,E_stor,T,Set\n1,2,20,0\n", ["line 1", "expected f,E_stor,E_loss"]),
+    ("f,E_stor,T,Set\n1,2,20,0\n", ["line 1", "missing column E_loss", "expected f,E_stor,E_loss"]),
+    ("t,T,Set\n1,20,0\n", ["line 1", "missing column E_relax", "expected f,E_stor,E_loss"]),
+    ("f,E_stor,E_loss,T,Set,tan_d\n1,2,3,20,0,0.5\n", ["line 1", "unknown (misspelt?) columns ['tan_d']"]),
     ("f,E_stor,E_los,T,Set\n1,2,3,20,0\n", ["line 1", "misspelt", "E_los"]),
     (RAW_HEAD + "0.1,8000,90,20,0\n0.2,soft,90,20,0\n", ["line 4, column 'E_stor'", "'soft' is not a number"]),
     (RAW_HEAD + "0.1,8000,0,20,0\n", ["line 3, column 'E_loss'", "must be > 0"]),
@@ -53,6 +55,23 @@ def test_bad_data_names_file_line_and_column(tmp_path, text, words):
     assert str(path) in str(err.value)
     for w in words:
         assert w in str(err.value), (w, str(err.value))
+
+
+@pytest.mark.parametrize("unit, celsius", [("C", 20.0), ("°C", 20.0), ("degC", 20.0), ("K", 20.0 - 273.15)])
+def test_a_temperature_unit_may_name_celsius_as_c_degc_or_with_the_degree_sign(tmp_path, unit, celsius):
+    path = tmp_path / "dma.csv"
+    path.write_text(f"f,E_stor,E_loss,T,Set\nHz,MPa,MPa,{unit},-\n1,2,3,20,0\n", encoding="utf-8")
+    assert dma.read_table(path).columns["T"][0] == pytest.approx(celsius)
+
+
+def test_a_set_with_fewer_than_three_frequencies_is_named_by_its_temperature_and_line(tmp_path):
+    path = tmp_path / "few.csv"
+    rows = [f"{f},{8000 + f},{90 + f},{T},{k}\n" for k, T in enumerate((20.0, 35.0)) for f in (0.1, 1, 10)]
+    path.write_text(RAW_HEAD + "".join(rows) + "0.1,7000,80,45.2,5\n1,7001,81,44.8,5\n")
+    with pytest.raises(ValueError) as err:
+        dma.split_sets(dma.read_table(path))
+    assert str(err.value) == (f"{path}, line 9: the set at T = 45 deg C (Set 5, lines 9-10) has 2 distinct "
+                              f"frequencies; superposition needs three or more per set")
 
 
 def test_sets_closer_than_the_reading_scatter_are_refused(tmp_path):

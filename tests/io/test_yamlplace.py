@@ -9,6 +9,11 @@ from vcor.io.yamlplace import key_path, located
     ("scenes.my-grid.grid.v0[0]: expected a number", ["scenes", "my-grid", "grid", "v0", 0]),
     ("scenes.a.histories.runs: [[x, y]]: bad", ["scenes", "a", "histories", "runs"]),
     ("dem.pair[2].v0: must be > 0", ["dem", "pair", 2, "v0"]),
+    # a dotted path as the first word: a parameter's range, a material's model in brackets
+    ("materials.my-p.E[1] must be in [0, inf) Pa, got -1.0", ["materials", "my-p", "E", 1]),
+    ("materials.my-sls2 (sls): missing ['beta']; a sls material takes [...]", ["materials", "my-sls2"]),
+    ("materials.m.E_0 belongs to the normalised form (with g)", ["materials", "m", "E_0"]),
+    ("shard_size must be >= 1", None),  # one word: not told from a sentence
     ("the config must be a mapping: got list", None),
     ("no colon here", None),
 ])

@@ -55,12 +55,20 @@ def test_every_model_builds_its_class(preset, spec):
 BAD = [
     ({"model": "maxwell"}, ["materials.m.model", "one of"]),
     ({"model": "sls", "E_glassy": 1e6, "alpha": 10}, ["materials.m", "missing ['beta']"]),
-    ({"model": "sls", "E_glassy": 1e6, "alpha": 10, "beta": 20, "eta": 1}, ["unknown ['eta']"]),
+    ({"model": "sls", "E_glassy": 1e6, "alpha": 10, "beta": 20, "eta": 1},
+     ["materials.m.eta: unknown key; a sls material takes ['E_glassy', 'alpha', 'beta']"]),
+    ({"model": "sls", "E_glasy": 1e6, "alpha": 10, "beta": 20},
+     ["materials.m.E_glasy: unknown key", "(missing ['E_glassy'])", "did you mean 'E_glassy'?"]),
     ({"model": "sls", "E_glassy": "soft", "alpha": 10, "beta": 20}, ["materials.m.E_glassy", "number"]),
     # a modulus written with an unsigned exponent (text to YAML): its real range, and the fix
     ({"model": "elastic", "E": "7.0e10"}, ["materials.m.E must be in (0, inf) Pa", "write 7.0e+10"]),
     ({"model": "sls", "E_glassy": 1e6, "alpha": 30, "beta": 20}, ["materials.m", "alpha must be in [0, beta]"]),
     ({"model": "prony", "E_inf": 1e6, "E": [-2e6], "beta": [10]}, ["materials.m", "E[0]", "[0, inf) Pa"]),
+    # each value's true range, also for a number that arrived as text
+    ({"model": "prony", "E_inf": 1e6, "E": ["2e6"], "beta": [10]}, ["materials.m.E[0] must be in [0, inf) Pa"]),
+    ({"model": "prony", "E_inf": 1e6, "E": [2e6], "beta": [-10]}, ["materials.m.beta[0] must be in [0, inf) 1/s"]),
+    ({"model": "prony", "E_inf": "1e6", "E": [2e6], "beta": [10]}, ["materials.m.E_inf must be in [0, inf) Pa"]),
+    ({"model": "prony", "E_0": 1e7, "g": ["0.5"], "tau": [1]}, ["materials.m.g[0] must be in [0, 1) (a number)"]),
     ({"model": "prony", "E_inf": 1e6, "E": [2e6, 1e6], "beta": [10]}, ["2 moduli but 1"]),
     ({"model": "prony", "E_inf": 1e6, "E": [2e6], "beta": [10], "tau": [0.1]}, ["tau", "beta", "not both"]),
     ({"model": "prony", "E_0": 1e7, "g": [0.6, 0.5], "tau": [1, 2]}, ["materials.m.g", "sum < 1"]),
@@ -76,6 +84,45 @@ def test_bad_specs_name_the_key(tmp_path, spec, words):
         from_spec(spec, name="m", base_dir=tmp_path)
     for w in words:
         assert w in str(err.value), (w, str(err.value))
+
+
+SCENE_T = "scenes:\n  t:\n    materials: [{name}]\n    grid: {{v0: [1, 2]}}\n"
+IN_FILE = [  # (the material's entry, the text its refusal points at, the refusal after the place)
+    ("my-sls2: {model: sls, E_glasy: 40.0e+6, alpha: 500, beta: 5000}", "E_glasy",
+     "materials.my-sls2.E_glasy: unknown key; a sls material takes ['E_glassy', 'alpha', 'beta'] (missing "
+     "['E_glassy']); did you mean 'E_glassy'?"),
+    ("my-sls2: {model: sls, E_glassy: -40.0e+6, alpha: 500, beta: 5000}", "E_glassy",
+     "materials.my-sls2.E_glassy must be in (0, inf) Pa, got -40000000.0"),
+    ('my-sls2: {model: sls, E_glassy: "40 MPa", alpha: 500, beta: 5000}', "E_glassy",
+     "materials.my-sls2.E_glassy must be in (0, inf) Pa (a number), got '40 MPa'"),
+    ("my-sls2: {model: sls, E_glassy: 40e6, alpha: 500, beta: 5000}", "E_glassy",
+     "materials.my-sls2.E_glassy must be in (0, inf) Pa (a number), got '40e6': text, not a number"),
+    ("my-p: {model: prony, E_inf: 5.0e+6, E: [12e6, 25.0e+6], tau: [3.0e-3, 5.0e-4]}", "12e6",
+     "materials.my-p.E[0] must be in [0, inf) Pa (a number), got '12e6': text, not a number"),
+    ("my-p:\n    model: prony\n    E_inf: 5.0e+6\n    E: [12.0e+6, -25.0e+6, 40.0e+6]\n"
+     "    tau: [3.0e-3, 5.0e-4, 8.0e-5]", "-25.0e+6", "materials.my-p.E[1] must be in [0, inf) Pa, got -25000000.0"),
+    ("my-sls2: {model: sls, E_glassy: 40.0e+6, alpha: 6000, beta: 5000}", "alpha",
+     "materials.my-sls2.alpha must be in [0, beta] = [0, 5000.0] 1/s (alpha > beta makes the relaxation modulus "
+     "increase), got 6000.0"),
+    ("my-sls2: {model: sls, E_glassy: 40.0e+6, alpha: 500}", "my-sls2",
+     "materials.my-sls2 (sls): missing ['beta']; a sls material takes ['E_glassy', 'alpha', 'beta']"),
+]
+
+
+@pytest.mark.parametrize("entry, at, said", IN_FILE, ids=[f"in_file{i}" for i in range(len(IN_FILE))])
+def test_a_bad_material_in_a_config_file_names_the_place_of_its_parameter(tmp_path, monkeypatch, entry, at, said):
+    """A refusal of a config material's value gives the file, line and column of that value (or of the
+    unknown key, or of the material for a missing key), its key path and its range with the unit."""
+    text = f"materials:\n  {entry}\n" + SCENE_T.format(name=entry.split(":")[0])
+    (tmp_path / "my.yaml").write_text(text)
+    monkeypatch.chdir(tmp_path)
+    before = text[:text.index(at)]
+    line, column = before.count("\n") + 1, len(before) - before.rfind("\n")
+    with pytest.raises(ValueError) as err:
+        vcor.sweep("t", config="my.yaml")
+    print(err.value)
+    assert str(err.value).startswith(f"config file my.yaml, line {line}, column {column}: {said}"), str(err.value)
+    assert "\n" not in str(err.value)
 
 
 @pytest.mark.parametrize("table, words", [

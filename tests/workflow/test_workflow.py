@@ -336,7 +336,7 @@ def test_a_config_error_names_its_file_line_and_column(make_project, smk, tmp_pa
     (path / "my.yaml").write_text("scenes:\n  mine:\n    materials: [sls]\n    grid: {v0: [1.0], h: [0.01, -0.1]}\n")
     out = smk(path, "-n", "-j1", "--configfile", "my.yaml", check=False)
     said = out.stdout + out.stderr
-    assert "config file my.yaml, line 2, column 3: scenes.mine: point" in said, said
+    assert "config file my.yaml, line 4, column 33: scenes.mine.grid.h[1]: point" in said, said
     out = smk(path, "-n", "-j1", "--config", "job_seconds=-1", check=False)
     said = out.stdout + out.stderr  # set on the command line: no file holds it
     assert "config: job_seconds: must be > 0 s, got -1 s" in said and "config file config.yaml, line" not in said, said

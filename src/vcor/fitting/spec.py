@@ -9,10 +9,10 @@ planning a run (the Snakefile, every ``snakemake`` call) loads no optimiser.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
+from ..io.csvfile import project_file
 from ..materials.catalogue import FIT_SCALARS
 from .dma.laws import SHIFT_LAWS
 
@@ -136,8 +136,9 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     from .dma.sets import split_sets
 
     d, T_ref, shift_model = check_measured(spec, where)
-    raw = read_table(Path(base_dir) / d["file"])
-    shifts = read_table(Path(base_dir) / d["shift_file"]) if "shift_file" in d else None
+    raw = read_table(project_file(f"{where}.data.file", d["file"], base_dir, "the DMA file"))
+    shifts = (read_table(project_file(f"{where}.data.shift_file", d["shift_file"], base_dir, "the shift-factor file"))
+              if "shift_file" in d else None)
     check_data(raw, shifts)
     if d.get("instrument_lag") and not raw.is_raw:
         raise ValueError(f"{where}.data.instrument_lag: {raw.path} is a master curve (no T, Set columns); the lag is "

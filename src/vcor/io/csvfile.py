@@ -6,7 +6,20 @@ import csv
 import math
 from pathlib import Path
 
-__all__ = ["cell_number", "data_rows", "header", "is_number", "read_rows", "units_row"]
+__all__ = ["cell_number", "data_rows", "header", "is_number", "project_file", "read_rows", "units_row"]
+
+
+def project_file(key: str, value, base_dir, what: str) -> Path:
+    """The file ``value`` names (a relative path: in ``base_dir``, the project folder); ValueError naming
+    the config ``key``, ``what`` the file is (``the Prony table``) and the folder it was looked for in
+    when there is no such file."""
+    path = Path(value)
+    full = path if path.is_absolute() else Path(base_dir) / path
+    if not full.is_file():
+        folder = "" if path.is_absolute() else (f" in {str(Path(base_dir).resolve())!r} (the project folder, which "
+                                                f"relative paths are taken from)")
+        raise ValueError(f"{key}: {what} {str(value)!r} does not exist{folder}")
+    return full
 
 
 def read_rows(path, what: str) -> list[list[str]]:

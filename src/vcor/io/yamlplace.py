@@ -8,9 +8,11 @@ place in front::
 
     config file my.yaml, line 12, column 14: scenes.my-grid.grid.v0[0]: expected a number, got '36 km/h'
 
-The place is that of the deepest part of the path the file holds: the key of a mapping entry, or the
-item of a list (for a key that is not allowed, the key itself). A message that does not start with a
-key path, or whose path no file holds, is returned unchanged.
+The path is the text before the message's first ": ", or its first word when that is a dotted path
+(``materials.my-sls.E_glassy must be in (0, inf) Pa, ...``). The place is that of the deepest part of
+the path the file holds: the key of a mapping entry, or the item of a list (for a key that is not
+allowed, the key itself). A message that does not start with a key path, or whose path no file holds,
+is returned unchanged.
 """
 
 from __future__ import annotations
@@ -22,12 +24,20 @@ from pathlib import Path
 __all__ = ["key_path", "locate", "located"]
 
 
+_PATH = r"[^\[\]]+(\[\d+\]|\.[^.\[\]]+)*"
+
+
 def key_path(message: str) -> list | None:
-    """The key path a config message starts with (the text before its first ": ", with no spaces), as
-    a list of names (str) and list indices (int); None when it does not start with one."""
+    """The key path a config message starts with, as a list of names (str) and list indices (int): the text
+    before its first ": " when it has no spaces (``scenes.s.grid.v0[0]: ...``), else its first word when
+    that is a path of two or more parts (``materials.m.E[1] must be in ...``, ``materials.m (sls): ...``);
+    None when it starts with neither."""
     head, sep, _ = message.partition(": ")
-    if not sep or not head or any(c.isspace() for c in head) or not re.fullmatch(r"[^\[\]]+(\[\d+\]|\.[^.\[\]]+)*",
-                                                                                     head):
+    if not (sep and head and not any(c.isspace() for c in head)):
+        head = message.split(" ", 1)[0] if " " in message else ""
+        if not re.search(r"[.\[]", head):
+            return None
+    if not re.fullmatch(_PATH, head):
         return None
     return [int(p[1:-1]) if p.startswith("[") else p for p in re.findall(r"\[\d+\]|[^.\[\]]+", head)]
 

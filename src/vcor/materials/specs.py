@@ -17,17 +17,20 @@ T_ref}`` (any model): the material is then E(t; T) = E(t / a_T(T)) at temperatur
 
 A Prony table from a file: ``{model: prony, E_inf or E_0, file: table.csv}``; the CSV has a header row
 with ``tau`` or ``beta`` and ``E`` or ``g`` (``g`` needs ``E_0``, ``E`` needs ``E_inf``), one term per
-row; a relative path is taken from the config's folder. Errors name the key (``materials.<name>.<key>``)
-or the file, line and column, with the allowed range; the classes check the values (positive moduli:
+row; a relative path is taken from the project folder. Errors name the key (``materials.<name>.<key>``;
+for an unknown key, the keys the model takes and the closest of them) or the file, line and column, with
+the allowed range; the classes check the values (positive moduli:
 a non-increasing E(t)).
 """
 
 from __future__ import annotations
 
+import difflib
+import math
 from pathlib import Path
 
 from ..checks import number, positive
-from ..io.csvfile import cell_number, data_rows, read_rows
+from ..io.csvfile import cell_number, data_rows, project_file, read_rows
 from ..io.csvfile import header as column_names
 from . import models as _materials
 from .shift import ShiftFunction
@@ -47,10 +50,12 @@ def spec_models() -> dict:
             for kind, fam in _materials.REGISTRY.items() if fam.configurable}
 
 
-def _numbers(where, values, unit):
+def _numbers(where, values, unit, lo=0.0, hi=math.inf, *, lo_open=False):
+    """Each of ``values`` (a non-empty list) a number in [lo, hi) (or (lo, hi) with ``lo_open``); the
+    errors name ``where[i]`` and that range with ``unit``."""
     if not isinstance(values, (list, tuple)) or not values:
-        raise ValueError(f"{where} must be a non-empty list of numbers ({unit}), got {values!r}")
-    return [number(f"{where}[{i}]", v, unit=unit) for i, v in enumerate(values)]
+        raise ValueError(f"{where} must be a non-empty list of numbers{f' ({unit})' if unit else ''}, got {values!r}")
+    return [number(f"{where}[{i}]", v, lo, hi, lo_open=lo_open, unit=unit) for i, v in enumerate(values)]
 
 
 def read_prony_csv(path) -> dict:
@@ -83,13 +88,7 @@ def _table_path(key: str, value, base_dir) -> Path:
     ``key`` and the folder it was looked for in when there is no such file."""
     if not isinstance(value, (str, Path)) or not str(value).strip():
         raise ValueError(f"{key}: the path of a CSV file (tau or beta, E or g), got {value!r}")
-    path = Path(value)
-    full = path if path.is_absolute() else Path(base_dir) / path
-    if not full.is_file():
-        folder = "" if path.is_absolute() else (f" in {str(Path(base_dir).resolve())!r} (the project folder, which "
-                                                f"relative paths are taken from)")
-        raise ValueError(f"{key}: the Prony table {str(value)!r} does not exist{folder}")
-    return full
+    return project_file(key, value, base_dir, "the Prony table")
 
 
 def _prony(where, spec, base_dir):
@@ -103,10 +102,7 @@ def _prony(where, spec, base_dir):
     if "tau" in table and "beta" in table:
         raise ValueError(f"{where}: give relaxation times tau (s) or rates beta (1/s), not both")
     if "tau" in table:
-        tau = _numbers(f"{where}.tau", table["tau"], "s")
-        for i, t in enumerate(tau):
-            positive(f"{where}.tau[{i}]", t, unit="s")
-        beta = [1.0 / t for t in tau]
+        beta = [1.0 / t for t in _numbers(f"{where}.tau", table["tau"], "s", lo_open=True)]
     elif "beta" in table:
         beta = _numbers(f"{where}.beta", table["beta"], "1/s")
     else:
@@ -116,7 +112,7 @@ def _prony(where, spec, base_dir):
             raise ValueError(f"{where}: the normalised form needs E_0 (instantaneous modulus, Pa) and g, "
                              f"without E_inf or E")
         e0 = positive(f"{where}.E_0", spec["E_0"], unit="Pa")
-        g = _numbers(f"{where}.g", table["g"], "1")
+        g = _numbers(f"{where}.g", table["g"], "", 0.0, 1.0)
         if any(x < 0 for x in g) or not sum(g) < 1:
             raise ValueError(f"{where}.g: relative moduli must be >= 0 with sum < 1 (the long-term modulus "
                              f"E_0 (1 - sum g) must stay > 0), got {g} (sum {sum(g):g})")
@@ -126,14 +122,14 @@ def _prony(where, spec, base_dir):
             raise ValueError(f"{where}.E_0 belongs to the normalised form (with g); with moduli E give E_inf")
         if "E" not in table or "E_inf" not in spec:
             raise ValueError(f"{where}: a prony material needs E_inf (Pa) and moduli E (Pa), or E_0 and g")
-        e_inf = number(f"{where}.E_inf", spec["E_inf"], unit="Pa")
+        e_inf = positive(f"{where}.E_inf", spec["E_inf"], allow_zero=True, unit="Pa")
         moduli = _numbers(f"{where}.E", table["E"], "Pa")
     if len(moduli) != len(beta):
         raise ValueError(f"{where}: {len(moduli)} moduli but {len(beta)} relaxation times/rates")
     try:
         return _materials.Prony(e_inf, tuple(moduli), tuple(beta))
     except ValueError as exc:
-        raise ValueError(f"{where}: {exc}") from None
+        raise ValueError(_named(where, str(exc), ("E_inf", "E", "beta"))) from None
 
 
 def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | None = None) -> _materials.Material:
@@ -148,12 +144,7 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
     if not isinstance(model, str) or model not in models:
         raise ValueError(f"{where}.model must be one of {sorted(models)}, got {model!r}")
     required, optional = models[model]
-    keys = set(spec) - {"model", "shift"}
-    missing, unknown = required - keys, keys - required - optional
-    if missing or unknown:
-        problems = [f"missing {sorted(missing)}" if missing else "", f"unknown {sorted(unknown)}" if unknown else ""]
-        raise ValueError(f"{where} ({model}): " + "; ".join(x for x in problems if x)
-                         + f"; a {model} material takes {sorted(required | optional)}")
+    _check_keys(where, model, set(spec) - {"model", "shift"}, required, optional)
     if "shift" in spec:
         ShiftFunction.from_spec(spec["shift"], f"{where}.shift")  # checked here, applied per temperature
     spec = {k: v for k, v in spec.items() if k != "shift"}
@@ -165,9 +156,33 @@ def from_spec(spec: dict, *, name: str = "material", base_dir=".", where: str | 
     try:
         return cls(**{k: spec[k] for k in required})
     except ValueError as exc:
-        text = str(exc)
-        named = text.split(" ", 1)[0] in required
-        raise ValueError(f"{where}.{text}" if named else f"{where}: {text}") from None
+        raise ValueError(_named(where, str(exc), required)) from None
+
+
+def _check_keys(where: str, model: str, keys: set, required: set, optional: set) -> None:
+    """ValueError for a spec of ``model`` with an unknown key (naming ``<where>.<key>``, with the keys
+    the model takes and a "did you mean" for a close one) or a missing one (naming ``where``)."""
+    missing, unknown = required - keys, sorted(keys - required - optional, key=str)
+    takes = f"a {model} material takes {sorted(required | optional)}"
+    if unknown:
+        key = unknown[0]
+        close = difflib.get_close_matches(str(key), sorted(missing) or sorted(required | optional), n=1, cutoff=0.6)
+        raise ValueError(f"{where}.{key}: unknown key" + (f" (also unknown: {unknown[1:]})" if unknown[1:] else "")
+                         + f"; {takes}" + (f" (missing {sorted(missing)})" if missing else "")
+                         + (f"; did you mean {close[0]!r}?" if close else ""))
+    if missing:
+        raise ValueError(f"{where} ({model}): missing {sorted(missing)}; {takes}")
+
+
+def _named(where: str, text: str, names) -> str:
+    """A constructor's message about one of its parameters ``names`` (``E_glassy must be ...``, or after the
+    model's label, ``SLS alpha must be ...``) with the config's path to it (``<where>.E_glassy must be
+    ...``); any other message after ``where: ``."""
+    words = text.split(" ", 2)
+    for i in (0, 1):
+        if len(words) > i + 1 and words[i].split("[", 1)[0] in names:
+            return f"{where}." + " ".join(words[i:])
+    return f"{where}: {text}"
 
 
 def shift_function(spec: dict, name: str = "material") -> ShiftFunction | None:

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import difflib
 import itertools
+import math
 
 from ..contact.bodies import impact_inputs, scene_bodies
 from ..contact.impact import GEOMETRY_AXES, make_impact
@@ -171,6 +172,23 @@ def _check_ties(where, scene, grid: Grid):
             raise ValueError(f"{where}.tie.{target}: {target} is also a grid axis; tie it or sweep it, not both")
 
 
+def _point_refusal(where, scene, point, text) -> str:
+    """The refusal ``text`` of a grid point, after the key path of the value it names (its first word, or
+    its second after a model's label: ``SLS alpha must be ...``): the grid axis, with the value's index
+    when the axis is a list (``scenes.s.grid.E_glassy[1]``), or the tie that sets it; else the scene."""
+    names = [w.split("[", 1)[0] for w in text.split(" ", 2)[:2]]
+    ties = scene.get("tie") or {}
+    for name in names:
+        if name in ties:
+            return f"{where}.tie.{name}: point {point}: {text}"
+        if name != "material" and name in point:
+            given = (scene.get("grid") or {}).get(name)
+            index = next((i for i, v in enumerate(given) if isinstance(v, (int, float)) and not isinstance(v, bool)
+                          and math.isclose(v, point[name], rel_tol=1e-12)), None) if isinstance(given, list) else None
+            return f"{where}.grid.{name}{'' if index is None else f'[{index}]'}: point {point}: {text}"
+    return f"{where}: point {point}: {text}"
+
+
 def _check_corners(where, scene, grid: Grid, catalogue):
     """Build the material and geometry of the grid's corner points, so that bad values fail now, and
     refuse a solver method that cannot solve a material's kernel (:func:`vcor.solvers.applicability.refusal`)."""
@@ -189,7 +207,7 @@ def _check_corners(where, scene, grid: Grid, catalogue):
                 material, v0, geometry = build_point(point, settings, catalogue)
                 impact = make_impact(material, v0, geometry)
             except ValueError as exc:
-                raise ValueError(f"{where}: point {point}: {exc}") from None
+                raise ValueError(_point_refusal(where, scene, point, str(exc))) from None
             why = refusal(impact.material, options)
             if why:  # the same at every point of this material: the scene is refused, not each point
                 raise ValueError(f"{where}.solver.method: material {mat!r}: {why}")

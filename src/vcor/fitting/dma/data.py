@@ -4,8 +4,9 @@ Files (the column and units conventions of NREL's pyvisco input files):
 
 * frequency domain ``f,E_stor,E_loss`` (Hz; Pa, kPa, MPa or GPa),
 * time domain ``t,E_relax`` (s; a modulus unit),
-* raw multi-temperature sets: either of the above plus ``T,Set`` (deg C or K; set number),
-* shift factors ``T,log_aT`` (deg C or K; log10 of a_T, a_T = 10^log_aT).
+* raw multi-temperature sets: either of the above plus ``T,Set`` (deg C, written ``C``, ``°C`` or ``degC``,
+  or K; set number),
+* shift factors ``T,log_aT`` (deg C or K, as for sets; log10 of a_T, a_T = 10^log_aT).
 
 A second row of unit names is allowed (and read); without it the values are SI (Hz, s, Pa, deg C).
 A UTF-8 byte-order mark is accepted. Every error names the file, the line (1-based) and the column.
@@ -13,7 +14,7 @@ A UTF-8 byte-order mark is accepted. Every error names the file, the line (1-bas
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +29,8 @@ __all__ = ["KINDS", "UNITS", "DMATable", "check_data", "read_table"]
 MODULUS_UNITS = {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 #: per column, its units: a factor to SI, for T an offset to deg C
 UNITS = {"f": {"Hz": 1.0}, "t": {"s": 1.0}, "E_stor": MODULUS_UNITS, "E_loss": MODULUS_UNITS,
-         "E_relax": MODULUS_UNITS, "T": {"C": 0.0, "K": -ZERO_CELSIUS}, "Set": {"-": 1.0, "": 1.0},
+         "E_relax": MODULUS_UNITS, "T": {"C": 0.0, "°C": 0.0, "degC": 0.0, "K": -ZERO_CELSIUS},
+         "Set": {"-": 1.0, "": 1.0},
          "log_aT": {"-": 1.0, "": 1.0}}
 #: the kinds of file, by the columns that make them
 KINDS = {"frequency": ("f", "E_stor", "E_loss"), "time": ("t", "E_relax"), "shift": ("T", "log_aT")}
@@ -37,11 +39,13 @@ POSITIVE = ("f", "t", "E_stor", "E_loss", "E_relax")
 
 @dataclass(frozen=True, kw_only=True)
 class DMATable:
-    """A read file: ``kind`` (frequency, time or shift), columns in SI (Hz, s, Pa, deg C), the path."""
+    """A read file: ``kind`` (frequency, time or shift), columns in SI (Hz, s, Pa, deg C), the path, and
+    the line of each row in the file (1-based; None for a table not read from a file)."""
 
     kind: str
     columns: dict
     path: str
+    lines: np.ndarray | None = field(default=None, compare=False, repr=False)
 
     @property
     def is_raw(self) -> bool:
@@ -58,12 +62,26 @@ def _kind(path, header):
     allowed = set().union(*KINDS.values(), {"Set"})
     unknown = [h for h in header if h not in allowed]
     if kind is None or unknown:
-        raise ValueError(f"{_where(path, 1)}: columns {header}: expected f,E_stor,E_loss (frequency), t,E_relax "
+        raise ValueError(f"{_where(path, 1)}: columns {header}: {'' if kind else _missing(header)}"
+                         f"expected f,E_stor,E_loss (frequency), t,E_relax "
                          f"(time) or T,log_aT (shift factors), optionally with T,Set"
                          + (f"; unknown (misspelt?) columns {unknown}" if unknown else ""))
     if kind != "shift" and ("T" in header) != ("Set" in header):
         raise ValueError(f"{_where(path, 1)}: a raw multi-temperature set needs both T and Set columns")
     return kind
+
+
+def _missing(header) -> str:
+    """"missing column(s) ...; " for the kind of file whose own columns (besides T and Set, which raw sets
+    share) the header holds most of; "" when that is no single kind."""
+    given = set(header) - {"T", "Set"}
+    shared = {k: len(given & set(cols)) for k, cols in KINDS.items()}
+    best = max(shared.values())
+    if best == 0 or list(shared.values()).count(best) > 1:
+        return ""
+    kind = max(shared, key=shared.get)
+    lacking = [c for c in KINDS[kind] if c not in header]
+    return f"missing column{'s' if len(lacking) > 1 else ''} {', '.join(lacking)}; "
 
 
 def _check_monotone_shifts(path, cols, start):
@@ -84,8 +102,9 @@ def read_table(path) -> DMATable:
     kind = _kind(path, header)
     # T: the unit's value is an offset to deg C; every other column's a factor to SI
     scale, start = units_row(path, rows, header, UNITS, {h: 0.0 if h == "T" else 1.0 for h in header})
-    values = {h: [] for h in header}
+    values, lines = {h: [] for h in header}, []
     for lineno, row in data_rows(path, rows, header, start):
+        lines.append(lineno)
         for h, cell in zip(header, row):
             v = cell_number(path, lineno, h, cell)
             if h in POSITIVE and not v > 0:
@@ -96,7 +115,7 @@ def read_table(path) -> DMATable:
     cols = {h: np.array(v) for h, v in values.items()}
     if kind == "shift":
         _check_monotone_shifts(path, cols, start)
-    return DMATable(kind=kind, columns=cols, path=str(path))
+    return DMATable(kind=kind, columns=cols, path=str(path), lines=np.array(lines))
 
 
 def check_data(raw: DMATable, shifts: DMATable | None = None) -> None:

@@ -81,6 +81,19 @@ def _columns(raw, where):
     return f, es, el, np.asarray(c["Set"]), np.asarray(c["T"], float), wt
 
 
+def _too_few(where, lines, rows, label: float, T: float, distinct: int) -> str:
+    """The refusal of set ``label`` at ``T`` (deg C) with ``distinct`` < 3 frequencies: the file's line of its
+    first row and its lines (``lines``: each row's line in the file, or None), its temperature and label."""
+    at = ""
+    if lines is not None:
+        own = [int(n) for n in np.asarray(lines)[rows]]
+        span = (f"line {own[0]}" if len(own) == 1 else f"lines {own[0]}-{own[-1]}"
+                if own[-1] - own[0] == len(own) - 1 else "lines " + ", ".join(map(str, own)))
+        where, at = f"{where}, line {own[0]}", f", {span}"
+    return (f"{where}: the set at T = {T:.4g} deg C (Set {label:g}{at}) has {distinct} distinct "
+            f"frequenc{'y' if distinct == 1 else 'ies'}; superposition needs three or more per set")
+
+
 def split_sets(raw) -> list[DMASet]:
     """Group a raw multi-temperature table into sets sorted by temperature.
 
@@ -111,7 +124,8 @@ def split_sets(raw) -> list[DMASet]:
         m = sid == s
         o = np.argsort(f[m], kind="stable")
         if np.unique(f[m]).size < 3:
-            raise ValueError(f"{where}: set {s!r} has fewer than three distinct frequencies")
+            raise ValueError(_too_few(where, getattr(raw, "lines", None), m, float(s), float(np.mean(tt[m])),
+                                      np.unique(f[m]).size))
         out.append(DMASet(T=float(np.mean(tt[m])), f=f[m][o], E_stor=es[m][o], E_loss=el[m][o], label=float(s),
                           weight=None if wt is None else wt[m][o]))
     out.sort(key=lambda d: d.T)
