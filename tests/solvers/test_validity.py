@@ -45,14 +45,18 @@ def test_a_sphere_still_approaching_at_separation_is_flagged(material, v0, h):
     """The force vanishes while the sphere still moves towards the plate (its surface recedes faster):
     COR 0.12 with the sphere at +0.52 v0, and 0.020 at +0.012 v0. Every method that solves the impact
     (adaptive, direct; ive where the kernel is a Prony series) finds the same sphere velocity to 1e-6 and
-    flags no_rebound; the message gives the velocity in m/s. On the default plate butyl-fc rebounds."""
+    flags no_rebound; the message gives the velocity in m/s. On the default plate butyl-fc rebounds.
+    The velocity is compared with adaptive at step_tol 1e-6; direct runs at 8000 steps per contact time
+    (at its default 2000 its own error on the thin fractional plate is 1.2e-6)."""
     methods = ("adaptive", "direct") + (("ive",) if vcor.materials.get(material).is_prony else ())
-    runs = [vcor.simulate(material, v0, method=m, h=h) for m in methods]
+    runs = [vcor.simulate(material, v0, method=m, h=h, **({"steps_per_contact": 8000} if m == "direct" else {}))
+            for m in methods]
+    fine = vcor.simulate(material, v0, h=h, step_tol=1e-6).sphere_velocity
     for r in runs:
         assert r.ok and r.sphere_velocity > 0.01 * v0 and r.cor > 0.01, (r.method, r.message)
         assert r.validity == validity.FLAGS["no_rebound"], r.validity_message
         assert f"z'(t0) = {r.sphere_velocity:.3g} m/s" in r.validity_message and "final rebound" in r.validity_message
-        assert r.sphere_velocity == pytest.approx(runs[0].sphere_velocity, rel=1e-6)
+        assert r.sphere_velocity == pytest.approx(fine, rel=1e-6), r.method
     if h is not None:  # the same material on the default (thicker) plate rebounds
         assert vcor.simulate(material, v0).validity == 0
 

@@ -36,6 +36,7 @@ from ._records import (
     LAST,
     LEVEL,
     LOADED,
+    MOTION_FLOOR,
     REJECTED,
     SEPARATION,
     STATUS,
@@ -110,12 +111,13 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
 
     Error control (per unit step): est = h^2 |g''| / 12 from the second divided difference of g over
     the last three nodes (the trapezoidal rule's local error is h^3 g''/12) against
-    tol = step_tol min(v0, |g_n| + s_n inv_tc), the motion's own scale (in a long contact the motion
-    falls by orders of magnitude below v0, where an error relative to v0 would move the separation
-    time). Reject: down 1..4 levels, one per factor 4 of est/tol (not below level_floor, where the
-    test is waived). Accept: up one level when est < tol/8, two when est < tol/32 (not above
-    level_top). A separation found with h_n > sep_fraction t_n is rejected and re-stepped finer; after
-    it the level is frozen for the stop.n_extra steps and the ghost continuation to (1 + ghost) t_sep.
+    tol = step_tol min(v0, max(|g_n| + s_n / max(t_n, tc), MOTION_FLOOR v0)), the motion's own scale (in
+    a long contact the motion falls by orders of magnitude below v0, where an error relative to v0 would
+    move the separation time; s_n / t_n is the speed of a creep that has lasted t_n). Reject: down 1..4
+    levels, one per factor 4 of est/tol (not below level_floor, where the test is waived). Accept: up
+    one level when est < tol/8, two when est < tol/32 (not above level_top). A separation found with
+    h_n > sep_fraction t_n is rejected and re-stepped finer; after it the level is frozen for the
+    stop.n_extra steps and the ghost continuation to (1 + ghost) t_sep.
     Returns STATUS_FULL with the state intact when the arrays are full.
     """
     tables, plate, body = LevelTables(*tables), Plate(*plate), Body(*body)
@@ -131,6 +133,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     pscale, pc, pe_inf = plate.scale, plate.factor, plate.e_inf
     m, v0 = body.m, body.v0
     step_tol, inv_tc, sep_frac, ghost = control.step_tol, control.inv_tc, control.sep_fraction, control.ghost
+    v0_floor = MOTION_FLOOR * v0
     lev_floor, lev_max, t_horizon = control.level_floor, control.level_top, control.horizon
     inv_m = 1.0 / m
     nk = mode_decay.shape[1]
@@ -286,7 +289,8 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         # local error estimate and step control
         est = -1.0
         if not frozen and not planned and ok and n >= 2 and math.isfinite(gn):
-            tol_abs = step_tol * min(v0, abs(gn) + abs(sn) * inv_tc)
+            creep = abs(sn) * (inv_tc if tn * inv_tc <= 1.0 else 1.0 / tn)  # s / max(t, tc): no division in t < tc
+            tol_abs = step_tol * min(v0, max(abs(gn) + creep, v0_floor))
             dd = ((gn - g[n - 1]) * inv_h - last_dg) * r2
             est = h * h * abs(dd) * (1.0 / 12.0)
             if est > tol_abs and lev > lev_floor:

@@ -717,7 +717,8 @@ class StepControl:
     """The adaptive method's acceptance rules for a trial step n on ``level`` (step h, ending at t_n).
 
     * error = ``h^2 |g''| / 12`` (:func:`local_error`, n >= 2) against
-      tol = ``step_tol min(v0, |g_n| + |s_n| / tc)``: the motion's own scale (m/s);
+      tol = ``step_tol min(v0, max(|g_n| + |s_n| / max(t_n, tc), MOTION_FLOOR v0))``: the motion's own
+      scale (m/s);
       error > tol: retry on :func:`retry_level` (at the floor level the step is accepted);
     * a step that would separate with h > sep_frac t_n: retry one level down (not below the floor);
     * after an accepted step (n >= 2, not separated) the next level is :func:`grown_level`.
@@ -728,8 +729,9 @@ class StepControl:
     tc: float
     v0: float
 
-    def tolerance(self, s, g):
-        return self.step_tol * min(self.v0, abs(g) + abs(s) / self.tc)
+    def tolerance(self, s, g, t_n):
+        scale = abs(g) + abs(s) / max(t_n, self.tc)
+        return self.step_tol * min(self.v0, max(scale, _adaptive.MOTION_FLOOR * self.v0))
 
     def retry(self, level, error, tol, separates, h, t_n):
         """The level on which to retry the trial step, or None to accept it (error None: n = 1)."""
@@ -789,7 +791,7 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
         error = tol = None
         if controlled and n >= 2:
             error = local_error(h, nodes.t[-1] - nodes.t[-2], g, nodes.g[-1], nodes.g[-2])
-            tol = control.tolerance(s, g)
+            tol = control.tolerance(s, g, t_n)
         retry = control.retry(level, error, tol, watch.separates(s, F), h, t_n) if controlled else None
         if retry is not None:
             level, rejected = retry, rejected + 1
