@@ -609,3 +609,16 @@ def test_a_creeping_capture_keeps_its_cor():
     assert abs(got.cor / ref.cor - 1) < 1e-7 and abs(got.t0 / ref.t0 - 1) < 1e-7
     creep = vcor.simulate({"model": "fractional", "E0": 4e6, "E1": 3e5}, 5.0, r=0.004, h=6e-4)
     assert creep.ok and creep.validity & validity.FLAGS["grids_disagree"] and creep.t0 > 1000.0, creep.message
+
+
+def test_a_march_at_the_largest_horizon_says_so_without_the_step_budget_advice(monkeypatch):
+    """A march that reaches the largest time horizon (here set to the first, HORIZON_START estimates, so
+    that the 1 mm fractional plate's contact outlives it) ends step-budget naming that horizon in s and in
+    contact-time estimates (between HORIZON_START and twice it: the horizon is a power of two), without
+    advising a larger max_adaptive_steps, which would change nothing."""
+    monkeypatch.setattr(adaptive, "MAX_HORIZON", adaptive.HORIZON_START)
+    res = vcor.simulate("butyl-fc", 10.0, h=1e-3)
+    assert res.status == "step-budget" and res.message.startswith("stopped by the largest time horizon, "), res.message
+    estimates = float(res.message.split(" s (", 1)[1].split(" contact-time estimates")[0])
+    assert adaptive.HORIZON_START <= estimates <= 2 * adaptive.HORIZON_START
+    assert "max_adaptive_steps" not in res.message

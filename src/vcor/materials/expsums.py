@@ -32,7 +32,9 @@ period h of the error in log t)
   spectrum and is in general not completely monotone: it is fitted by least squares on the window
   (:mod:`vcor.materials.expfit`), and its contract is the relative error of the modulus itself,
   <= ``tol``, checked a posteriori on times ten times denser than the fit's; where no fit reaches ``tol``,
-  the best one within FIT_ACCEPT (1e-8) is taken and its error reported (``checked_error``).
+  the best one within FIT_ACCEPT (1e-8) is taken and its error reported (``checked_error``). A modulus
+  that relaxes below RELAXED of its start on the window (a fluid body) and has no fit there is fitted up
+  to that point and held in absolute terms beyond (:func:`_fit_relaxed`).
 """
 
 from __future__ import annotations
@@ -47,7 +49,7 @@ from ..checks import number
 from . import models as _materials
 from .expfit import ExponentialSum, fit_exponential_sum
 
-__all__ = ["FIT_ACCEPT", "SOE", "fractional_bound", "soe"]
+__all__ = ["FIT_ACCEPT", "RELAXED", "SOE", "fractional_bound", "soe"]
 
 #: a posteriori check: log-spaced times, this many per period h of the trapezoid error in log t
 CHECKS_PER_PERIOD = 32
@@ -160,13 +162,50 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10, from_zero: boo
 @functools.lru_cache(maxsize=256)
 def _fit_cached(material, lo: int, hi: int, tol: float, from_zero: bool) -> SOE:
     t_min, t_max = 2.0**lo, 2.0**hi
+    accept = max(tol, FIT_ACCEPT)
     try:
-        fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_max, tol,
-                                              from_zero, accept=max(tol, FIT_ACCEPT))
+        try:
+            fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_max,
+                                                  tol, from_zero, accept=accept)
+        except ValueError:
+            fitted, checked = _fit_relaxed(material, t_min, t_max, tol, from_zero, accept)
     except ValueError as exc:
+        advice = "raise soe_tol (up to 1e-08 the best fit is taken), or " if tol < FIT_ACCEPT else ""
         raise ValueError(f"the contact modulus of {material.describe_bodies()} (Green 2026 Eq. 1, pointwise): "
-                         f"{exc}; raise soe_tol, or use method 'direct' (it takes the modulus as it is)") from None
+                         f"{exc}; {advice}use method 'direct' (it takes the modulus as it is)") from None
     return SOE(material=fitted, t_min=t_min, t_max=t_max, bound=math.nan, checked_error=checked, exact=False)
+
+
+#: a two-body modulus that relaxes by orders of magnitude on the window (a body that is a fluid: a Maxwell
+#: SLS, alpha = 0, whose e^-beta t tail falls to 1e-160 within it) has no fit in the relative error there:
+#: the weights' rounding, eps sum |w| / min E', exceeds any tolerance. Such a modulus is fitted where it
+#: is above this fraction of its value at the window's start (the rounding stays below 1e-10 there), and
+#: beyond the sum is held to the modulus in absolute terms, relative to that value
+RELAXED = 1e-5
+
+
+def _fit_relaxed(material, t_min, t_max, tol, from_zero, accept):
+    """(ExponentialSum, error) of a modulus that falls below RELAXED of its value at ``t_min``: fitted on
+    [t_min, t_cut] (t_cut where it reaches RELAXED), its error the larger of that fit's relative error and
+    the largest |sum - modulus| on [t_cut, t_max] over the modulus at t_min; ValueError (the full window's
+    refusal) where the modulus does not fall that far, or the error exceeds ``accept``."""
+    start = float(material.relaxation_modulus(t_min))
+    t = np.geomspace(t_min, t_max, 64 * math.ceil(math.log2(t_max / t_min)) + 1)
+    below = np.flatnonzero(material.relaxation_modulus(t) <= RELAXED * start)
+    if below.size == 0 or below[0] == 0:
+        return fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_max, tol,
+                                   from_zero, accept=accept)
+    t_cut = float(t[below[0]])
+    fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_cut, tol,
+                                          from_zero, accept=accept)
+    tail = t[below[0]:]
+    checked = max(checked, float(np.max(np.abs(fitted.relaxation_modulus(tail) - material.relaxation_modulus(tail))))
+                  / start)
+    if not checked <= accept:
+        raise ValueError(f"no exponential sum reaches a relative error of {tol:g} on [{t_min:.3g}, {t_cut:.3g}] s "
+                         f"and an absolute one of {tol:g} of the modulus at {t_min:.3g} s beyond (best "
+                         f"{checked:.2g})")
+    return fitted, checked
 
 
 @functools.lru_cache(maxsize=256)

@@ -364,7 +364,7 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
                 and factor < MAX_HORIZON):
             step = float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan
             march = March(arrays=arr, state=state, n_done=n_done, dt=step, t=t, note=_ghost_note(state, t, n_done),
-                          budget=_budget_text(t, n_done, horizon, factor, max_steps), soe_error=soe_error)
+                          budget=_budget_text(t, n_done, horizon, grid.tc, max_steps), soe_error=soe_error)
             return march, lev, horizon, factor
         factor *= 32.0
 
@@ -378,13 +378,16 @@ def _ghost_note(state, t, n_done):
     return ""
 
 
-def _budget_text(t, n_done, horizon, factor, max_steps):
-    reason = (f"the time horizon {horizon:.6g} s (>= {factor:g} contact-time estimates)" if t[n_done] >= horizon
-              else f"the step budget max_adaptive_steps = {max_steps}")
-    return (f"stopped by {reason} before a verdict: the contact force had not returned to zero at "
-            f"t = {t[n_done]:.6g} s ({n_done} adaptive steps); s_max and f_max are over that window. To reach a "
-            f"verdict raise max_adaptive_steps; a contact longer than the largest horizon ({MAX_HORIZON:g} "
-            f"contact-time estimates) does not separate in any practical sense")
+def _budget_text(t, n_done, horizon, tc, max_steps):
+    """The message of a march that ended without a verdict: at the largest time horizon ``horizon`` (s; the
+    march returns there only when the horizon can grow no further) or at the step budget."""
+    said = (f"before a verdict: the contact force had not returned to zero at t = {t[n_done]:.6g} s ({n_done} "
+            f"adaptive steps); s_max and f_max are over that window")
+    if t[n_done] >= horizon:
+        return (f"stopped by the largest time horizon, {horizon:.6g} s ({horizon / tc:.3g} contact-time estimates), "
+                f"{said}. A contact that long does not separate in any practical sense")
+    return (f"stopped by the step budget max_adaptive_steps = {max_steps} {said}. To reach a verdict raise "
+            f"max_adaptive_steps")
 
 
 #: Richardson extrapolation from GRIDS nested grids (the accepted grid, every step divided by 2, 4, 8):

@@ -178,6 +178,7 @@ def combine(cases, materials, v0s):
             cols.append(ds.expand_dims(v0=[float(v)]))
         rows.append(xr.concat(cols, dim="v0"))
     out = xr.concat(rows, dim="material").assign_coords(material=("material", np.array(materials, dtype=str)))
+    out.attrs = {}  # a case's global attributes (its one material) do not describe the study
     out["v0"].attrs.update(V0_ATTRS)
     out["material"].attrs["long_name"] = "material"
     for name in ("status", "message"):
