@@ -228,6 +228,23 @@ def test_a_reader_that_stops_early_is_not_an_error():
     assert proc.wait() == 0 and "Traceback" not in err, err
 
 
+def test_impact_takes_a_material_spec(capsys):
+    """--material takes a spec as a config's materials block does (the numbers of vcor.simulate with that
+    spec); a bad spec is refused in one line naming the flag and the key."""
+    spec = {"model": "sls", "E_glassy": 4.0e7, "alpha": 800.0, "beta": 6000.0}
+    assert cli.main(["impact", "--material", "{model: sls, E_glassy: 4.0e+7, alpha: 800, beta: 6000}", "--v0", "1",
+                     "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["cor"]["value"] == vcor.simulate(spec, 1.0).cor
+    for text, message in [("{model: sls, E_glasy: 4.0e+7, alpha: 800, beta: 6000}",
+                           "--material.E_glasy: unknown key; a sls material takes ['E_glassy', 'alpha', 'beta']"),
+                          ("{model: sls, E_glassy: -4.0e+7, alpha: 800, beta: 6000}",
+                           "--material.E_glassy must be in (0, inf) Pa, got -40000000.0"),
+                          ("{model: sls", "--material, line 2, column 1: not valid YAML")]:
+        assert cli.main(["impact", "--material", text, "--v0", "1"]) == 2
+        err = capsys.readouterr().err
+        assert message in err and err.count("\n") == 1, err
+
+
 def test_impact_takes_simulates_targets(capsys, tmp_path):
     """--target takes what vcor.simulate's target takes (a sphere or a plate of a named material, a material
     file, rigid or a spec; rigid), with the same numbers; bad ones are refused in one line naming the flag."""

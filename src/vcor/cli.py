@@ -188,8 +188,9 @@ def _add_impact(sub) -> list:
     imp = sub.add_parser("impact", help="simulate one sphere-plate impact and print its outcome with units",
                          description="Simulate one impact (vcor.simulate) and print the result with units.")
     _add(actions, imp, "--material", required=True,
-         help="a preset (vcor materials lists them), a material file (.nc or .json), or a name of "
-              "--config's materials, fits or calibrations [no unit; required]")
+         help="a preset (vcor materials lists them), a material file (.nc or .json), a name of --config's "
+              "materials, fits or calibrations, or a YAML spec {model: ..., <parameters>} as a config's "
+              "materials block takes it [no unit; required]")
     _add(actions, imp, "--config", default=None, help="a config.yaml whose materials block defines --material "
          "(relative paths from its folder) [no unit; default: none]")
     low, high = RANGES["v0"]
@@ -362,6 +363,20 @@ def _target(args, catalogue):
     return {kind: spec}
 
 
+def _material_arg(text: str, catalogue):
+    """``--material``: a YAML spec ``{model: ..., <parameters>}`` (as a config's ``materials:`` block takes
+    it), else a name or material file (:func:`_named_material`); ValueError naming the flag otherwise."""
+    if not text.lstrip().startswith("{"):
+        return _named_material(text, catalogue, "--material")
+    from .io.yamlfile import loads_yaml
+    from .materials.specs import from_spec
+
+    spec = loads_yaml(text, "--material")
+    if not isinstance(spec, dict):
+        raise ValueError(f"--material: a spec is a mapping {{model: ..., <parameters>}}, got {text!r}")
+    return from_spec(spec, name="material", base_dir=catalogue.base_dir, where="--material")
+
+
 def _named_material(name: str, catalogue, flag: str):
     """The material ``name`` names: a material file (.nc or .json), else a name of ``catalogue``;
     ValueError naming ``flag`` otherwise."""
@@ -435,7 +450,7 @@ def _impact(args) -> int:
     geometry = {k: getattr(args, k) for k in GEOMETRY_DEFAULTS if k != "rigid" and getattr(args, k, None) is not None}
     options = {k: getattr(args, k) for k in SolverOptions.names() if getattr(args, k, None) is not None}
     catalogue = _catalogue(args.config)
-    material = _named_material(args.material, catalogue, "--material")
+    material = _material_arg(args.material, catalogue)
     try:
         res, load_time = _solve(material, args.v0, options, geometry, _target(args, catalogue))
     except ValueError as exc:  # a refusal of the target's keys (target.plate.h ...) names the flag too
