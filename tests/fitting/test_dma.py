@@ -190,6 +190,10 @@ def test_a_fit_to_measured_sets_writes_the_same_file_byte_for_byte(tmp_path):
         assert digests[0] == digests[1], name
         assert str(tmp_path) not in str(fitted.dataset.attrs), name
     assert "given (a.csv)" in fitted.dataset.attrs["superposition"]
+    # the frequencies are the master curve's, reduced to T_ref; a fit to a model material's curve is not
+    assert fitted.dataset["omega"].attrs["long_name"].startswith("reduced angular frequency at the reference")
+    model_fit = vcor.fit({"model": "prony", "n_terms": 3}).dataset
+    assert model_fit["omega"].attrs["long_name"] == "angular frequency (fit band)"
 
 
 def test_the_text_table_of_a_fit_to_measured_sets_shows_its_own_metrics_and_shift(tmp_path):

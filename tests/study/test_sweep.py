@@ -3,6 +3,7 @@ process, the work is handed out largest first, bad input is refused before any w
 the argument, Ctrl-C stops every process within a second, and the progress bar shows on a terminal only."""
 
 import fcntl
+import json
 import os
 import pty
 import signal
@@ -88,6 +89,16 @@ def test_inline_material_specs_are_taken_as_simulate_takes_them():
     assert name.startswith("sls-") and float(ds["cor"].sel(material=name, v0=1.0)) == vcor.simulate(spec, 1.0).cor
     with pytest.raises(ValueError, match=r"scene\.materials\[0\]\.E_glassy must be in \(0, inf\) Pa"):
         vcor.sweep({"materials": [{**spec, "E_glassy": -1.0}], "grid": {"v0": [1.0]}}, progress=False)
+
+
+def test_the_dataset_names_the_geometry_its_points_ran_with():
+    """The attribute ``geometry`` is the scene's geometry over the defaults (``geometry_defaults`` alone gave
+    r = 0.01 m for a scene of r = 0.004 m); the grid's axes are the coordinates."""
+    ds = vcor.sweep({"materials": ["sls"], "grid": {"v0": [1.0], "h": [0.01, 0.02]}, "geometry": {"r": 0.004}},
+                    workers=1, progress=False)
+    geometry = json.loads(ds.attrs["geometry"])
+    assert geometry["r"] == 0.004 and geometry["nu"] == 0.5 and json.loads(ds.attrs["geometry_defaults"])["r"] == 0.01
+    assert float(ds["cor"].sel(material="sls", v0=1.0, h=0.02)) == vcor.simulate("sls", 1.0, r=0.004, h=0.02).cor
 
 
 def test_an_inline_spec_keeps_its_shift_function_for_a_temperature_axis():

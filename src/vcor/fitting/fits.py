@@ -257,8 +257,9 @@ def result_dataset(result: FitResult, data: FitData, spec: dict):
         ds["E_t_fit"] = ("t", ef, {"units": "Pa", "long_name": "relaxation modulus, fit"})
         ds["E_t_rel_err"] = ("t", ef / data.E_t - 1, {"units": "1", "long_name": "relative error of E(t)"})
     if data.has_freq:
-        ds = ds.assign_coords(omega=("omega", data.omega,
-                                     {"units": "rad s-1", "long_name": "angular frequency (fit band)"}))
+        ds = ds.assign_coords(omega=("omega", data.omega, {"units": "rad s-1", "long_name": (
+            "reduced angular frequency at the reference temperature (a measured set's own times its a_T; fit band)"
+            if data.measured else "angular frequency (fit band)")}))
         es = mat.complex_modulus(data.omega)
         for part, fn in (("storage", np.real), ("loss", np.imag)):
             ds[f"{part}_data"] = ("omega", fn(data.E_star), {"units": "Pa", "long_name": f"{part} modulus, data"})

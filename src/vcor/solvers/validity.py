@@ -67,6 +67,7 @@ def cf_attrs() -> dict:
     """CF attributes of a validity variable."""
     return {"long_name": "validity flags of an ok result (0: inside the model's stated range)",
             "standard_name": "quality_flag", "units": "1",
+            "comment": "0 also where the status is not ok: such a point has no numbers to flag (select by status)",
             "flag_masks": np.array(list(FLAGS.values()), dtype=np.int8), "flag_meanings": " ".join(FLAGS)}
 
 

@@ -31,11 +31,13 @@ INT_VARS = ("status", "error_status", "validity")
 
 def dataset_attrs(scene_name, scene, catalogue: Catalogue | None = None) -> dict:
     """Global attributes that make a dataset enough to re-run its scene."""
+    settings = settings_of(scene)
     return {
         "scene": scene_name,
         "scene_config": scene,
-        "solver_settings": settings_of(scene),
+        "solver_settings": settings,
         "materials": material_params(scene["materials"], catalogue),
+        "geometry": {**GEOMETRY_DEFAULTS, **settings["geometry"]},
         "geometry_defaults": dict(GEOMETRY_DEFAULTS),
     }
 
