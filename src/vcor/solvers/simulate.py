@@ -71,10 +71,13 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
         Keep time histories (``result.history``), continued ``ghost`` * t0 past separation.
     target : str or dict
         What the sphere hits: ``"plate"`` (the default: the plate of the geometry keywords),
-        ``"rigid"`` (an immovable target), ``{"sphere": {material, r, rho, nu}}`` (a second sphere,
-        head-on: the COR of the relative velocity) or ``{"plate": {material, h, rho, nu}}``
-        (:mod:`vcor.contact.pair`). With a sphere or plate target the impacting sphere takes only r,
-        rho_a and nu; the target's keys default to the impacting sphere's material.
+        ``"rigid"`` (an immovable target: the geometry's ``rigid=True``, with the case's densities, so that
+        in the default case 3 an unstated rho_a is steel's, 7800 kg/m^3), ``{"sphere": {material, r, rho,
+        nu}}`` (a second sphere, head-on: the COR of the relative velocity) or ``{"plate": {material, h,
+        rho, nu}}`` (:mod:`vcor.contact.pair`). With a sphere or plate target the impacting sphere takes
+        only r, rho_a and nu, an unstated rho_a being its material's (a viscoelastic one the polymer's,
+        1100 kg/m^3: ``{"plate": {"material": "rigid"}}`` is ``"rigid"`` with that density); the target's
+        keys default to the impacting sphere's material.
     **kwargs :
         Solver options (see ``options``) and geometry: r (m), rho_a, rho_b (kg/m^3), h (m), nu, case,
         rigid, E_plate (Pa), nu_plate (see :mod:`vcor.contact.impact`).
