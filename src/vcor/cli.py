@@ -192,7 +192,8 @@ def _add_impact(sub) -> list:
               "materials, fits or calibrations, or a YAML spec {model: ..., <parameters>} as a config's "
               "materials block takes it [no unit; required]")
     _add(actions, imp, "--config", default=None, help="a config.yaml whose materials block defines --material "
-         "(relative paths from its folder) [no unit; default: none]")
+         "(relative paths from its project folder: the nearest folder at or above it with a Snakefile, else its "
+         "own) [no unit; default: none]")
     low, high = RANGES["v0"]
     _add(actions, imp, "--v0", type=_numeric("impact speed", RANGE_UNITS["v0"], _v0_check), required=True,
          help=f"impact speed, in [{low:g}, {high:g}] [unit {RANGE_UNITS['v0']}; required]")

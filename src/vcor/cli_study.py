@@ -23,7 +23,8 @@ __all__ = ["COMMANDS", "add_commands"]
 
 def _common(parser, what: str, name_flag: str) -> None:
     parser.add_argument("--config", required=True, help="the config file (YAML) that defines the entry; relative "
-                        "paths in it are taken from its folder [no unit; required]")
+                        "paths in it are taken from its project folder (the nearest folder at or above it with "
+                        "a Snakefile, else its own) [no unit; required]")
     parser.add_argument(name_flag, required=True, dest="name", help=f"the name of the {what} in the config [no unit; "
                         f"required]")
 

@@ -125,8 +125,7 @@ def test_an_elastic_sphere_on_a_maxwell_fluid_plate_runs_by_every_method():
     """A Maxwell-fluid plate (SLS, alpha = 0): the two-body modulus falls as e^-beta t to 1e-160 within the
     sum's window, where no fit holds a relative error (the weights' rounding); it is fitted where it is
     above expsums.RELAXED of its start and held absolutely beyond. adaptive, soe and ive agree with direct
-    at 16000 steps per contact time to 1e-6 (each had refused, advising a soe_tol that could not help), the
-    sum's reported error within soe_tol."""
+    at 16000 steps per contact time to 1e-6, the sum's reported error within soe_tol."""
     maxwell = {"model": "sls", "E_glassy": 40e6, "alpha": 0.0, "beta": 6000.0}
     kw = {"r": 0.003, "rho_a": 2700.0, "target": {"plate": {"material": maxwell, "h": 0.01}}}
     aluminium = {"model": "elastic", "E": 70e9}

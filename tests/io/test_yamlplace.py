@@ -16,6 +16,10 @@ from vcor.io.yamlplace import key_path, located
     ("shard_size must be >= 1", None),  # one word: not told from a sentence
     ("the config must be a mapping: got list", None),
     ("no colon here", None),
+    # a file name or a sentence is no path
+    ("fits.csv, line 3, column 'E': not a number", None),
+    ("./table.csv not found", None),
+    ("Mr. Smith", None),
 ])
 def test_key_path_of_a_message(message, keys):
     assert key_path(message) == keys
@@ -35,3 +39,8 @@ def test_the_place_of_the_deepest_key_a_file_holds(tmp_path, monkeypatch):
     assert located("materials.my.gel.alpha: missing", files).startswith("config file my.yaml, line 2, column 3: ")
     assert located("fits.x: unknown", files) == "fits.x: unknown"  # no file holds it
     assert located("scenes.mine.grid: bad", [str(tmp_path / "none.yaml")]) == "scenes.mine.grid: bad"
+    # a first word that reads as a path is placed only where the file holds all of it
+    for message in ("materials.csv does not exist", "scenes.yaml is not a mapping", "1.5 is not allowed"):
+        assert located(message, files) == message
+    said = located("materials.my.gel.model must be one of", files)
+    assert said.startswith("config file my.yaml, line 2, column 12: ")

@@ -128,7 +128,9 @@ def test_a_bad_material_in_a_config_file_names_the_place_of_its_parameter(tmp_pa
 @pytest.mark.parametrize("table, words", [
     ("tau,E\n0.1,1e6\n0.01,lots\n", ["t.csv, line 3, column 'E'", "'lots' is not a number"]),
     ("tau,modulus\n0.1,1e6\n", ["t.csv, line 1", "one of E (Pa) or g"]),
-    ("tau,E\n0.1,-1e6\n", ["t.csv, line 2, column 'E'", "[0, inf)"]),
+    ("tau,E\n0.1,-1e6\n", ["t.csv, line 2, column 'E'", "[0, inf) Pa"]),
+    ("tau,E\n0,1e6\n", ["t.csv, line 2, column 'tau'", "(0, inf) s"]),
+    ("beta,E\n-1,1e6\n", ["t.csv, line 2, column 'beta'", "[0, inf) 1/s"]),
     ("tau,E\n0.1\n", ["t.csv, line 2", "1 cells"]),
     ("tau,E\n", ["no terms"]),
 ])
@@ -138,6 +140,17 @@ def test_bad_csv_names_file_line_and_column(tmp_path, table, words):
         from_spec({"model": "prony", "E_inf": 1e6, "file": "t.csv"}, name="m", base_dir=tmp_path)
     for w in words:
         assert w in str(err.value), (w, str(err.value))
+
+
+def test_a_table_takes_the_ranges_of_inline_lists(tmp_path):
+    """A Prony table's columns have the ranges of a config's inline lists: a rate of 0 (a constant term)
+    is taken as inline, a relative modulus g >= 1 is refused at its line."""
+    (tmp_path / "t.csv").write_text("beta,E\n0,1e6\n100,2e6\n")
+    table = from_spec({"model": "prony", "E_inf": 1e6, "file": "t.csv"}, name="m", base_dir=tmp_path)
+    assert table == from_spec({"model": "prony", "E_inf": 1e6, "E": [1e6, 2e6], "beta": [0.0, 100.0]})
+    (tmp_path / "g.csv").write_text("tau,g\n0.1,0.5\n0.01,1.0\n")
+    with pytest.raises(ValueError, match=r"g\.csv, line 3, column 'g': 1\.0 is outside \[0, 1\)"):
+        from_spec({"model": "prony", "E_0": 1e7, "file": "g.csv"}, name="m", base_dir=tmp_path)
 
 
 def test_cli_takes_a_config_material(tmp_path, capsys):

@@ -96,7 +96,7 @@ def test_a_missing_prony_table_names_its_key_its_place_and_the_folder(tmp_path):
                     rf"'data/missing\.csv' does not exist in {folder} \(the project folder", text), text
 
 
-def test_a_config_in_a_subfolder_of_a_project_takes_paths_from_the_project(tmp_path, capsys):
+def test_a_config_in_a_subfolder_of_a_project_takes_paths_from_the_project(tmp_path, tmp_path_factory, capsys):
     """A config file kept below a folder with a Snakefile reads its relative paths from that folder, as
     ``snakemake --configfile`` (run there) does, in the study functions and the commands alike; a config
     outside any project from its own folder."""
@@ -114,12 +114,14 @@ def test_a_config_in_a_subfolder_of_a_project_takes_paths_from_the_project(tmp_p
     assert float(got["relaxation_modulus"].sel(material="tab").values[0]) == pytest.approx(exact, rel=1e-12)
     assert main(["materials", "--config", str(tmp_path / "configs" / "mine.yaml")]) == 0
     assert "tab" in capsys.readouterr().out
-    alone = tmp_path / "elsewhere"
-    alone.mkdir()
+    alone = tmp_path_factory.mktemp("alone")  # no Snakefile at or above it: its own folder
+    assert not any((folder / "Snakefile").is_file() for folder in (alone, *alone.parents))
     (alone / "mine.yaml").write_text(text)
     (alone / "tables").mkdir()
-    (alone / "tables" / "terms.csv").write_text("tau,E\n1.0e-3,2.0e+7\n")
-    assert main(["materials", "--config", str(alone / "mine.yaml")]) == 0
+    (alone / "tables" / "terms.csv").write_text("tau,E\n1.0e-3,2.0e+7\n")  # one term
+    got = vcor.moduli({"materials": ["tab"]}, config=alone / "mine.yaml")
+    exact = 3.0e6 + 2.0e7 * math.exp(-t0 / 1.0e-3)
+    assert float(got["relaxation_modulus"].sel(material="tab").values[0]) == pytest.approx(exact, rel=1e-12)
 
 
 def test_a_forward_model_that_fails_names_the_parameters_as_numbers(tmp_path, monkeypatch):

@@ -92,12 +92,13 @@ def test_inline_material_specs_are_taken_as_simulate_takes_them():
 
 
 def test_the_dataset_names_the_geometry_its_points_ran_with():
-    """The attribute ``geometry`` is the scene's geometry over the defaults (``geometry_defaults`` alone gave
-    r = 0.01 m for a scene of r = 0.004 m); the grid's axes are the coordinates."""
+    """The attribute ``geometry`` is the scene's geometry over the defaults (``geometry_defaults`` holds
+    r = 0.01 m, the scene r = 0.004 m), without the grid's axes, which the coordinates give."""
     ds = vcor.sweep({"materials": ["sls"], "grid": {"v0": [1.0], "h": [0.01, 0.02]}, "geometry": {"r": 0.004}},
                     workers=1, progress=False)
     geometry = json.loads(ds.attrs["geometry"])
     assert geometry["r"] == 0.004 and geometry["nu"] == 0.5 and json.loads(ds.attrs["geometry_defaults"])["r"] == 0.01
+    assert "h" not in geometry and "v0" not in geometry  # a grid axis: the coordinates give it
     assert float(ds["cor"].sel(material="sls", v0=1.0, h=0.02)) == vcor.simulate("sls", 1.0, r=0.004, h=0.02).cor
 
 

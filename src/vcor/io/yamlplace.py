@@ -25,6 +25,9 @@ __all__ = ["key_path", "locate", "located"]
 
 
 _PATH = r"[^\[\]]+(\[\d+\]|\.[^.\[\]]+)*"
+#: a path written as a message's first word: two or more parts, each without spaces or punctuation that
+#: ends a word (a file name "data.csv," or a number "1.5" is not taken for one unless the file holds it)
+_WORD_PATH = r"[^.\[\]\s,;:()]+(\[\d+\]|\.[^.\[\]\s,;:()]+)+"
 
 
 def key_path(message: str) -> list | None:
@@ -32,14 +35,19 @@ def key_path(message: str) -> list | None:
     before its first ": " when it has no spaces (``scenes.s.grid.v0[0]: ...``), else its first word when
     that is a path of two or more parts (``materials.m.E[1] must be in ...``, ``materials.m (sls): ...``);
     None when it starts with neither."""
+    found = _key_path(message)
+    return None if found is None else found[0]
+
+
+def _key_path(message: str):
+    """(:func:`key_path`, whether it was the message's first word) or None."""
     head, sep, _ = message.partition(": ")
-    if not (sep and head and not any(c.isspace() for c in head)):
+    word = not (sep and head and not any(c.isspace() for c in head))
+    if word:
         head = message.split(" ", 1)[0] if " " in message else ""
-        if not re.search(r"[.\[]", head):
-            return None
-    if not re.fullmatch(_PATH, head):
+    if not re.fullmatch(_WORD_PATH if word else _PATH, head):
         return None
-    return [int(p[1:-1]) if p.startswith("[") else p for p in re.findall(r"\[\d+\]|[^.\[\]]+", head)]
+    return [int(p[1:-1]) if p.startswith("[") else p for p in re.findall(r"\[\d+\]|[^.\[\]]+", head)], word
 
 
 def _walk(node, keys: list):
@@ -84,13 +92,15 @@ def locate(path, keys: list) -> tuple[tuple[int, int] | None, int]:
 def located(message: str, files) -> str:
     """``message`` with the place of its leading key path in front (module docstring): searched in
     ``files`` from the last; the file that holds most of the path wins, the later one on a tie."""
-    keys = key_path(message)
-    if not keys:
+    found = _key_path(message)
+    if not found or not found[0]:
         return message
+    keys, word = found
     best, depth = None, 0
     for path in reversed(list(files)):
         place, done = locate(path, keys)
-        if place is not None and done > depth:
+        # a first word is a key path only where the file holds all of it ("materials.csv does not exist")
+        if place is not None and done > depth and (done == len(keys) or not word):
             best, depth = (path, place), done
     if best is None:
         return message

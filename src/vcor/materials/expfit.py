@@ -47,7 +47,16 @@ from ..threads import one_blas_thread
 from .base import Parameter
 from .prony import Prony
 
-__all__ = ["ATTEMPTS", "ExponentialSum", "fit_exponential_sum", "sample_times", "summed_rates"]
+__all__ = ["ATTEMPTS", "ExponentialSum", "FitError", "fit_exponential_sum", "sample_times", "summed_rates"]
+
+
+class FitError(ValueError):
+    """No exponential sum within the accepted error: ``best``, the smallest error reached."""
+
+    def __init__(self, message: str, best: float):
+        super().__init__(message)
+        self.best = best
+
 
 #: the rate sets tried in turn: (grid spacing in ln s, or None for the bodies' rates alone; the largest
 #: number of the bodies' rates summed)
@@ -142,7 +151,7 @@ def fit_exponential_sum(modulus, combined, t_min: float, t_max: float, tol: floa
     the internal-variable methods, which integrate the kernel from t = 0). The first rate set of
     :data:`ATTEMPTS` that reaches ``tol`` is taken; when none does, the best of them if it is within
     ``accept`` (default: ``tol``), with the larger of its checked error and its rounding loss as its error,
-    else ValueError (the message gives the best error reached). Runs with one BLAS thread."""
+    else :class:`FitError` (the message gives the best error reached). Runs with one BLAS thread."""
     with one_blas_thread():
         return _fit(modulus, combined, t_min, t_max, tol, from_zero, accept)
 
@@ -160,7 +169,7 @@ def _fit(modulus, combined, t_min, t_max, tol, from_zero, accept):
             t, t_check = sample_times(t_min, t_max, per_log, from_zero)
             samples[per_log] = (t, modulus(t), t_check, modulus(t_check))
             if not (np.all(np.isfinite(samples[per_log][3])) and np.all(samples[per_log][3] > 0)):
-                raise ValueError("the modulus to fit must be finite and > 0 on the window")
+                raise FitError("the modulus to fit must be finite and > 0 on the window", math.inf)
         t, e, t_check, e_check = samples[per_log]
         weights, kept_rates = _least_squares(rates, t, e)
         terms = np.exp(-np.multiply.outer(t_check, kept_rates)) @ weights
@@ -174,7 +183,7 @@ def _fit(modulus, combined, t_min, t_max, tol, from_zero, accept):
         weights, kept_rates = best_fit
         return _exponential_sum(weights, kept_rates), best
     window = f"[0, {t_max:.3g}]" if from_zero else f"[{t_min:.3g}, {t_max:.3g}]"
-    raise ValueError(f"no exponential sum reaches a relative error of {tol:g} on {window} s (best {best:.2g})")
+    raise FitError(f"no exponential sum reaches a relative error of {tol:g} on {window} s (best {best:.2g})", best)
 
 
 def _exponential_sum(weights, rates) -> ExponentialSum:

@@ -47,7 +47,7 @@ import numpy as np
 
 from ..checks import number
 from . import models as _materials
-from .expfit import ExponentialSum, fit_exponential_sum
+from .expfit import ExponentialSum, FitError, fit_exponential_sum
 
 __all__ = ["FIT_ACCEPT", "RELAXED", "SOE", "fractional_bound", "soe"]
 
@@ -59,6 +59,8 @@ CHECKS_PER_PERIOD = 32
 #: the best fit is then taken when its checked error is at most this, a tenth of the solvers' own default
 #: accuracy (1e-7), and the result reports it (soe_error, and a message: vcor.solvers.validity)
 FIT_ACCEPT = 1e-8
+#: soe's largest tolerance (its argument's upper bound)
+MAX_SOE_TOL = 1e-2
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -139,7 +141,7 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10, from_zero: boo
     whose points have nearby steps and horizons shares one construction."""
     t_min = number("t_min", t_min, 0.0, math.inf, lo_open=True, hi_open=True, unit="s")
     t_max = number("t_max", t_max, t_min, math.inf, lo_open=True, hi_open=True, unit="s")
-    tol = number("tol", tol, 1e-15, 1e-2, unit="(relative)")
+    tol = number("tol", tol, 1e-15, MAX_SOE_TOL, unit="(relative)")
     if material.is_prony:
         if type(material) is _materials.Prony:  # already the sum (a sweep builds one per point: no copy)
             exact = material
@@ -167,10 +169,14 @@ def _fit_cached(material, lo: int, hi: int, tol: float, from_zero: bool) -> SOE:
         try:
             fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_max,
                                                   tol, from_zero, accept=accept)
-        except ValueError:
-            fitted, checked = _fit_relaxed(material, t_min, t_max, tol, from_zero, accept)
+        except FitError as exc:
+            t_cut = _relaxed_by(material, t_min, t_max)
+            if t_cut is None:
+                raise
+            fitted, checked = _fit_relaxed(material, t_min, t_cut, t_max, (tol, from_zero, accept), exc)
     except ValueError as exc:
-        advice = "raise soe_tol (up to 1e-08 the best fit is taken), or " if tol < FIT_ACCEPT else ""
+        best = getattr(exc, "best", math.inf)
+        advice = f"raise soe_tol above {best:.2g}, or " if best < MAX_SOE_TOL else ""
         raise ValueError(f"the contact modulus of {material.describe_bodies()} (Green 2026 Eq. 1, pointwise): "
                          f"{exc}; {advice}use method 'direct' (it takes the modulus as it is)") from None
     return SOE(material=fitted, t_min=t_min, t_max=t_max, bound=math.nan, checked_error=checked, exact=False)
@@ -178,33 +184,37 @@ def _fit_cached(material, lo: int, hi: int, tol: float, from_zero: bool) -> SOE:
 
 #: a two-body modulus that relaxes by orders of magnitude on the window (a body that is a fluid: a Maxwell
 #: SLS, alpha = 0, whose e^-beta t tail falls to 1e-160 within it) has no fit in the relative error there:
-#: the weights' rounding, eps sum |w| / min E', exceeds any tolerance. Such a modulus is fitted where it
-#: is above this fraction of its value at the window's start (the rounding stays below 1e-10 there), and
-#: beyond the sum is held to the modulus in absolute terms, relative to that value
+#: the weights' rounding, ``eps * sum(abs(w)) / min(E')``, exceeds any tolerance. Where the fit on the whole
+#: window fails, such a modulus is fitted where it is above this fraction of its value at the window's start
+#: (the rounding stays below 1e-10 there), and beyond the sum is held to the modulus in absolute terms,
+#: relative to that value (a relative error there may be larger: the reported error is this mixed one)
 RELAXED = 1e-5
 
 
-def _fit_relaxed(material, t_min, t_max, tol, from_zero, accept):
-    """(ExponentialSum, error) of a modulus that falls below RELAXED of its value at ``t_min``: fitted on
-    [t_min, t_cut] (t_cut where it reaches RELAXED), its error the larger of that fit's relative error and
-    the largest |sum - modulus| on [t_cut, t_max] over the modulus at t_min; ValueError (the full window's
-    refusal) where the modulus does not fall that far, or the error exceeds ``accept``."""
-    start = float(material.relaxation_modulus(t_min))
+def _relaxed_by(material, t_min: float, t_max: float) -> float | None:
+    """The first time (s) on a grid of 64 per octave of (t_min, t_max] where ``material``'s modulus is at most
+    RELAXED of its value at t_min, or None."""
     t = np.geomspace(t_min, t_max, 64 * math.ceil(math.log2(t_max / t_min)) + 1)
-    below = np.flatnonzero(material.relaxation_modulus(t) <= RELAXED * start)
-    if below.size == 0 or below[0] == 0:
-        return fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_max, tol,
-                                   from_zero, accept=accept)
-    t_cut = float(t[below[0]])
-    fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_cut, tol,
-                                          from_zero, accept=accept)
-    tail = t[below[0]:]
-    checked = max(checked, float(np.max(np.abs(fitted.relaxation_modulus(tail) - material.relaxation_modulus(tail))))
-                  / start)
+    below = np.flatnonzero(material.relaxation_modulus(t) <= RELAXED * float(material.relaxation_modulus(t_min)))
+    return float(t[below[0]]) if below.size and below[0] > 0 else None
+
+
+def _fit_relaxed(material, t_min, t_cut, t_max, settings, whole):
+    """(ExponentialSum, error) of a modulus that falls below RELAXED of its value at ``t_min`` by ``t_cut``:
+    fitted on [t_min, t_cut]; its error the larger of that fit's relative error and the largest
+    |sum - modulus| on [t_cut, t_max] over the modulus at t_min. ``settings``: (tol, from_zero, accept);
+    ``whole``: the whole window's FitError, raised where this one's error exceeds ``accept`` too."""
+    tol, from_zero, accept = settings
+    try:
+        fitted, checked = fit_exponential_sum(material.relaxation_modulus, material.summed_rates, t_min, t_cut, tol,
+                                              from_zero, accept=accept)
+    except FitError:
+        raise whole from None
+    tail = np.geomspace(t_cut, t_max, 64 * math.ceil(math.log2(t_max / t_cut)) + 1)
+    error = float(np.max(np.abs(fitted.relaxation_modulus(tail) - material.relaxation_modulus(tail))))
+    checked = max(checked, error / float(material.relaxation_modulus(t_min)))
     if not checked <= accept:
-        raise ValueError(f"no exponential sum reaches a relative error of {tol:g} on [{t_min:.3g}, {t_cut:.3g}] s "
-                         f"and an absolute one of {tol:g} of the modulus at {t_min:.3g} s beyond (best "
-                         f"{checked:.2g})")
+        raise whole
     return fitted, checked
 
 

@@ -58,6 +58,10 @@ def _numbers(where, values, unit, lo=0.0, hi=math.inf, *, lo_open=False):
     return [number(f"{where}[{i}]", v, lo, hi, lo_open=lo_open, unit=unit) for i, v in enumerate(values)]
 
 
+#: the ranges of a Prony table's columns, as a config's inline lists have them (:func:`_prony`)
+_TABLE_RANGES = {"tau": "(0, inf) s", "beta": "[0, inf) 1/s", "E": "[0, inf) Pa", "g": "[0, 1)"}
+
+
 def read_prony_csv(path) -> dict:
     """{column: [floats]} of a Prony table (header ``tau`` or ``beta``, ``E`` or ``g``). Errors name the
     file, the line (1-based, the header is line 1) and the column."""
@@ -74,9 +78,9 @@ def read_prony_csv(path) -> dict:
     for lineno, row in data_rows(path, rows, header, 1):
         for col, cell in zip(header, row):
             value = cell_number(path, lineno, col, cell)
-            if value < 0 or (col in ("tau", "beta") and value == 0):
-                allowed = "(0, inf)" if col in ("tau", "beta") else "[0, inf)"
-                raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell.strip()} is outside {allowed}")
+            if value < 0 or (col == "tau" and value == 0) or (col == "g" and value >= 1):
+                raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell.strip()} is outside "
+                                 f"{_TABLE_RANGES[col]}")
             out[col].append(value)
     if not out[time_cols[0]]:
         raise ValueError(f"{path}: no terms below the header")

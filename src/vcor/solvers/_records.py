@@ -48,8 +48,8 @@ STATUS_END = 3
 #: adaptive march: the arrays are full; grow them and call again (resumable)
 STATUS_FULL = 4
 
-#: the step control's motion scale is not below this times v0: a fractional plate still in contact after
-#: 2600 s holds the sphere at s ~ 2e-10 m, a speed scale s / t ~ 2e-14 v0 whose tolerance is below the
+#: the step control's motion scale is not below this times v0: a fractional plate that holds the sphere for
+#: thousands of seconds at sub-nanometre indentations has a speed scale s / t whose tolerance is below the
 #: rounding of the march's velocities, where the local error estimate is noise and the steps shrink without
 #: end (``tests/solvers/test_adaptive.py::test_a_creeping_capture_keeps_its_cor``); speeds below
 #: ``extrapolation.COR_FLOOR`` v0 do not move the COR's stated digits

@@ -19,8 +19,8 @@ Error control (``_adaptive_kernels.march_adaptive``): the trapezoidal rule's loc
 g'' from the last three nodes, per unit step against ``step_tol * min(v0, max(|s'| + s / max(t, t_c),
 MOTION_FLOOR v0))``: relative to the motion's own scale, so that long contacts whose motion has slowed by
 orders of magnitude keep their separation time and COR (with v0 as the scale, t0 of the 1 mm SLS plate is
-6-12 % off; with s / t_c in place of s / max(t, t_c), the COR of a sphere captured by a creeping 0.6 mm
-plate over 0.12 s is 3e-3 off: ``tests/solvers/test_adaptive.py::test_a_creeping_capture_keeps_its_cor``). Steps are not
+6-12 % off; s / max(t, t_c) is the speed of a creep that has lasted t, which s / t_c overstates in a contact
+of a thousand estimates: ``tests/solvers/test_adaptive.py::test_a_creeping_capture_keeps_its_cor``). Steps are not
 refined below h_base (t_c / 65536 .. t_c / 131072), where the test is waived: near t = 0 the exact
 solution's u = s^3/2 makes g'' ~ t^-1/2 and the local errors there are O(h^2.5), far below the
 global error. A separation is located on a step <= t / SEP_STEPS (finer where an exact exponential mode

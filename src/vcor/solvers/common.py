@@ -83,11 +83,12 @@ class Result:
     """Outcome of one impact. Units: s, m, N, J, rad/s; cor, energy_residual and soe_error are ratios.
     ``soe_error``: the relative error of the exponential sums the method carried the kernel's history
     and the plate's modulus on (:mod:`vcor.materials.expsums`; 0 for exact sums and for the methods
-    that use none). ``validity``: flags of an ok result outside the model's stated range, with
-    ``validity_message`` (:mod:`vcor.solvers.validity`). ``wall_time`` (s): the solve; a process's first
-    call of a method also loads that method's numba kernels (from numba's cache, or compiling them), and
-    that time is in it: ``vcor.solvers.backend.load_kernels([method])`` loads them beforehand, and the
-    ``vcor impact`` command reports the loading apart (``kernel_load_time``).
+    that use none; for a two-body modulus that relaxes below ``expsums.RELAXED`` of its start, beyond
+    that point the error relative to the start). ``validity``: flags of an ok result outside the model's
+    stated range, with ``validity_message`` (:mod:`vcor.solvers.validity`). ``wall_time`` (s): the solve;
+    a process's first call of a method also loads that method's numba kernels (from numba's cache, or
+    compiling them), and that time is in it: ``vcor.solvers.backend.load_kernels([method])`` loads them
+    beforehand, and the ``vcor impact`` command reports the loading apart (``kernel_load_time``).
 
     Examples
     --------

@@ -32,14 +32,18 @@ INT_VARS = ("status", "error_status", "validity")
 def dataset_attrs(scene_name, scene, catalogue: Catalogue | None = None) -> dict:
     """Global attributes that make a dataset enough to re-run its scene."""
     settings = settings_of(scene)
-    return {
+    attrs = {
         "scene": scene_name,
         "scene_config": scene,
         "solver_settings": settings,
         "materials": material_params(scene["materials"], catalogue),
-        "geometry": {**GEOMETRY_DEFAULTS, **settings["geometry"]},
         "geometry_defaults": dict(GEOMETRY_DEFAULTS),
     }
+    if "bodies" not in settings:  # (a scene of bodies: its sphere and plate blocks give the geometry)
+        varied = set(scene.get("grid") or {}) | set(settings["tie"])  # the points' coordinates give these
+        shared = {**GEOMETRY_DEFAULTS, **settings["geometry"]}
+        attrs["geometry"] = {k: v for k, v in shared.items() if k not in varied}
+    return attrs
 
 
 def _check_provenance(shards, scene, catalogue):

@@ -78,8 +78,9 @@ def sweep(scene: dict | str, *, config: Any = None, workers: int | None = None,
         page), or the name of a scene of ``config``. Materials are names or material objects; grid values
         lists (NumPy arrays too) or ranges ``{start, stop, step}`` / ``{start, stop, num, log}``.
     config : str, path, dict or Catalogue, optional
-        Where names are looked up: a config file (relative paths in it from its folder), a config mapping
-        or a :class:`~vcor.materials.Catalogue`; None: presets only.
+        Where names are looked up: a config file (relative paths in it from its project folder:
+        :func:`vcor.study.inputs.project_folder`), a config mapping or a :class:`~vcor.materials.Catalogue`;
+        None: presets only.
     workers : int, optional
         Processes that solve (default: the cores available); the result does not depend on it.
     progress : bool, optional
@@ -174,9 +175,10 @@ def fit(fit: dict | str, *, config: Any = None, name: str | None = None) -> Fitt
         ``{model: prony, data: {file, T_ref, ...}}``; the user guide's Materials and DMA pages), or the name
         of one in ``config`` (a member of a fit family too, e.g. ``butyl-prony-n3``).
     config : str, path, dict or Catalogue, optional
-        The config the name is looked up in. A data file's path is relative to the config's folder (for a
-        mapping, or no config, the current directory) and inside it, as every path of a workflow project
-        is (the files a result depends on belong to the project): link or copy outside data there.
+        The config the name is looked up in. A data file's path is relative to the config's project folder
+        (:func:`vcor.study.inputs.project_folder`; for a mapping, or no config, the current directory) and
+        inside it, as every path of a workflow project is (the files a result depends on belong to the
+        project): link or copy outside data there.
     name : str, optional
         The material's name when ``fit`` is a mapping (default ``fit``).
 
@@ -233,9 +235,9 @@ def calibrate(calibration: dict | str, *, config: Any = None, name: str | None =
         ``material``: a name or a spec, ``free``: the parameters with their bounds, optional ``geometry`` and
         ``solver``; the user guide's Calibration page), or the name of one in ``config``.
     config : str, path, dict or Catalogue, optional
-        Where the data file (relative to its folder, for a mapping or no config the current directory, and
-        inside it: as :func:`fit`) and a named start material are found; a start material that is a fit is
-        fitted for the call unless the config's material folder holds its file.
+        Where the data file (relative to its project folder, for a mapping or no config the current
+        directory, and inside it: as :func:`fit`) and a named start material are found; a start material
+        that is a fit is fitted for the call unless the config's material folder holds its file.
     name : str, optional
         The calibrated material's name when ``calibration`` is a mapping (default ``calibration``).
 

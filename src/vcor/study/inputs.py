@@ -93,7 +93,7 @@ def project_folder(config_file) -> Path:
     or above the file's own that holds a ``Snakefile`` (the workflow's project, whose working directory
     the workflow takes them from, so that a config kept in a subfolder of a project reads the same files
     in a study function as in ``snakemake --configfile``), else the file's own folder."""
-    own = Path(config_file).resolve().parent
+    own = Path(config_file).absolute().parent  # a link's own folder, not its target's
     return next((folder for folder in (own, *own.parents) if (folder / "Snakefile").is_file()), own)
 
 
