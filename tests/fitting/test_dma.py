@@ -41,7 +41,8 @@ BAD = [
     (RAW_HEAD + "0.1,-8000,90,20,0\n", ["line 3, column 'E_stor'", "must be > 0"]),
     ("f,E_stor,E_loss\nHz, MPa, psi\n1,2,3\n", ["line 2, column 'E_loss'", "unknown unit 'psi'"]),
     ("f,E_stor,E_loss,T\n1,2,3,20\n", ["needs both T and Set"]),
-    ("T,log_aT\nC, -\n0,1\n10,0\n20,0.5\n", ["column 'log_aT'", "monotone"]),
+    ("T,log_aT\nC, -\n0,1\n10,0\n20,0.5\n", ["line 5, column 'log_aT'", "monotone"]),
+    ("T,log_aT\nC, -\n\n0,1\n\n10,0\n\n20,0.5\n", ["line 8, column 'log_aT'", "monotone"]),
     ("f,E_stor,E_loss,T,Set\n1,2,3\n", ["line 2", "3 cells"]),
 ]
 

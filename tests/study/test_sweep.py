@@ -278,6 +278,12 @@ def test_dir_lists_the_public_names_loaded_on_first_use():
     (lambda: vcor.sweep({"materials": [{"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0,
                                         "shift": {"model": "wlff", "C1": 1}}], "grid": {"v0": [1]}}),
      r"^scene\.materials\[0\]\.shift\.model: 'wlff' is not allowed; allowed: \['wlf', 'arrhenius'\]"),
+    (lambda: vcor.convergence({"convergence": {"materials": ["sls", {"model": "sls", "E_glassy": -2e7, "alpha": 300.0,
+                                                                      "beta": 1200.0}], "v0": [1]}}),
+     r"^scene\.convergence\.materials\[1\]\.E_glassy must be in \(0, inf\) Pa"),
+    (lambda: vcor.convergence({"convergence": {"materials": [{"model": "elastic", "E": 1e9}, {"model": "elastic",
+                                                                                              "E": 1e9}], "v0": [1]}}),
+     r"^scene\.convergence\.materials\[1\]: the same material as scene\.convergence\.materials\[0\]"),
 ])
 def test_refusals_of_study_calls_name_the_argument(call, message):
     """Each refusal names the key as the call wrote it (scene., fit:), before any work."""
@@ -319,3 +325,15 @@ def test_histories_load_the_kernels_before_timing_the_runs(monkeypatch):
                         lambda *a, **k: calls.append(("solve",)) or solve(*a, **k))
     vcor.histories({"materials": ["sls"], "histories": {"v0": 1.0, "runs": [["sls", "direct"], ["sls", "adaptive"]]}})
     assert calls == [("load", ["adaptive", "direct"]), ("solve",)]
+
+
+def test_a_convergence_study_takes_inline_material_specs():
+    """As the other study functions: an inline spec becomes a named config material of that content."""
+    from vcor.study.inputs import resolve_scene
+
+    spec = {"model": "sls", "E_glassy": 2e7, "alpha": 300.0, "beta": 1200.0}
+    study = resolve_scene({"convergence": {"materials": ["sls", spec], "v0": [1.0]}}, dataset="convergence")
+    names = study.project.scenes[study.name].config["convergence"]["materials"]
+    assert names[0] == "sls" and names[1].startswith("sls-")
+    material = study.project.catalogue.material(names[1])
+    assert material.relaxation_modulus(0.0) == pytest.approx(2e7, rel=1e-12)

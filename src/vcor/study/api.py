@@ -24,9 +24,11 @@ function                         takes (as a config has it)    returns (what the
 
 Each takes its entry as a mapping (the keys of its config section) or as the name of one in
 ``config``: a config file, a mapping or a :class:`~vcor.materials.Catalogue`; materials are names
-(presets, and a config's materials, fits and calibrations) or material objects. Every argument is
-checked by the workflow's own checks before any work (:mod:`vcor.study.inputs`): a refusal is a
-``ValueError`` whose one line names the key. The workflow's jobs run the same code: its scripts call
+(presets, and a config's materials, fits and calibrations), material objects or inline specs
+``{model: ...}`` (a scene's ``materials`` and ``convergence.materials``, a body, a DEM entry's bodies, a
+calibration's start; named ``<model>-<hash of the spec>``). Every argument is checked by the workflow's
+own checks before any work (:mod:`vcor.study.inputs`): a refusal is a ``ValueError`` whose one line names
+the key. The workflow's jobs run the same code: its scripts call
 :func:`fit`, :func:`calibrate` and :func:`dem_export`, its sweep jobs the two halves of :func:`sweep`
 (:mod:`vcor.study.sweep`), and its histories, moduli, spheres and work-precision jobs the builders of
 :mod:`vcor.study.scene_datasets` that the functions of the same names return.

@@ -203,12 +203,25 @@ def resolve_entry(section: str, entry, name, config, argument: str) -> Resolved:
 
 def _objects_named(scene: dict, cfg: dict) -> tuple[dict, list]:
     """(the scene with each material object or inline spec (a mapping with ``model``, as ``simulate`` takes
-    it) of its list replaced by a config material's name (added to ``cfg``'s materials block), and the pairs
-    (``materials.<that name>``, ``scene.materials[<index>]``) that say the keys as the call wrote them)."""
-    materials = scene.get("materials")
+    it) of its material lists (``materials``, ``convergence.materials``) replaced by a config material's
+    name (added to ``cfg``'s materials block), and the pairs (``materials.<that name>``,
+    ``scene.<list>[<index>]``) that say the keys as the call wrote them)."""
+    keys = []
+    if isinstance(scene.get("materials"), (list, tuple)):
+        names, said = _list_named(scene["materials"], cfg, "scene.materials")
+        scene, keys = {**scene, "materials": names}, keys + said
+    block = scene.get("convergence")
+    if isinstance(block, dict) and isinstance(block.get("materials"), (list, tuple)):
+        names, said = _list_named(block["materials"], cfg, "scene.convergence.materials")
+        scene, keys = {**scene, "convergence": {**block, "materials": names}}, keys + said
+    return scene, keys
+
+
+def _list_named(materials, cfg: dict, where: str) -> tuple[list, list]:
+    """(names, key pairs) of :func:`_objects_named` for one list of materials, at ``where`` in the scene."""
     inline = (Material, dict)
-    if not isinstance(materials, (list, tuple)) or not any(isinstance(m, inline) for m in materials):
-        return scene, []
+    if not any(isinstance(m, inline) for m in materials):
+        return list(materials), []
     block = dict(cfg.get("materials") or {})
     names = []
     for i, m in enumerate(materials):
@@ -216,25 +229,25 @@ def _objects_named(scene: dict, cfg: dict) -> tuple[dict, list]:
             try:
                 check_schema({"materials": {"inline": plain(m)}}, schema_path())
             except ValueError as exc:
-                said = re.sub(r"^materials\.inline(?=[.:\[ ]|$)", f"scene.materials[{i}]", str(exc))
+                said = re.sub(r"^materials\.inline(?=[.:\[ ]|$)", f"{where}[{i}]", str(exc))
                 raise ValueError(said) from None
         if isinstance(m, (dict, Material)):
             # checked, then written as its canonical spec; a spec's shift function goes with it (a T axis
             # needs it), as in a config's materials block
             shift = {"shift": plain(m["shift"])} if isinstance(m, dict) and "shift" in m else {}
-            spec = {**spec_of(from_spec(m, where=f"scene.materials[{i}]") if isinstance(m, dict) else m), **shift}
+            spec = {**spec_of(from_spec(m, where=f"{where}[{i}]") if isinstance(m, dict) else m), **shift}
             names.append(_object_name(spec))
             block[names[-1]] = spec
         else:
             names.append(m)
     cfg["materials"] = block
-    keys = [(f"materials.{n}", f"scene.materials[{i}]") for i, (n, m) in enumerate(zip(names, materials))
+    keys = [(f"materials.{n}", f"{where}[{i}]") for i, (n, m) in enumerate(zip(names, materials))
             if isinstance(m, inline)]
     for i, n in enumerate(names):
         if n in names[:i]:
-            raise ValueError(f"scene.materials[{i}]: the same material as scene.materials[{names.index(n)}] (a scene "
-                             f"sweeps each material once)")
-    return {**scene, "materials": names}, keys
+            raise ValueError(f"{where}[{i}]: the same material as {where}[{names.index(n)}] (a scene "
+                             f"takes each material once)")
+    return names, keys
 
 
 def _scene_entry(scene, cfg: dict, config, name=None) -> tuple[str, dict, bool, list]:

@@ -84,12 +84,14 @@ def _missing(header) -> str:
     return f"missing column{'s' if len(lacking) > 1 else ''} {', '.join(lacking)}; "
 
 
-def _check_monotone_shifts(path, cols, start):
+def _check_monotone_shifts(path, cols, lines):
+    """Refuse shift factors that are not strictly monotone in T, at the ``lines`` (per row) of the first
+    row out of order."""
     order = np.argsort(cols["T"])
     d = np.diff(cols["log_aT"][order])
     if np.any(np.diff(cols["T"][order]) == 0) or not (np.all(d < 0) or np.all(d > 0)):
         i = int(np.argmax(d >= 0)) if np.any(d >= 0) else 0
-        line = int(order[i + 1]) + start + 1
+        line = int(lines[order[i + 1]])
         raise ValueError(f"{_where(path, line, 'log_aT')}: shift factors must be strictly monotone in T "
                          f"(log_aT falls as T rises), and temperatures distinct")
 
@@ -114,7 +116,7 @@ def read_table(path) -> DMATable:
         raise ValueError(f"{path}: no data rows")
     cols = {h: np.array(v) for h, v in values.items()}
     if kind == "shift":
-        _check_monotone_shifts(path, cols, start)
+        _check_monotone_shifts(path, cols, lines)
     return DMATable(kind=kind, columns=cols, path=str(path), lines=np.array(lines))
 
 
