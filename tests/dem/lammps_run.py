@@ -33,11 +33,14 @@ def lammps_executable() -> Path:
 
 
 def run_lammps(lmp: Path, deck: Path, *args: str, check: bool = True, timeout: int = 300, mpi: int = 0,
-               screen: bool = True) -> subprocess.CompletedProcess:
+               screen: bool = True, v0: str | None = "1.0") -> subprocess.CompletedProcess:
     """``lmp -in deck args -log none`` in the deck's folder, as the decks' headers say to run them: LAMMPS's
     screen output (its ERROR and WARNING lines, a deck's ``COR = ...``) on standard output; with ``-screen
     none`` when not ``screen``; under ``mpiexec -np mpi`` of the wheel's environment when mpi > 0; with
-    ``check``, its return code must be 0."""
+    ``check``, its return code must be 0. A vcor collision deck (it has no default speed) gets ``-var v0
+    v0`` (m/s) unless ``args`` give one or ``v0`` is None."""
+    if v0 is not None and "v0" not in args and deck.read_text().startswith("# vcor DEM deck"):
+        args = (*args, "-var", "v0", v0)
     cmd = [str(lmp), "-in", deck.name, *args, "-log", "none"] + ([] if screen else ["-screen", "none"])
     if mpi:
         cmd = [str(Path(lmp).parent / "mpiexec"), "-np", str(mpi), *cmd]

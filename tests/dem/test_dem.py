@@ -303,3 +303,39 @@ def test_the_files_a_dem_user_reads_say_how_well_each_law_follows_vcor(tmp_path)
         for law in names:
             err = float(ds["max_abs_error"].sel(model=law))
             assert f"# {law}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds" in text, (key, law)
+
+
+def test_with_temperatures_each_law_is_said_per_temperature():
+    """A law that misses at one temperature may follow vcor at another: the words give, per temperature,
+    the largest error and the speeds within WITHIN (the dataset's values at that temperature)."""
+    from vcor.study import dem
+
+    spec = {"sphere": {"material": {"model": "sls", "E_glassy": 15e6, "alpha": 300, "beta": 1200,
+                                    "shift": {"model": "wlf", "C1": 8.0, "C2": 120.0, "T_ref": 20.0}}, "r": 0.005},
+            "target": "rigid", "v0": [0.5, 2.0, 8.0], "T": [0.0, 40.0], "models": ["lammps-viscoelastic"]}
+    cols, fits, temps = dem.run_dem("hot", spec, load_project({"dem": {"hot": spec}}, ".").catalogue)
+    ds = export.dem_dataset("hot", cols, fits, temps)
+    [line] = [x for x in export.quality_lines(ds) if x.startswith("lammps-viscoelastic:")]
+    errs = ds["max_abs_error"].sel(model="lammps-viscoelastic").values
+    assert f"{float(np.max(errs)):.3g} over the speeds and temperatures" in line
+    for T, e in zip(ds["T"].values, errs):
+        assert f"at {T:g} degC {float(e):.3g}, " in line, line
+
+
+def test_an_export_moves_aside_the_files_an_earlier_version_of_the_entry_wrote(tmp_path, capsys):
+    """An entry written as a sphere pair and then as a sphere on a wall: the pair's decks (in.pair, and
+    in.hereditary where the wall's material gets none) are moved aside as .stale, saying so; the wall's
+    files are in place (the Yade script too, where the entry has no Yade law now)."""
+    import vcor
+
+    pair = {"sphere": {"material": "sls", "r": 0.005}, "target": {"sphere": {}}, "v0": [0.5, 2.0]}
+    first = vcor.dem_export(pair, name="e").write(tmp_path)
+    assert first["deck"].name == "in.pair" and "hereditary" in first
+    wall = {**pair, "target": "rigid", "models": ["lammps-viscoelastic", "table"]}
+    second = vcor.dem_export(wall, name="e").write(tmp_path)
+    lammps_dir = second["deck"].parent
+    assert second["deck"].name == "in.wall" and "hereditary" not in second
+    assert sorted(p.name for p in lammps_dir.iterdir()) == ["in.hereditary.stale", "in.pair.stale", "in.wall"]
+    assert sorted(p.name for p in first["yade"].parent.iterdir()) == ["collision.py.stale"]  # no Yade law now
+    said = capsys.readouterr().err
+    assert "in.pair is not a file of entry e as configured" in said and "in.pair.stale" in said

@@ -74,3 +74,23 @@ def test_runs_collected_in_one_file_keep_every_line_and_show_lammps_errors(lmp, 
     assert [x.split()[0] for x in lines] == ["v0=0.5", "COR", "v0=2", "COR"], lines
     out = run_lammps(lmp, deck, "-var", "v0", "abc", check=False)
     assert out.returncode != 0 and any(x.startswith("ERROR") for x in out.stdout.splitlines()), out.stdout[-2000:]
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_a_classic_deck_needs_v0_and_refuses_a_temperature(lmp, tmp_path, target):
+    """in.pair and in.wall have no default speed: without -var v0 (or with a misspelt -var V0) they stop with
+    one line on standard error naming it (exit 2), as a v0 <= 0 does; -var T, which selects a temperature
+    only in in.hereditary, is refused rather than run with the deck's first row."""
+    col = fit.collision("sls", SPEEDS[:2], sphere={"r": 0.005}, target={"sphere": {}} if target == "pair" else "rigid")
+    ds = export.dem_dataset("t", [col], [fit.fit_laws(col, ["lammps-viscoelastic"])])
+    deck = tmp_path / lammps.deck_name(col.contact.kind)
+    lammps.write_deck(deck, ds)
+    needs = f"{deck.name} needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)"
+    for args, message in ((("-var", "V0", "2.5"), needs), ((), needs),
+                          (("-var", "v0", "-1"), "v0 must be > 0 m/s (the approach speed), got -1"),
+                          (("-var", "v0", "1.0", "-var", "T", "20"),
+                           f"{deck.name} does not select a temperature with -var T: pass the -var values of its row "
+                           f"in the header")):
+        out = run_lammps(lmp, deck, *args, check=False, v0=None)
+        assert out.returncode == 2 and out.stderr.strip() == message, (args, out.stdout[-1500:], out.stderr)
+    assert 0.0 < cor_of(run_lammps(lmp, deck, "-var", "v0", "1.0")) < 1.0

@@ -409,7 +409,8 @@ _DECK_VALUES = [
 def test_the_deck_refuses_v0_and_nsteps_out_of_range(lmp, vcor_plugin, tmp_path, target):
     """-var v0 <= 0 and an nsteps that is not an integer >= 1 stop in.hereditary before anything runs
     with one line on standard error naming the variable, its range and the value (exit 2); a word stops
-    LAMMPS with its own line naming the variable (no MPI_Abort); nsteps 1 runs to a COR."""
+    LAMMPS with its own line naming the variable (no MPI_Abort); nsteps 1 runs to a COR; no -var v0 (or a
+    misspelt -var V0) stops it naming v0."""
     _, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
     for name, value, message in _DECK_VALUES:
         out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", name, value, check=False)
@@ -422,6 +423,10 @@ def test_the_deck_refuses_v0_and_nsteps_out_of_range(lmp, vcor_plugin, tmp_path,
         assert errors[0].startswith(f"ERROR: Variable {name}: Non-numeric variable value in variable formula"), errors
     out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", "1")
     assert np.isfinite(cor_of(out)) and _warnings(out.stdout), out.stdout[-1500:]  # runs; warns of the rule
+    for args in ((), ("-var", "V0", "2.5")):  # no default speed: a misspelt name does not run at one
+        out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), *args, check=False, v0=None)
+        assert out.returncode == 2 and out.stderr.strip() == (
+            "in.hereditary needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)"), out.stderr
 
 
 def test_several_mpi_ranks_stop_with_the_reason(lmp, vcor_plugin, tmp_path):
@@ -554,3 +559,16 @@ def test_a_packing_of_500_spheres_settles_under_gravity(lmp, vcor_plugin, tmp_pa
     assert last.max() <= before.max()
     assert contacts[-1] > 1000  # resting on each other (about 2.7 per sphere)
     assert min(spheres, floor) >= 10.0 and not _warnings(out.stdout)
+
+
+def test_a_build_into_a_path_with_white_space_warns_that_the_deck_cannot_load_it(lmp, tmp_path):
+    """LAMMPS splits a substituted -var plugin at white space: the build into such a folder succeeds and
+    says in one line on standard error that in.hereditary cannot load the plugin from there."""
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "vcor", "lammps-plugin", "build", "--out", str(tmp_path / "my plugin"),
+                          "--lammps", str(lmp), "--builder", "compiler"],
+                         capture_output=True, text=True, check=False, timeout=600, cwd=tmp_path)
+    assert out.returncode == 0 and Path(out.stdout.splitlines()[-1]).is_file(), out.stderr
+    warned = [x for x in out.stderr.splitlines() if x.startswith("vcor lammps-plugin: warning:")]
+    assert len(warned) == 1 and "white space" in warned[0] and "in.hereditary cannot load it" in warned[0], out.stderr

@@ -281,6 +281,13 @@ def _parameter_rows(ds) -> list[str]:
     return rows
 
 
+def _within(a: float, b: float) -> str:
+    """The speeds within WITHIN, from ``a`` to ``b`` (m/s; NaN or a > b: none), in words."""
+    return (f"at no speed within {WITHIN:g}" if not (np.isfinite(a) and np.isfinite(b) and a <= b)
+            else f"within {WITHIN:g} only at {a:.3g} m/s" if a == b
+            else f"within {WITHIN:g} from {a:.3g} to {b:.3g} m/s")
+
+
 def quality_lines(ds, laws=None) -> list[str]:
     """How well the dataset's laws (``laws``: these only) follow vcor's COR, in words, for the files a DEM user
     reads without the dataset (the deck, the script, the parameters file): per law the largest ``abs(error)``
@@ -289,14 +296,18 @@ def quality_lines(ds, laws=None) -> list[str]:
     models = [str(m) for m in ds["model"].values if laws is None or str(m) in laws]
     lines = []
     for m in models:
-        err = float(np.nanmax(ds["max_abs_error"].sel(model=m).values))
-        lo, hi = ds["v0_within_lo"].sel(model=m).values, ds["v0_within_hi"].sel(model=m).values
-        a, b = float(np.max(lo)), float(np.min(hi))  # the speeds within WITHIN at every temperature
-        within = (f"at no speed within {WITHIN:g}" + (" at every temperature" if "T" in ds.dims else "")
-                  if not (np.isfinite(a) and np.isfinite(b) and a <= b)
-                  else f"within {WITHIN:g} only at {a:.3g} m/s" if a == b
-                  else f"within {WITHIN:g} from {a:.3g} to {b:.3g} m/s")
-        lines.append(f"{m}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds; {within}")
+        errs = np.atleast_1d(ds["max_abs_error"].sel(model=m).values)
+        err = float(np.nanmax(errs))
+        lo = np.atleast_1d(ds["v0_within_lo"].sel(model=m).values)
+        hi = np.atleast_1d(ds["v0_within_hi"].sel(model=m).values)
+        if "T" in ds.dims:  # a law that misses at one temperature may follow the curve at another: each its own
+            each = "; ".join(f"at {T:g} degC {e:.3g}, {_within(float(a), float(b))}"
+                             for T, e, a, b in zip(ds["T"].values, errs, lo, hi))
+            lines.append(f"{m}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds and temperatures; "
+                         f"{each}")
+        else:
+            lines.append(f"{m}: largest |COR of the law - vcor's COR| {err:.3g} over the speeds; "
+                         f"{_within(float(lo[0]), float(hi[0]))}")
     if ds.attrs.get("trend_warning"):
         lines.append(f"WARNING: {ds.attrs['trend_warning']}")
     flagged = np.atleast_1d(ds["validity"].values != 0)

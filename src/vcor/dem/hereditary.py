@@ -46,7 +46,9 @@ _HEADER = """\
 # -var nsteps <n>, an integer >= 1 (default {nsteps}; the plugin warns below n = 10). -var v0 > 0 m/s.{t_note}
 # A value out of its range stops the deck with one line on standard error naming it (exit 2); a word
 # that is not a number stops LAMMPS with its own line naming the variable ("Non-numeric variable value").
-variable v0      index 1.0
+if "$(!is_defined(variable,v0))" then &
+   "print 'in.hereditary needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)' &
+append /dev/stderr screen no" "quit 2"
 variable plugin  index NONE
 variable nsteps  index {nsteps}
 {t_var}if "$(!(v_v0 > 0.0))" then &

@@ -38,8 +38,12 @@ _HEADER = """\
 {quality}"""
 
 _COMMON = """\
-variable v0      index 1.0
-variable model   index {model}
+if "$(!is_defined(variable,v0))" then &
+   "print '{deck} needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)' &
+append /dev/stderr screen no" "quit 2"
+if "$(!(v_v0 > 0.0))" then &
+   "print 'v0 must be > 0 m/s (the approach speed), got ${{v0}}' append /dev/stderr screen no" "quit 2"
+{t_check}variable model   index {model}
 variable E       index {E:.12g}
 variable nu      index {nu:.12g}
 {law_vars}variable nsteps  index {nsteps}
@@ -209,7 +213,11 @@ def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
     law_vars = "".join(f"variable {_LAWS[m][1]:<7s} index {first(_LAWS[m][1]):.12g}\n" for m in present)
     values = {"E": first("E_lammps"), "nu": contact["nu"], "model": _LAWS[present[0]][0], "law_vars": law_vars,
               "choice": _choice(present), "nsteps": int(nsteps), "r1": radii[0], "rho1": dens[0],
-              "r2": radii[-1], "rho2": dens[-1], "hertz": _HERTZ}
+              "r2": radii[-1], "rho2": dens[-1], "hertz": _HERTZ, "deck": DECK_NAMES[kind],
+              # -var T selects nothing in this deck (in.hereditary's does): refused rather than run at the first row
+              "t_check": ("if \"$(is_defined(variable,T))\" then &\n"
+                          f"   \"print '{DECK_NAMES[kind]} does not select a temperature with -var T: pass the -var "
+                          "values of its row in the header' append /dev/stderr screen no\" \"quit 2\"\n")}
     what = ("two spheres, head-on, v0 = relative approach speed" if kind == "pair"
             else "a sphere on a flat wall, v0 = approach speed")
     usage = "".join(_USAGE[m] for m in present)

@@ -229,4 +229,10 @@ def build(out="vcor-lammps-plugin", *, lammps=None, source=None, builder: str = 
                              f"above)")
     if not target.is_file():
         raise BuildError(f"the build ran but wrote no {target}")
+    if any(c.isspace() for c in str(target)):
+        # LAMMPS splits a substituted ${plugin} at white space: `plugin load ${plugin}` (in.hereditary's line)
+        # then tries each piece, loads nothing, and stops later at "Unrecognized pair style 'vcor/hereditary'"
+        sys.stderr.write(f"vcor lammps-plugin: warning: the path {target} holds white space, which LAMMPS splits "
+                         f"in -var plugin ... / plugin load: in.hereditary cannot load it from there; build into a "
+                         f"folder without spaces, or pass a relative path without them\n")
     return target

@@ -258,6 +258,24 @@ def calibrate(calibration: dict | str, *, config: Any = None, name: str | None =
                       dataset=archive.loaded(command="vcor.fitting.calibrate"))
 
 
+def _set_aside_others(folder: Path, name: str, written) -> None:
+    """Move aside, as ``<file>.stale`` and saying so on standard error, the decks and the Yade script of
+    entry ``name`` under ``folder`` that are not among ``written`` (the files of the entry as configured):
+    written for another configuration of it (a sphere target that is a wall now, a law it no longer
+    fits), they would sit among its files and run another collision."""
+    import sys
+
+    from . import paths
+
+    ours = {Path(p).resolve() for p in written}
+    kinds = [paths.fmt(paths.DEM_DECK, dem=name, kind=k) for k in ("pair", "wall", "hereditary")]
+    for path in (folder / p for p in (*kinds, paths.fmt(paths.DEM_YADE, dem=name))):
+        if path.is_file() and path.resolve() not in ours:
+            path.replace(path.with_name(path.name + ".stale"))
+            sys.stderr.write(f"vcor: {path} is not a file of entry {name} as configured (written for another "
+                             f"configuration of it): moved aside as {path.name}.stale\n")
+
+
 @dataclass(frozen=True, kw_only=True)
 class DemExport:
     """A DEM entry's export: its ``name``, the ``dataset`` (``results/dem/<name>.nc``: the COR against
@@ -279,6 +297,7 @@ class DemExport:
         from ..io.netcdf import read_dataset
 
         out = {key: Path(folder) / path for key, path in self.files.items()}
+        _set_aside_others(Path(folder), self.name, out.values())
         self.archive.write(out["nc"], command=command)
         export.table_csv(out["table"], self.collisions, self.temperatures)
         export.parameters_csv(out["parameters"], self.archive.dataset)
