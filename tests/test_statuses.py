@@ -106,6 +106,34 @@ def test_a_failing_error_estimate_has_its_own_status():
     assert np.isnan(ds["cor_err"].values[0])
 
 
+def test_an_error_estimate_at_the_smallest_rtol_runs_and_one_that_raises_keeps_the_point():
+    """ive at rtol 1e-12: the estimate's run at rtol / 100 would be below RTOL_MIN; it runs at RTOL_MIN and
+    the point and its estimate are ok."""
+    sc = {**SCENE, "grid": {"v0": [10.0]}, "error_estimate": True, "solver": {"method": "ive", "rtol": 1e-12}}
+    ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
+    assert [status.STATUS_NAMES[int(ds[k].values[0])] for k in ("status", "error_status")] == ["ok", "ok"]
+    assert np.isfinite(ds["cor_err"].values[0]) and ds["cor_err"].values[0] < 1e-9
+
+
+def test_an_error_estimate_that_raises_keeps_the_point(monkeypatch):
+    """A second run that raises is stored as the estimate's status and message; the point keeps its own."""
+    calls = []
+    simulate = runner.simulate
+
+    def second_raises(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 2:
+            raise ValueError("the second run's own refusal")
+        return simulate(*args, **kwargs)
+
+    monkeypatch.setattr(runner, "simulate", second_raises)
+    sc = {**SCENE, "grid": {"v0": [10.0]}, "error_estimate": True}
+    ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
+    assert status.STATUS_NAMES[int(ds["status"].values[0])] == "ok" and np.isfinite(ds["cor"].values[0])
+    assert status.STATUS_NAMES[int(ds["error_status"].values[0])] == "invalid-input"
+    assert str(ds["error_message"].values[0]) == "the second run's own refusal"
+
+
 def test_failed_history_is_nan_with_its_status_and_rule_is_honoured():
     runs = [("sls", "direct"), ("butyl-fc", "ive"), ("sls", "ive")]
     ds = datasets.histories_dataset(runs, 10.0, options={"method": "direct", "max_steps": 1000})

@@ -55,8 +55,8 @@ def test_schema_bounds_match_the_dataclass():
     SolverOptions(method="ive", rtol=1e-13)
     with pytest.raises(ValueError, match=r"rtol must be in \[1e-13, 1\)"):
         SolverOptions(method="ive", rtol=1e-20)  # scipy would clamp it with a warning
-    assert SOLVER["soe_tol"]["minimum"] == 1e-15 and SOLVER["soe_tol"]["exclusiveMaximum"] == 0.01
-    with pytest.raises(ValueError, match=r"soe_tol must be in \[1e-15, 0.01\)"):
+    assert SOLVER["soe_tol"]["minimum"] == 1e-13 and SOLVER["soe_tol"]["exclusiveMaximum"] == 0.01
+    with pytest.raises(ValueError, match=r"soe_tol must be in \[1e-13, 0.01\)"):
         SolverOptions(soe_tol=1e-300)
     assert SOLVER["dt"]["exclusiveMinimum"] == 0
 

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..checks import text_hint
+from ..checks import number
 from ..materials import models as _materials
 from ..materials.presets import PRESETS, get
 from ..materials.specs import from_spec
@@ -135,15 +135,12 @@ def body_from_spec(kind: str, spec: dict, swept=None, where: str | None = None) 
     size_key = "r" if kind == "sphere" else "h"
     size = spec.get(size_key, GEOMETRY_DEFAULTS["r"] if kind == "sphere" else None)
     lo, hi = RANGES[size_key]  # the ranges of the geometry's own r and h, and of its densities
-    if size is not None and not (isinstance(size, (int, float)) and lo <= size <= hi):
-        raise ValueError(f"{where}.{size_key} must be in [{lo:g}, {hi:g}] m, got {size!r}{text_hint(size)}")
-    rho = spec.get("rho", DENSITIES[family])
+    if size is not None:
+        size = number(f"{where}.{size_key}", size, lo, hi, lo_open=False, hi_open=False, unit="m")
     lo, hi = RANGES["rho_a"]
-    if not (isinstance(rho, (int, float)) and lo <= rho <= hi):
-        raise ValueError(f"{where}.rho must be in [{lo:g}, {hi:g}] kg/m^3, got {rho!r}{text_hint(rho)}")
-    nu = spec.get("nu", NU_DEFAULTS[family])
-    if not (isinstance(nu, (int, float)) and -1 < nu <= 0.5):
-        raise ValueError(f"{where}.nu must be in (-1, 0.5], got {nu!r}{text_hint(nu)}")
+    rho = number(f"{where}.rho", spec.get("rho", DENSITIES[family]), lo, hi, lo_open=False, hi_open=False,
+                 unit="kg/m^3")
+    nu = number(f"{where}.nu", spec.get("nu", NU_DEFAULTS[family]), -1, 0.5, hi_open=False)
     return Body(material=material, size=None if size is None else float(size), rho=float(rho), nu=float(nu))
 
 

@@ -327,15 +327,16 @@ class Impact:
         energy = 5.0 * self.m * v0**2  # (the same operations as inside the loop before: the same t)
         glassy, rubbery = self.material.glassy, self.material.rubbery
         cap = (GLASSY_TIME_CAP * 2.9432 * (energy / (4.0 * kappa * glassy)) ** 0.4 / v0
-               if not rubbery > 0.0 and math.isfinite(glassy) and glassy > 0 else math.inf)
+               if not rubbery > 0.0 and math.isfinite(glassy) and kappa * glassy > 0 else math.inf)
         for _ in range(8):
-            modulus = modulus_at(t / 4)
-            if not modulus > 0.0:  # relaxed to zero at t/4: the estimate is beyond the cap
-                return cap
-            smax = (energy / (4.0 * (kappa * modulus))) ** 0.4
-            t = 2.9432 * smax / v0
+            stiffness = kappa * modulus_at(t / 4)
+            if not stiffness > 0.0:  # relaxed (or underflowed) to zero at t/4: the estimate is beyond the cap
+                t = cap
+                break
+            t = 2.9432 * (energy / (4.0 * stiffness)) ** 0.4 / v0
             if not t < cap:
-                return cap
+                t = cap
+                break
         if not (math.isfinite(t) and t > 0.0):
             raise ValueError(f"the contact time of this impact cannot be estimated (t_c = {t!r} s): material "
                              f"{self.material.kind} {self.material.params()}, v0 = {v0} m/s, sphere mass "

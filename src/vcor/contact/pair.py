@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 
 from ..materials import models as _materials
-from .bodies import Body, body_from_spec, eq_one, impact_inputs
+from .bodies import BODY_KEYS, Body, body_from_spec, eq_one, impact_inputs
 
 __all__ = ["PLATE_KEYWORDS", "TARGET_KINDS", "sphere_pair", "target_inputs", "twin_defaults"]
 
@@ -87,6 +87,8 @@ def twin_defaults(sphere: Body, kind: str, spec) -> dict:
     >>> twin_defaults(ball, "sphere", {"r": 0.02})
     {'r': 0.02, 'rho': 1100.0, 'nu': 0.5}
     """
+    if spec is not None and not isinstance(spec, dict):
+        raise ValueError(f"target.{kind}: a mapping with keys {sorted(BODY_KEYS[kind])}, got {spec!r}")
     spec = dict(spec or {})
     if kind != "sphere" or "material" in spec:
         return spec

@@ -140,11 +140,13 @@ class Cerf(Material, kind="cerf"):
 
     def antiderivative(self, t, order: int = 1):
         t = np.asarray(t, dtype=float)
-        x = self.b1 * np.sqrt(t)
-        if order == 1:
-            return self.E0 * t + self.E1 * _erfcx_tail(x, 2) / self.b1**2
-        if order == 2:
-            return 0.5 * self.E0 * t**2 + self.E1 * _erfcx_tail(x, 4) / self.b1**4
+        b1 = np.float64(self.b1)  # b1^4 of a b1 above 1e77 is inf (the term 0), not Python's OverflowError
+        x = b1 * np.sqrt(t)
+        with np.errstate(over="ignore"):
+            if order == 1:
+                return self.E0 * t + self.E1 * _erfcx_tail(x, 2) / b1**2
+            if order == 2:
+                return 0.5 * self.E0 * t**2 + self.E1 * _erfcx_tail(x, 4) / b1**4
         raise ValueError(f"order must be 1 or 2, got {order}")
 
     @property

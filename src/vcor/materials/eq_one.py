@@ -90,7 +90,8 @@ class EqOne(Material, kind="eq1"):
         a, b = self.c_a * self.a.modulus_at(t), self.c_b * self.b.modulus_at(t)
         if math.isinf(a) or math.isinf(b):
             return b if math.isinf(a) else a
-        return a * b / (a + b)
+        total = a + b
+        return a * b / total if total > 0.0 else 0.0
 
     def relaxation_rate(self, t):
         A, B, t = self._parts(t)

@@ -176,8 +176,17 @@ def _solve(system, y0, span, settings, events=None):
 
     method, rtol, atol, max_step = settings
     with np.errstate(over="ignore", invalid="ignore"):
-        return solve_ivp(system.rhs, span, y0, method=method, rtol=rtol, atol=atol, events=events,
-                         dense_output=True, max_step=max_step)
+        try:
+            return solve_ivp(system.rhs, span, y0, method=method, rtol=rtol, atol=atol, events=events,
+                             dense_output=True, max_step=max_step)
+        except ValueError as exc:  # scipy's own check of a state or derivative (asarray_chkfinite)
+            if "infs or NaNs" in str(exc):
+                raise _NonFinite(str(exc)) from None
+            raise
+
+
+class _NonFinite(Exception):
+    """solve_ivp met a non-finite state or derivative (moduli or rates whose products overflow)."""
 
 
 class _StepBudget(Exception):
@@ -309,6 +318,11 @@ def run_ive_scipy(impact, *, rtol=1e-10, method="Radau", tc, t_max, max_t, histo
                               f"{max_steps} steps (counted over its horizons) and had reached t = {steps.t:.6g} s "
                               f"without the contact force returning to zero; raise max_steps, or use method "
                               f"adaptive (it solves long contacts such as thin plates)")
+    except _NonFinite as exc:
+        return Result(method=name, steps=steps.steps, wall_time=time.perf_counter() - t_start, dt=math.nan,
+                      status="diverged", soe_error=system.sum_error,
+                      message=f"solve_ivp({method}) met a non-finite value ({exc}): the system's scales overflow "
+                              f"in double precision")
     wall = time.perf_counter() - t_start
     largest = float(np.max(np.diff(sol.t))) if sol.t.size > 1 else float(sol.t[-1])  # solve_ivp's largest step
     res = Result(method=name, steps=int(sol.t.size), wall_time=wall, dt=largest, soe_error=system.sum_error)

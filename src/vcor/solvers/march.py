@@ -73,9 +73,14 @@ def step_plan(impact, options, tc: float, *, linear: bool) -> StepPlan:
     smaller of ``options.max_steps`` and the method's horizon (MAX_T_FACTOR t_c, or
     LINEAR_MAX_T_FACTOR t_c for a method whose cost is linear in time)."""
     dt = default_dt(impact, options.steps_per_contact, tc) if options.dt is None else options.dt
-    n_steps = max(math.ceil(T_MAX_START * tc / dt), 16)
+    if not (dt * dt > 0.0 and math.isfinite(tc / dt)):  # the weights divide by dt^2
+        given = f"dt = {dt!r} s" if options.dt is not None else (f"steps_per_contact = {options.steps_per_contact} "
+                                                                f"(dt = {dt!r} s)")
+        raise ValueError(f"{given}: dt^2 underflows in double precision (t_c = {tc:.4g} s); give a dt above "
+                         f"1e-150 s, or fewer steps per contact")
+    n_steps = max(math.ceil(min(T_MAX_START * tc / dt, options.max_steps)), 16)
     t_factor = LINEAR_MAX_T_FACTOR if linear else MAX_T_FACTOR
-    max_n = min(options.max_steps, max(n_steps, int(t_factor * tc / dt)))
+    max_n = min(options.max_steps, max(n_steps, int(min(t_factor * tc / dt, options.max_steps))))
     return StepPlan(dt, min(n_steps, max_n), max_n)
 
 

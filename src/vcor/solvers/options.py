@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from ..checks import interned, shown
 
 __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES",
-           "OPTION_HELP", "OPTION_UNITS", "SUM_TOL", "SolverOptions", "solver_options"]
+           "OPTION_HELP", "OPTION_UNITS", "RTOL_MIN", "SOE_TOL_MIN", "SUM_TOL", "SolverOptions", "solver_options"]
 
 #: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
 #: methods, which have no soe_tol option (below their own error; the same as soe_tol's default; where no fit
@@ -59,6 +59,12 @@ def _spec(default, methods, help_text, allowed=None, bounds=None, method_default
     return {"default": default, "methods": tuple(methods), "help": help_text, "allowed": allowed, "bounds": bounds,
             "method_defaults": dict(method_defaults or {}), "unit": unit}
 
+
+#: the smallest rtol (scipy's solve_ivp clamps smaller ones to about 100 eps)
+RTOL_MIN = 1e-13
+#: the smallest soe_tol: the relative error of a sum checked in double precision (the fractional law's at
+#: 1e-15 is 8.7e-15)
+SOE_TOL_MIN = 1e-13
 
 _SPEC = {
     "method": _spec(DEFAULT_METHOD, METHOD_NAMES, "solver: adaptive (variable steps with error control, "
@@ -96,13 +102,14 @@ _SPEC = {
                   ("a", "b")),
     "rule": _spec("force", METHOD_NAMES, "separation: force (F returns to zero, the paper's) or overlap (s returns to "
                   "zero)", ("force", "overlap")),
-    "rtol": _spec(1e-10, ("ive",), "relative tolerance of solve_ivp, in [1e-13, 1) (scipy clamps smaller "
-                  "ones)", bounds=("float", 1e-13, 1.0, "[1e-13, 1)"), unit="1"),
+    "rtol": _spec(1e-10, ("ive",), f"relative tolerance of solve_ivp, in [{RTOL_MIN:g}, 1) (scipy clamps smaller "
+                  "ones)", bounds=("float", RTOL_MIN, 1.0, f"[{RTOL_MIN:g}, 1)"), unit="1"),
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
     "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's "
                      "history part (vcor.materials.expsums; a two-body modulus no sum fits that closely is "
-                     "taken within FIT_ACCEPT and its error reported), in [1e-15, 0.01)",
-                     bounds=("float", 1e-15, 1e-2, "[1e-15, 0.01)"), unit="1"),
+                     f"taken within FIT_ACCEPT and its error reported), in [{SOE_TOL_MIN:g}, 0.01) (a sum checked "
+                     f"in double precision reaches about 1e-14)",
+                     bounds=("float", SOE_TOL_MIN, 1e-2, f"[{SOE_TOL_MIN:g}, 0.01)"), unit="1"),
     "ghost": _spec(0.5, METHOD_NAMES, "histories only: continue the solution this fraction of t0 past separation, "
                    "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]"), unit="1"),
 }

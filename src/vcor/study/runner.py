@@ -20,7 +20,7 @@ from .. import status as _status
 from ..materials.catalogue import Catalogue
 from ..solvers import validity as _validity
 from ..solvers.common import LONG_NAMES, UNITS, richardson
-from ..solvers.options import SolverOptions
+from ..solvers.options import RTOL_MIN, SolverOptions
 from ..solvers.simulate import simulate
 from .grid import Axis, axis_role
 from .scene import build_point
@@ -55,19 +55,26 @@ def _solver_options(items: tuple) -> SolverOptions:
 
 def _error_estimate(res, material, v0, opts, geometry) -> dict:
     """Fixed step: Richardson from dt and dt/2 (order 2), |x_dt - x_extrapolated|. solve_ivp: the
-    difference to a run at rtol/100; adaptive: to a run at step_tol/16 (its error is about
-    proportional to step_tol). The stored values stay those of the first run, so the
-    estimate is an estimate of *their* error."""
+    difference to a run at rtol/100 (not below RTOL_MIN: at rtol 1e-12 the run at 1e-13); adaptive: to a
+    run at step_tol/16 (its error is about proportional to step_tol). The stored values stay those of the
+    first run, so the estimate is an estimate of *their* error. A second run that raises is stored with
+    its own status and message (``status.guarded``); the point keeps its own."""
     out = {"cor_err": math.nan, "t0_err": math.nan}
     if not res.ok:
         return {**out, "error_status": res.status, "error_message": "no estimate: the point itself is not ok"}
     if opts["method"] in ("ive", "adaptive"):
         key, div = ("rtol", 100) if opts["method"] == "ive" else ("step_tol", 16)
-        fine = simulate(material, v0, options={**opts, key: opts[key] / div}, **geometry)
+        finer = max(opts[key] / div, RTOL_MIN) if key == "rtol" else opts[key] / div
+        fine, status, message = _status.guarded(simulate, material, v0, options={**opts, key: finer}, **geometry)
+        if fine is None:
+            return {**out, "error_status": status, "error_message": message}
         if fine.ok:
             out["cor_err"], out["t0_err"] = abs(res.cor - fine.cor), abs(res.t0 - fine.t0)
     else:
-        fine = simulate(material, v0, options={**opts, "dt": res.dt / 2}, **geometry)
+        fine, status, message = _status.guarded(simulate, material, v0, options={**opts, "dt": res.dt / 2},
+                                                **geometry)
+        if fine is None:
+            return {**out, "error_status": status, "error_message": message}
         if fine.ok:
             out["cor_err"] = richardson(res.cor, fine.cor)[1]
             out["t0_err"] = richardson(res.t0, fine.t0)[1]
