@@ -553,3 +553,11 @@ def test_a_zero_dimensional_array_for_a_grid_axis_is_refused_as_a_number():
     """np.array(1.0) is a number, not a list: refused as the number 1.0 would be (a TypeError)."""
     with pytest.raises(ValueError, match=r"^scene\.grid\.v0: got 1\.0; allowed: a list of numbers"):
         vcor.sweep({"materials": ["sls"], "grid": {"v0": np.array(1.0)}}, progress=False, workers=1)
+
+
+def test_a_grid_step_far_below_its_range_is_refused_in_one_short_line():
+    """A step of 1e-300 on [1, 2] m/s: its count of points in three significant digits, not 300 of them."""
+    said = r"^scene\.grid: 1e\+300 points in one sweep job \(no shard_size\); a scene"
+    with pytest.raises(ValueError, match=said) as err:
+        vcor.sweep({"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 2, "step": 1e-300}}}, progress=False)
+    assert len(str(err.value)) < 200

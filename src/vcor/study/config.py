@@ -276,9 +276,12 @@ def _check_size(where: str, scene: dict, shard_size: int | None) -> None:
         raise ValueError(f"{where}.grid.{exc}") from None
     jobs = 1 if shard_size is None else -(-n // shard_size)
     if n > MAX_POINTS or jobs > MAX_JOBS:
+        def count(k: int) -> str:  # a range with a step of 1e-300 holds a 300-digit number of points
+            return str(k) if k < 10**12 else f"{float(k):.3g}"
+
         split = ("in one sweep job (no shard_size)" if shard_size is None
-                 else f"in {jobs} sweep jobs (shard_size {shard_size})")
-        raise ValueError(f"{where}.grid: {n} points {split}; a scene may "
+                 else f"in {count(jobs)} sweep jobs (shard_size {shard_size})")
+        raise ValueError(f"{where}.grid: {count(n)} points {split}; a scene may "
                          f"have at most {MAX_POINTS} points and {MAX_JOBS} jobs: split the study into scenes, "
                          f"or raise shard_size")
 
