@@ -62,8 +62,7 @@ def _spec(default, methods, help_text, allowed=None, bounds=None, method_default
 
 #: the smallest rtol (scipy's solve_ivp clamps smaller ones to about 100 eps)
 RTOL_MIN = 1e-13
-#: the smallest soe_tol: the relative error of a sum checked in double precision (the fractional law's at
-#: 1e-15 is 8.7e-15)
+#: the smallest soe_tol: a sum's relative error, checked in double precision, is of order 1e-14 at best
 SOE_TOL_MIN = 1e-13
 
 _SPEC = {

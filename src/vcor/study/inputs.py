@@ -208,7 +208,7 @@ def _objects_named(scene: dict, cfg: dict) -> tuple[dict, list]:
     it) of its material lists (``materials``, ``convergence.materials``) replaced by a config material's
     name (added to ``cfg``'s materials block), and the pairs (``materials.<that name>``,
     ``scene.<list>[<index>]``) that say the keys as the call wrote them)."""
-    keys = []
+    keys: list[tuple[str, str]] = []
     if isinstance(scene.get("materials"), (list, tuple)):
         names, said = _list_named(scene["materials"], cfg, "scene.materials")
         scene, keys = {**scene, "materials": names}, keys + said
