@@ -561,3 +561,15 @@ def test_a_grid_step_far_below_its_range_is_refused_in_one_short_line():
     with pytest.raises(ValueError, match=said) as err:
         vcor.sweep({"materials": ["sls"], "grid": {"v0": {"start": 1, "stop": 2, "step": 1e-300}}}, progress=False)
     assert len(str(err.value)) < 200
+
+
+@pytest.mark.parametrize("given, said", [
+    ({"target": {"sphere": {"rho": 1e6, "r": 1e-3}}, "rho_a": 1e6, "r": 1e-3}, "density 4e+06 kg/m^3"),
+    ({"target": {"sphere": {"r": 1e-9}}, "r": 1e-9}, "reduced radius 5e-10 m"),
+])
+def test_two_spheres_whose_equivalent_sphere_leaves_the_ranges_are_refused_as_a_pair(given, said):
+    """Each sphere in range, their equivalent sphere (what the solver takes) not: the refusal names the pair
+    and the equivalent values, not an r or rho_a the user never gave."""
+    with pytest.raises(ValueError, match=r"^sphere and target\.sphere: their equivalent sphere \(") as err:
+        vcor.simulate("sls", 1.0, **given)
+    assert said in str(err.value) and "geometry ranges" in str(err.value)

@@ -27,6 +27,7 @@ import math
 
 from ..materials import models as _materials
 from .bodies import BODY_KEYS, Body, body_from_spec, eq_one, impact_inputs
+from .impact import RANGES
 
 __all__ = ["PLATE_KEYWORDS", "TARGET_KINDS", "sphere_pair", "target_inputs", "twin_defaults"]
 
@@ -63,6 +64,13 @@ def sphere_pair(a: Body, b: Body,
     ma, mb = a.rho * _volume(ra), b.rho * _volume(rb)
     m_eff = ma * mb / (ma + mb)
     geometry = {"r": r_eff, "rho_a": m_eff / _volume(r_eff), "rigid": True}
+    (r_lo, r_hi), (rho_lo, rho_hi) = RANGES["r"], RANGES["rho_a"]
+    if not (r_lo <= r_eff <= r_hi and rho_lo <= geometry["rho_a"] <= rho_hi):
+        # each sphere is in range; their equivalent sphere (half the radius, four times the density of two
+        # equal ones) may not be, and it is what the solver takes
+        raise ValueError(f"{names[0]} and {names[1]}: their equivalent sphere (reduced radius {r_eff:.3g} m, density "
+                         f"{geometry['rho_a']:.3g} kg/m^3) is outside the solver's geometry ranges, r in [{r_lo:g}, "
+                         f"{r_hi:g}] m and rho_a in [{rho_lo:g}, {rho_hi:g}] kg/m^3")
     if b.rigid:
         return a.material, {**geometry, "nu": a.nu, "case": 3}
     if a.rigid:
