@@ -337,3 +337,16 @@ def test_a_convergence_study_takes_inline_material_specs():
     assert names[0] == "sls" and names[1].startswith("sls-")
     material = study.project.catalogue.material(names[1])
     assert material.relaxation_modulus(0.0) == pytest.approx(2e7, rel=1e-12)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: vcor.dem_export({"sphere": {"material": "sls", "r": 0.005}, "v0": [1.0], "modles": ["table"]},
+                             config=REPO_CONFIG), r"^dem\.modles: unknown key"),
+    (lambda: vcor.sweep({"materials": ["sls"], "grod": {"v0": [1.0]}}, config=REPO_CONFIG),
+     r"^scene\.grod: unknown key"),
+])
+def test_a_refusal_of_a_mapping_argument_does_not_name_the_config_file(call, message):
+    """The key is in the argument, which no file holds: the refusal starts with the argument's key path, not
+    with the config file the call also gave (for its materials)."""
+    with pytest.raises(ValueError, match=message):
+        call()

@@ -157,6 +157,8 @@ def _checked(study: dict, base: Path, config, rename: tuple[str, str] | None, in
                 text = re.sub(rf"(?<![\w.-]){re.escape(prefix)}(?=[.:\[ ]|$)", argument, text)
             for prefix, argument in inline:  # the generated name, quoted ("material '<model>-<hash>': ...")
                 text = text.replace(f"'{prefix.removeprefix('materials.')}'", argument)
+            if any(re.match(rf"{re.escape(a)}(?=[.:\[ ]|$)", text) for _, a in (rename, *inline)):
+                raise type(exc)(text) from None  # a key of the argument itself: no file holds it
         elif isinstance(config, (str, Path)):  # an entry of the file: where it is in the file
             placed = located(text, [config])
             if placed != text:
