@@ -540,7 +540,7 @@ def test_nearly_elastic_fractional_and_cerf_laws_run_by_default(spec):
 def test_the_smallest_allowed_soe_tol_is_taken_and_a_smaller_one_refused():
     """soe_tol's range is what a sum checked in double precision reaches: its lower end runs (and meets it);
     below it, a refusal naming soe_tol before any work."""
-    from vcor.solvers.options import SOE_TOL_MIN
+    from vcor.materials.expsums import MIN_SOE_TOL as SOE_TOL_MIN
 
     for method in ("soe", "adaptive"):
         res = vcor.simulate("butyl-fc", 1.0, method=method, soe_tol=SOE_TOL_MIN)

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..io.receipts import atomic_text
 from .hereditary_law import FIXED_POINT_ITERATIONS, HERTZ_TIME, SERIES_BELOW, HereditaryLaw
-from .lammps import PAIR_ATOMS, PAIR_MASSES, PAIR_RUN, WALL_ATOMS, WALL_MASSES, WALL_RUN
+from .lammps import PAIR_ATOMS, PAIR_MASSES, PAIR_RUN, V0_CHECK, WALL_ATOMS, WALL_MASSES, WALL_RUN
 
 __all__ = ["DECK_NAME", "laws_of", "write_deck"]
 
@@ -46,14 +46,9 @@ _HEADER = """\
 # -var nsteps <n>, an integer >= 1 (default {nsteps}; the plugin warns below n = 10). -var v0 > 0 m/s.{t_note}
 # A value out of its range stops the deck with one line on standard error naming it (exit 2); a word
 # that is not a number stops LAMMPS with its own line naming the variable ("Non-numeric variable value").
-if "$(!is_defined(variable,v0))" then &
-   "print 'in.hereditary needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)' &
-append /dev/stderr screen no" "quit 2"
-variable plugin  index NONE
+{v0_check}variable plugin  index NONE
 variable nsteps  index {nsteps}
-{t_var}if "$(!(v_v0 > 0.0))" then &
-   "print 'v0 must be > 0 m/s (the approach speed), got ${{v0}}' append /dev/stderr screen no" "quit 2"
-if "$(!(v_nsteps >= 1 && v_nsteps == floor(v_nsteps)))" then &
+{t_var}if "$(!(v_nsteps >= 1 && v_nsteps == floor(v_nsteps)))" then &
    "print 'nsteps must be an integer >= 1 (time steps per Hertz contact time, default {nsteps}), got ${{nsteps}}' &
 append /dev/stderr screen no" "quit 2"
 units            si
@@ -151,7 +146,7 @@ def write_deck(path, ds) -> None:
               else "a sphere on a flat rigid wall, v0 = approach speed"),
         form="E/(2 (1 - nu^2)) of the spheres' material" if kind == "pair" else "E/(1 - nu^2) of the sphere's material",
         source=ds.attrs.get("hereditary_series", "vcor"),
-        t_var=f"variable T       index {temps[0]!r}\n" if temps else "")
+        t_var=f"variable T       index {temps[0]!r}\n" if temps else "", v0_check=V0_CHECK.format(deck=DECK_NAME))
     step = _TIME_STEP.format(hertz=HERTZ_TIME, iterations=FIXED_POINT_ITERATIONS,
                              mass="meff" if kind == "pair" else "m", radius="Reff" if kind == "pair" else "R")
     if kind == "pair":

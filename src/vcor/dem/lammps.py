@@ -22,11 +22,20 @@ from __future__ import annotations
 from ..io.receipts import atomic_text
 from .export import quality_lines
 
-__all__ = ["DECK_NAMES", "NSTEPS", "PAIR_ATOMS", "PAIR_MASSES", "PAIR_RUN", "WALL_ATOMS", "WALL_MASSES", "WALL_RUN",
-           "deck_name", "write_deck"]
+__all__ = ["DECK_NAMES", "NSTEPS", "PAIR_ATOMS", "PAIR_MASSES", "PAIR_RUN", "V0_CHECK", "WALL_ATOMS", "WALL_MASSES",
+           "WALL_RUN", "deck_name", "write_deck"]
 
 #: the deck of each contact kind
 DECK_NAMES = {"pair": "in.pair", "wall": "in.wall"}
+#: the first lines of every collision deck (this module's and vcor.dem.hereditary's; ``{deck}`` its name):
+#: no default speed, so a misspelt -var V0 runs nothing; v0 <= 0 stops it (one line on standard error, exit 2)
+V0_CHECK = """\
+if "$(!is_defined(variable,v0))" then &
+   "print '{deck} needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)' &
+append /dev/stderr screen no" "quit 2"
+if "$(!(v_v0 > 0.0))" then &
+   "print 'v0 must be > 0 m/s (the approach speed), got ${{v0}}' append /dev/stderr screen no" "quit 2"
+"""
 #: default time steps per elastic contact time
 NSTEPS = 2000
 
@@ -38,12 +47,7 @@ _HEADER = """\
 {quality}"""
 
 _COMMON = """\
-if "$(!is_defined(variable,v0))" then &
-   "print '{deck} needs -var v0 <m/s> (the approach speed; LAMMPS names are case-sensitive)' &
-append /dev/stderr screen no" "quit 2"
-if "$(!(v_v0 > 0.0))" then &
-   "print 'v0 must be > 0 m/s (the approach speed), got ${{v0}}' append /dev/stderr screen no" "quit 2"
-{t_check}variable model   index {model}
+{v0_check}{t_check}variable model   index {model}
 variable E       index {E:.12g}
 variable nu      index {nu:.12g}
 {law_vars}variable nsteps  index {nsteps}
@@ -213,7 +217,7 @@ def write_deck(path, ds, *, nsteps: int = NSTEPS) -> None:
     law_vars = "".join(f"variable {_LAWS[m][1]:<7s} index {first(_LAWS[m][1]):.12g}\n" for m in present)
     values = {"E": first("E_lammps"), "nu": contact["nu"], "model": _LAWS[present[0]][0], "law_vars": law_vars,
               "choice": _choice(present), "nsteps": int(nsteps), "r1": radii[0], "rho1": dens[0],
-              "r2": radii[-1], "rho2": dens[-1], "hertz": _HERTZ, "deck": DECK_NAMES[kind],
+              "r2": radii[-1], "rho2": dens[-1], "hertz": _HERTZ, "v0_check": V0_CHECK.format(deck=DECK_NAMES[kind]),
               # -var T selects nothing in this deck (in.hereditary's does): refused rather than run at the first row
               "t_check": ("if \"$(is_defined(variable,T))\" then &\n"
                           f"   \"print '{DECK_NAMES[kind]} does not select a temperature with -var T: pass the -var "

@@ -49,7 +49,7 @@ from ..checks import number
 from . import models as _materials
 from .expfit import ExponentialSum, FitError, fit_exponential_sum
 
-__all__ = ["FIT_ACCEPT", "RELAXED", "SOE", "fractional_bound", "soe"]
+__all__ = ["FIT_ACCEPT", "MAX_SOE_TOL", "MIN_SOE_TOL", "RELAXED", "SOE", "fractional_bound", "soe"]
 
 #: a posteriori check: log-spaced times, this many per period h of the trapezoid error in log t
 CHECKS_PER_PERIOD = 32
@@ -61,6 +61,8 @@ CHECKS_PER_PERIOD = 32
 FIT_ACCEPT = 1e-8
 #: soe's largest tolerance (its argument's upper bound)
 MAX_SOE_TOL = 1e-2
+#: soe's smallest tolerance: a sum's relative error, checked in double precision, is of order 1e-14 at best
+MIN_SOE_TOL = 1e-13
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -141,7 +143,7 @@ def soe(material, t_min: float, t_max: float, tol: float = 1e-10, from_zero: boo
     whose points have nearby steps and horizons shares one construction."""
     t_min = number("t_min", t_min, 0.0, math.inf, lo_open=True, hi_open=True, unit="s")
     t_max = number("t_max", t_max, t_min, math.inf, lo_open=True, hi_open=True, unit="s")
-    tol = number("tol", tol, 1e-13, MAX_SOE_TOL, lo_open=False, unit="(relative)")
+    tol = number("tol", tol, MIN_SOE_TOL, MAX_SOE_TOL, lo_open=False, unit="(relative)")
     if material.is_prony:
         if type(material) is _materials.Prony:  # already the sum (a sweep builds one per point: no copy)
             exact = material

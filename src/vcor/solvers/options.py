@@ -21,9 +21,10 @@ import numbers
 from dataclasses import dataclass
 
 from ..checks import interned, shown
+from ..materials.expsums import MAX_SOE_TOL, MIN_SOE_TOL
 
 __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES",
-           "OPTION_HELP", "OPTION_UNITS", "RTOL_MIN", "SOE_TOL_MIN", "SUM_TOL", "SolverOptions", "solver_options"]
+           "OPTION_HELP", "OPTION_UNITS", "RTOL_MIN", "SUM_TOL", "SolverOptions", "solver_options"]
 
 #: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
 #: methods, which have no soe_tol option (below their own error; the same as soe_tol's default; where no fit
@@ -62,8 +63,6 @@ def _spec(default, methods, help_text, allowed=None, bounds=None, method_default
 
 #: the smallest rtol (scipy's solve_ivp clamps smaller ones to about 100 eps)
 RTOL_MIN = 1e-13
-#: the smallest soe_tol: a sum's relative error, checked in double precision, is of order 1e-14 at best
-SOE_TOL_MIN = 1e-13
 
 _SPEC = {
     "method": _spec(DEFAULT_METHOD, METHOD_NAMES, "solver: adaptive (variable steps with error control, "
@@ -106,9 +105,9 @@ _SPEC = {
     "ive_method": _spec("Radau", ("ive",), "solve_ivp method", IVE_METHODS),
     "soe_tol": _spec(1e-10, ("soe", "adaptive"), "relative error bound of the exponential sum of the kernel's "
                      "history part (vcor.materials.expsums; a two-body modulus no sum fits that closely is "
-                     f"taken within FIT_ACCEPT and its error reported), in [{SOE_TOL_MIN:g}, 0.01) (a sum checked "
-                     f"in double precision reaches about 1e-14)",
-                     bounds=("float", SOE_TOL_MIN, 1e-2, f"[{SOE_TOL_MIN:g}, 0.01)"), unit="1"),
+                     f"taken within FIT_ACCEPT and its error reported), in [{MIN_SOE_TOL:g}, {MAX_SOE_TOL:g}) (a sum "
+                     f"checked in double precision reaches 1e-14 at best)",
+                     bounds=("float", MIN_SOE_TOL, MAX_SOE_TOL, f"[{MIN_SOE_TOL:g}, {MAX_SOE_TOL:g})"), unit="1"),
     "ghost": _spec(0.5, METHOD_NAMES, "histories only: continue the solution this fraction of t0 past separation, "
                    "in [0, 10]", bounds=("float", 0.0, 10.0, "[0, 10]"), unit="1"),
 }
