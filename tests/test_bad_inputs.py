@@ -239,6 +239,34 @@ ROWS = [
         fits={"mfit": {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5}}},
         scenes={"s": {"materials": ["mfit"], "grid": {"v0": [1.0], "T": [0.0, 10.0]}}}))),
      ["scenes.s.grid.T", "fit 'mfit' has no shift function", "master curve", "raw sets"]),
+    ("fit: the built-in data's band reversed", lambda: vcor.fit(
+        {"model": "prony", "n_terms": 3, "data": {"f_min": 1e4, "f_max": 10.0}}, name="x"),
+     ["fit.data: f_min < f_max (Hz), got f_min = 10000, f_max = 10"]),
+    ("fit: a measured-data key without a file", lambda: vcor.fit(
+        {"model": "prony", "n_terms": 3, "data": {"T_ref": 20.0}}, name="x"),
+     ["fit.data: T_ref belongs to measured data, which needs file", "the built-in data take"]),
+    ("fit: measured data without T_ref", lambda: spec.check_fit_spec(
+        {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv"}}, base_dir=ROOT, where="fits.x"),
+     ["fits.x.data.T_ref missing: the master curve's reference temperature (deg C)"]),
+    ("simulate: dt and steps_per_contact both given", lambda: vcor.simulate(
+        "sls", 1.0, method="direct", dt=1e-7, steps_per_contact=100),
+     ["dt = 1e-07 s and steps_per_contact = 100 both set the time step: give one of them"]),
+    ("simulate: a dt of fewer than 10 steps per contact", lambda: vcor.simulate("sls", 1.0, method="direct", dt=1e-3),
+     ["dt must be in (0, 0.0002739] s (at least 10 steps per contact-time estimate", "got 0.001"]),
+    ("simulate: a rigid target with rigid=False", lambda: vcor.simulate("sls", 1.0, target="rigid", rigid=False),
+     ["target 'rigid' with rigid=False: give one of them"]),
+    ("config: a negative speed in a listed grid axis is named by its index", lambda: _validate(_config_with(
+        lambda c: c.update(scenes={"s": {"materials": ["sls"], "grid": {"v0": [1.0, -3.0, 10.0]}}}))),
+     ["scenes.s.grid.v0[1]: impact speeds must be > 0 m/s, got -3"]),
+    ("config: a NaN in a listed grid axis is named by its index", lambda: _validate(_config_with(
+        lambda c: c.update(scenes={"s": {"materials": ["sls"], "grid": {"v0": [1.0, math.nan]}}}))),
+     ["scenes.s.grid.v0[1]: must be a finite number, got nan"]),
+    ("config: a DEM speed written with its unit is named by its index", lambda: _validate(_config_with(
+        lambda c: c.update(dem={"d": {"sphere": {"material": "sls"}, "v0": [1.0, "3 m/s"]}}))),
+     ["dem.d.v0[1]: must be a finite number, got '3 m/s'"]),
+    ("config: a temperature axis beyond a table-shift fit's sets", lambda: _validate(_config_with(lambda c: c.update(
+        scenes={"s": {"materials": ["pyvisco-polymer"], "grid": {"v0": [1.0], "T": [-60.0, 20.0]}}}))),
+     ["scenes.s.grid.T", "fit 'pyvisco-polymer'", "[-50.4094, 100.485] deg C", "not extrapolated", "got -60"]),
     ("fit: instrument_lag on a master curve", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_master.csv", "T_ref": -5, "instrument_lag": True}},
         base_dir=ROOT, where="fits.x"), ["fits.x.data.instrument_lag", "master curve", "two or more temperatures"]),
@@ -318,6 +346,37 @@ def test_valid_inputs_that_were_refused_or_crashed():
     ds = fits.result_dataset(res, _FREQ_ONLY, {})
     assert "t" not in ds.coords and np.all(np.isfinite(ds["tan_delta_rel_err"]))
     assert all(np.isfinite(v) for v in res.metrics.values())
+
+
+def test_a_fit_to_a_band_of_the_built_in_data_runs():
+    """A ``data:`` block of the built-in data (a band, sample counts) is fitted on that band: the measured
+    data's keys are not filled in for it (the fit then took them as the built-in data's and raised)."""
+    fitted = vcor.fit({"model": "prony", "n_terms": 3, "data": {"f_min": 10.0, "f_max": 1e4, "n_freq": 21}}, name="x")
+    omega = fitted.dataset["omega"].values
+    assert omega.size == 21 and omega.min() == pytest.approx(2 * math.pi * 10.0)
+
+
+def test_a_temperature_axis_over_a_fit_is_checked_against_its_sets_before_the_fit():
+    """A fit to raw sets with a table shift function (the default) is valid on its sets' mean temperatures
+    +- TABLE_TOLERANCE, which the data file gives before the fit: an axis at those ends passes, beyond them is
+    refused (the row above); a WLF fit's range follows from its fitted constants, so its axis is not
+    refused before the fit."""
+    from vcor.fitting.dma.data import read_table
+    from vcor.fitting.dma.sets import split_sets
+
+    temps = [s.T for s in split_sets(read_table(ROOT / "data/pyvisco/freq_user_raw.csv"))]
+    ends = [round(min(temps) - 0.5, 3) + 0.001, round(max(temps) + 0.5, 3) - 0.001]  # inside by < 2e-3 K
+
+    def scene(T, **data):
+        def mutate(c):
+            c["fits"]["pyvisco-polymer"]["data"].update(data)
+            c["scenes"] = {"s": {"materials": ["pyvisco-polymer"], "grid": {"v0": [1.0], "T": T}}}
+        return _config_with(mutate)
+
+    _validate(scene(ends))
+    with pytest.raises(ValueError, match=r"scenes\.s\.grid\.T: fit 'pyvisco-polymer'"):
+        _validate(scene([ends[0], ends[1] + 0.003]))
+    _validate(scene([-60.0, 20.0], shift_model="wlf"))
 
 
 def test_valid_inputs_that_crashed():

@@ -47,11 +47,17 @@ def test_smooth_material_is_reproduced_without_wiggles():
     assert fit.metrics["E_stor_rms"] < 2e-3 and fit.metrics["E_loss_rms"] < 5e-3
     assert fit.metrics["tan_delta_extrema"] == spc.count_extrema(et.imag / et.real)
     assert np.all(fit.E > 0) and fit.E_inf >= 0
+    # noise-free data: the one-standard-error choice is the grid's smallest lambda, and the note says what
+    # that means of the data (no config key widens the grid, so it gives no advice to)
+    assert fit.notes == ["lambda by gcv1se: 1e-05, the smallest of the scanned 1e+05..1e-05: the data ask for no "
+                         "more smoothing than this (noise-free data, e.g. synthetic); the fit follows them that "
+                         "closely"]
 
 
 def test_lambda_choices_and_relaxation_data():
     f, es, el, (ei, Eq, tq) = _lognormal(noise=0.01, seed=1)
     gcv, se = spc.fit_spectrum(f, es, el, lam="gcv"), spc.fit_spectrum(f, es, el)
+    assert se.notes == []  # 1 % noise: a lambda inside the grid
     assert se.lam >= gcv.lam and se.method == "gcv1se" and np.all(np.isfinite(gcv.scan["gcv"]))
     assert spc.fit_spectrum(f, es, el, lam=3.0).lam == 3.0
     with pytest.raises(ValueError, match="lam must be"):

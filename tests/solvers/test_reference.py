@@ -19,7 +19,7 @@ import pytest
 import vcor
 from vcor.contact import bodies, pair
 from vcor.contact.impact import make_impact
-from vcor.solvers import adaptive, direct, ive
+from vcor.solvers import adaptive, direct, ive, nearly_elastic
 from vcor.solvers import reference as R
 from vcor.solvers import soe as soe_method
 from vcor.solvers.common import separation
@@ -237,7 +237,27 @@ def test_adaptive_richardson(name, v0, target):
     reference finds the kernel smooth and resolved) one by one against the kernel's ``adaptive_grids``
     (the same number of grids), the finest grid's nodes against the general path's history, and the
     extrapolated scalars against ``simulate(method="adaptive")`` (its default)."""
-    impact, tc = adaptive_case(name, v0, target)
+    check_richardson(*adaptive_case(name, v0, target))
+
+
+#: a nearly elastic kernel (it relaxes by 1e-5..5e-5 within the contact: ``nearly_elastic.glassy_stiffness``), whose
+#: separation the method locates on k(0) u(s) + (F - k(0) u)
+NEARLY_ELASTIC = vcor.materials.Prony(1e7, (5e7,), (1.0 / 30.0,))
+
+
+@pytest.mark.parametrize("v0", [0.1, 10.0])
+@pytest.mark.parametrize("target", list(TARGETS))
+def test_adaptive_richardson_of_a_nearly_elastic_kernel(target, v0):
+    """As test_adaptive_richardson, for a kernel whose separation is located with its k(0)."""
+    impact = make_impact(NEARLY_ELASTIC, v0, TARGETS[target])
+    tc = impact.contact_time_estimate()
+    assert nearly_elastic.glassy_stiffness(impact, tc) > 0.0
+    check_richardson(impact, tc)
+
+
+def check_richardson(impact, tc):
+    """The body of test_adaptive_richardson for ``impact`` and its contact-time estimate ``tc`` (s)."""
+    v0 = impact.v0
     ref = R.adaptive_richardson_reference(impact, tc, STEP_TOL)
     for k, (grid, row) in enumerate(zip(ref["grids"], numba_grids(impact, tc), strict=True)):
         assert grid["n_sep"] == int(row[9])

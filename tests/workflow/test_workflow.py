@@ -282,6 +282,20 @@ def test_other_materials_added_or_reordered_rerun_nothing(make_project, smk, tmp
     assert "Nothing to be done" in out.stdout + out.stderr, out.stdout[-3000:]
 
 
+def test_a_number_written_another_way_reruns_nothing(make_project, smk, tmp_path):
+    """YAML reads ``5000000`` as an integer and ``5.0e+6`` as a float: one parameter, so rewriting a
+    material's number in the other form leaves every finished job finished (the jobs are given the
+    specs with every number a float, vcor.materials.specs.canonical)."""
+    mat = "my-gel:\n    model: prony\n    E_inf: {}\n    E: [5.0e+6, 2.0e+6]\n    beta: [300.0, 4000.0]\n"
+    scenes = "scenes:\n  s:\n    materials: [my-gel]\n    grid: {v0: [1.0, 3.0]}\n"
+    path = make_project(tmp_path, {})
+    (path / "config.yaml").write_text("materials:\n  " + mat.format("5.0e+6") + scenes)
+    smk(path, "-j1")
+    (path / "config.yaml").write_text("materials:\n  " + mat.format("5000000") + scenes)
+    out = smk(path, "-n", "-j1")
+    assert "Nothing to be done" in out.stdout + out.stderr, out.stdout[-3000:]
+
+
 def test_a_changed_material_reruns_no_shard_without_its_points(make_project, smk, tmp_path):
     """A changed material re-runs no shard that holds none of its points (byte-identical files; its job
     is given the materials its points name), never re-runs a shard that holds its old points (they are

@@ -122,6 +122,9 @@ def target_inputs(material, target, geometry: dict) -> tuple[_materials.Material
     if target == "plate":
         return material, geometry
     if target == "rigid":
+        if geometry.get("rigid", True) is not True:
+            raise ValueError(f"target 'rigid' with rigid={geometry['rigid']!r}: give one of them (target='plate' is "
+                             f"the plate of the geometry keywords)")
         return material, {**geometry, "rigid": True}
     if not isinstance(target, dict) or len(target) != 1 or next(iter(target)) not in ("sphere", "plate"):
         raise ValueError(f"target must be one of 'plate', 'rigid', {{'sphere': {{...}}}} or {{'plate': {{...}}}} (one "

@@ -8,16 +8,18 @@ planning a run (the Snakefile, every ``snakemake`` call) loads no optimiser.
 
 from __future__ import annotations
 
+import inspect
 import math
 
 import numpy as np
 
+from ..checks import positive
 from ..io.csvfile import project_file
 from ..materials.catalogue import FIT_SCALARS
 from .dma.laws import SHIFT_LAWS
 
-__all__ = ["DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "REMOVED_METHODS", "SHIFT_MODELS", "check_fit_spec",
-           "check_measured", "check_method", "expand_fits", "fit_families"]
+__all__ = ["BUILTIN_DATA_KEYS", "DMA_DATA_KEYS", "FIT_METHODS", "FIT_MODELS", "REMOVED_METHODS", "SHIFT_MODELS",
+           "check_builtin_data", "check_fit_spec", "check_measured", "check_method", "expand_fits", "fit_families"]
 
 #: shift functions a measured-data fit may store (:mod:`vcor.fitting.dma.laws`); the first is the default
 SHIFT_MODELS = SHIFT_LAWS
@@ -78,8 +80,12 @@ def check_measured(spec: dict, where: str) -> tuple[dict, float, str]:
     shift model); ValueError naming ``<where>.<key>``."""
     d = spec["data"]
     unknown = set(d) - DMA_DATA_KEYS
-    if unknown or "T_ref" not in d:
-        raise ValueError(f"{where}.data: keys {sorted(DMA_DATA_KEYS)} (file and T_ref required), got {sorted(d)}")
+    if unknown:
+        raise ValueError(f"{where}.data: unknown key{'s' if len(unknown) > 1 else ''} {sorted(unknown)}; it takes "
+                         f"{sorted(DMA_DATA_KEYS)} (file and T_ref required)")
+    if "T_ref" not in d:
+        raise ValueError(f"{where}.data.T_ref missing: the master curve's reference temperature (deg C), among "
+                         f"the data's sets (file and T_ref are required)")
     if spec.get("model") != "prony":
         raise ValueError(f"{where}.model: a fit to measured data is a Prony fit (model: prony), "
                          f"got {spec.get('model')!r}")
@@ -112,6 +118,38 @@ def check_method(spec: dict, where: str) -> str:
     return method
 
 
+#: the keys of a fit to the built-in data (the Bagley-Torvik law sampled, vcor.fitting.prony.bagley_torvik_data)
+BUILTIN_DATA_KEYS = frozenset({"source", "f_min", "f_max", "n_freq", "n_time"})
+
+
+def check_builtin_data(d, where: str) -> None:
+    """The ``data`` block of a fit without a ``file`` (the built-in Bagley-Torvik data): its keys, the band
+    0 < f_min < f_max (Hz) and sample counts n_freq, n_time >= 3; ValueError naming ``<where>.<key>``."""
+    if not isinstance(d, dict):
+        raise ValueError(f"{where}: a mapping, got {d!r}")  # noqa: TRY004 (a config value: ValueError)
+    unknown = set(d) - BUILTIN_DATA_KEYS
+    if unknown:
+        measured = sorted(unknown & DMA_DATA_KEYS)
+        said = (f"{', '.join(measured)} belong{'s' if len(measured) == 1 else ''} to measured data, which needs file "
+                f"(and T_ref)" if measured else f"unknown key{'s' if len(unknown) > 1 else ''} {sorted(unknown)}")
+        raise ValueError(f"{where}: {said}; the built-in data take {sorted(BUILTIN_DATA_KEYS)}")
+    if d.get("source", "bagley-torvik") != "bagley-torvik":
+        raise ValueError(f"{where}.source must be 'bagley-torvik' (the one built-in data set), got {d['source']!r}")
+    if "f_min" in d or "f_max" in d:
+        for k in ("f_min", "f_max"):
+            if k in d:
+                positive(f"{where}.{k}", d[k], unit="Hz")
+        from .prony import bagley_torvik_data  # (scipy: not loaded to plan a config that gives no band)
+
+        band_default = inspect.signature(bagley_torvik_data).parameters
+        f_min, f_max = (d.get(k, band_default[k].default) for k in ("f_min", "f_max"))
+        if not float(f_min) < float(f_max):
+            raise ValueError(f"{where}: f_min < f_max (Hz), got f_min = {f_min:g}, f_max = {f_max:g}")
+    for k in ("n_freq", "n_time"):
+        if k in d and (isinstance(d[k], bool) or not isinstance(d[k], int) or d[k] < 3):
+            raise ValueError(f"{where}.{k} must be an integer >= 3, got {d[k]!r}")
+
+
 def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     """What can be checked of a fit spec before fitting, naming ``<where>.<key>`` (or the data file's
     line and column): the model, and for measured data the keys, T_ref, and the files read and checked
@@ -131,6 +169,7 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     if model not in FIT_MODELS:
         raise ValueError(f"{where}.model: one of {list(FIT_MODELS)}, got {model!r}")
     if "file" not in (spec.get("data") or {}):
+        check_builtin_data(spec.get("data") or {}, f"{where}.data")
         return
     from .dma.data import check_data, read_table
     from .dma.sets import split_sets

@@ -35,7 +35,7 @@ from ..io.csvfile import header as column_names
 from . import models as _materials
 from .shift import ShiftFunction
 
-__all__ = ["PRONY_SPEC_KEYS", "from_spec", "read_prony_csv", "shift_function", "spec_models"]
+__all__ = ["PRONY_SPEC_KEYS", "canonical", "from_spec", "read_prony_csv", "shift_function", "spec_models"]
 
 #: the keys of a Prony spec, each optional: its class's own form, relaxation times tau, the normalised form
 #: (E_0, g) or a CSV file
@@ -187,6 +187,17 @@ def _named(where: str, text: str, names) -> str:
         if len(words) > i + 1 and words[i].split("[", 1)[0] in names:
             return f"{where}." + " ".join(words[i:])
     return f"{where}: {text}"
+
+
+def canonical(spec):
+    """``spec`` with every number (not a boolean) a float, in mappings and lists: YAML reads ``5000000`` as an
+    integer and ``5.0e+6`` as a float, one value that a material spec (every parameter a real number in SI)
+    must not tell apart: the workflow's jobs compare the specs they are given, and re-run on any difference."""
+    if isinstance(spec, dict):
+        return {k: canonical(v) for k, v in spec.items()}
+    if isinstance(spec, list):
+        return [canonical(v) for v in spec]
+    return float(spec) if isinstance(spec, int) and not isinstance(spec, bool) else spec
 
 
 def shift_function(spec: dict, name: str = "material") -> ShiftFunction | None:

@@ -56,7 +56,7 @@ from ._separation import locate_separation
 from ._step import advance, implicit_step_inline, separated
 from .erfcx import erfcx_slope
 
-__all__ = ["FEW_MODES", "adaptive_grids", "march_adaptive", "slope_weights"]
+__all__ = ["FEW_MODES", "adaptive_grids", "force_zero_cor", "march_adaptive", "slope_weights"]
 
 #: sums over more modes than this go through the helpers below, whose additions may be reassociated
 #: (``_jit.jit_sum``: numba then vectorises them); shorter sums stay in the march (a call costs more
@@ -412,6 +412,38 @@ def _closed_form_mobility(t, plate):
     return a, -0.5 * a * rate_eb / eb
 
 
+@jit
+def force_zero_cor(t0, z0, plate, m, v0):
+    """The COR |s'(t0)| / v0 of a separation where the force returns to zero (rule "force"), from the
+    model's s' = v0 - J/m - alpha' J - alpha F at F(t0) = 0: s'(t0) = z0 - alpha'(t0) J0 with the sphere's
+    velocity z0 = v0 - J0/m (m/s) and alpha' of the march's ``plate`` record (a plain tuple, ``_records``)
+    at t0 (s). J is smooth where F vanishes and stationary there (J' = F), so this s'(t0) does not inherit
+    the error of t0 or of a cubic through s' (whose alpha F part is as rough as F: F ~ u = s^3/2 falls
+    steeply where a nearly elastic contact leaves a small residual overlap)."""
+    return abs(z0 - _mobility_rate(t0, Plate(*plate)) * m * (v0 - z0)) / v0
+
+
+@jit_inline
+def _mobility_rate(t, plate):
+    """alpha'(t) (m N^-1 s^-2) of a :class:`~._records.Plate` (kind 1: from its modes' moduli and rates;
+    kinds 2, 3: :func:`_closed_form_mobility`; kind 0: constant)."""
+    if plate.kind == 0 or t <= 0.0:
+        return 0.0
+    if plate.kind >= 2:
+        return _closed_form_mobility(t, plate)[1]
+    eb = plate.e_inf
+    ebd = 0.0
+    for k in range(plate.moduli.shape[0]):
+        if plate.moduli[k] != 0.0:
+            x = math.exp(-(plate.rate_moduli[k] / plate.moduli[k]) * t)
+            eb += plate.moduli[k] * x
+            ebd -= plate.rate_moduli[k] * x
+    eb *= plate.factor
+    ebd *= plate.factor
+    a = plate.scale / math.sqrt(eb)
+    return -0.5 * a * ebd / eb
+
+
 @jit_sum
 def _decay_sum(R, row, P, trial, n_live):
     """trial[:n_live] = R[row] P (the modes decayed over a trial step) and their sum, in any order (rows
@@ -462,13 +494,15 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
     level_top + 1 + ``splits`` rows from h_base / 2^splits: grid k uses rows from splits - k.
     ``smooth_step`` (s): when the first grid's largest step is at most this, one grid fewer is
     marched (``vcor.solvers.adaptive.grid_count``; 0: never).
-    Fills out[k] = [the 9 outcome values of ``separation_point``, separation index, largest step (s)]
+    Fills out[k] = [the 9 outcome values of ``separation_point`` (under the force rule the COR by
+    :func:`force_zero_cor`), separation index, largest step (s)]
     and returns the number of grids marched when every grid separated, the first within ``size0``
     steps; 0 (out undefined) for anything else (more steps, divergence, time horizon, step budget),
     which the caller then runs through the general path.
     """
     nk = LevelTables(*tables).mode_decay.shape[1]
-    n_extra, rule, v0 = Stop(*stop).n_extra, Stop(*stop).rule, Body(*body).v0
+    n_extra, rule, glassy = Stop(*stop).n_extra, Stop(*stop).rule, Stop(*stop).glassy
+    v0, m = Body(*body).v0, Body(*body).m
     pr = Plate(*plate)
     # a constant mobility: no mode changes in time (a mode of rate 0, as in SLS(E, 0, 0), is a constant)
     still = pr.kind == 0 or (pr.kind == 1 and not np.any(pr.rate_moduli != 0.0))
@@ -511,8 +545,10 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
         n_done = state[LAST]
         if k == 0:
             n_plan = min(n_done, n_sep + n_extra)
-        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, still, out[k]):
+        if not locate_separation((t, s, g, F, J, u), n_sep, n_done + 1, rule == 1, body, still, glassy, out[k]):
             return 0
+        if rule == 0:
+            out[k, 0] = force_zero_cor(out[k, 1], out[k, 5], plate, m, v0)
         out[k, 9] = n_sep
         big = 0.0
         for j in range(1, n_done + 1):

@@ -67,9 +67,11 @@ def fixed_state() -> np.ndarray:
 #: the impact as the implicit step sees it: Dirac weight of the kernel (N s m^-1.5; Kelvin-Voigt),
 #: sphere mass (kg), impact speed (m/s)
 Body = namedtuple("Body", "eta m v0")
-#: when a march stops: the separation rule (0: the force returns to zero, 1: the overlap does) and
-#: how many steps it marches past the separation node (the separation's cubic needs two)
-Stop = namedtuple("Stop", "rule n_extra")
+#: when a march stops: the separation rule (0: the force returns to zero, 1: the overlap does), how many
+#: steps it marches past the separation node (the separation's cubic needs two), and the kernel's value at
+#: lag 0, k(0) (N m^-1.5), where it is finite and the kernel has no Dirac term (else 0): the force's root
+#: is then located on k(0) u(s) + (F - k(0) u), the second part smooth (``_separation.separation_point``)
+Stop = namedtuple("Stop", "rule n_extra glassy", defaults=(0.0,))
 #: plate mobility on a fixed grid: alpha(t_n), alpha'(t_n) per node
 PlateArrays = namedtuple("PlateArrays", "alpha alpha_rate")
 #: fixed-step node arrays s, s', F, J, u = s^{3/2} and the increments du_j = u_{j+1} - u_j

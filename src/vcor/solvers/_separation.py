@@ -4,6 +4,8 @@ step, and the outcome there. A plain NumPy reference is :func:`vcor.solvers.refe
 
 from __future__ import annotations
 
+import math
+
 from ._jit import jit
 from ._records import Body, Nodes
 
@@ -48,6 +50,22 @@ def _elastic_kernel(F, un):
 
 
 @jit
+def _hertz(s):
+    """u = sgn(s) |s|^{3/2} (computed from s here, not taken from a march's u: the same number on every path)."""
+    return math.copysign(abs(s) * math.sqrt(abs(s)), s)
+
+
+@jit
+def _force_value(c, cs, glassy, tn, x):
+    """The force at x: the cubic with divided differences ``c`` (of F, or with ``glassy`` > 0 of
+    F - glassy u), plus glassy u(s(x)) with s(x) the cubic ``cs`` of s."""
+    value = _newton_value(c, tn, x)
+    if glassy > 0.0:
+        value += glassy * _hertz(_newton_value(cs, tn, x))
+    return value
+
+
+@jit
 def parabola_peak(t, y, n):
     """Maximum of samples y[0..n] refined by the parabola through the largest one and its neighbours
     (any spacing); the largest sample itself at an end or where the parabola is not concave."""
@@ -68,7 +86,7 @@ def parabola_peak(t, y, n):
 
 
 @jit
-def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, out):
+def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, glassy, out):
     """Separation inside [t_{n-1}, t_n] and the outcome there.
 
     The root of the cubic through nodes lo..lo+3 of the target (s when ``by_overlap``, else F) is found
@@ -90,6 +108,12 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
         Interpolate the root of s (else of F); F(t0) = 0 in the work integrals.
     still_plate : bool
         The plate's mobility is constant in time (a rigid target, an elastic plate).
+    glassy : float
+        A nearly elastic kernel's k(0) (N m^-1.5; ``_records.Stop``, ``nearly_elastic.glassy_stiffness``), or 0.
+        When > 0 a root of F (not of s) is that of glassy u(s(t)) + R(t), R = F - glassy u =
+        int k'(t - tau) u(tau) dtau, with s and R by their cubics: R is smooth where F is not (F ~ u =
+        s^{3/2} falls steeply where a nearly elastic contact leaves a small residual overlap, and the
+        cubic through F misses its root there by far more than the march's error).
     body : Body
         m (kg), v0 (m/s).
     out : float64 array
@@ -106,11 +130,16 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
     m, v0 = Body(*body).m, Body(*body).v0
     tn = t[lo:lo + 4]
     y = s if by_overlap else F
-    c = _divided(tn, y[lo:lo + 4])
+    split = 0.0 if by_overlap else glassy
+    cs = _divided(tn, s[lo:lo + 4])
+    rest = F[lo:lo + 4].copy()
+    for j in range(4):
+        rest[j] -= split * _hertz(s[lo + j])
+    c = cs if by_overlap else _divided(tn, rest)
     a = t[n - 1]
     b = t[n]
-    fa = _newton_value(c, tn, a)
-    fb = _newton_value(c, tn, b)
+    fa = _force_value(c, cs, split, tn, a)
+    fb = _force_value(c, cs, split, tn, b)
     if not (fa > 0.0 >= fb) and lo <= n - 1 and n <= lo + 3:
         # the bracket's ends are nodes, where the interpolant is the node value; evaluated, a value a few
         # roundings from zero (a force creeping to zero) may round across it
@@ -126,7 +155,7 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
             x = (lo_t * fhi - hi_t * flo) / (fhi - flo)
             if not (lo_t < x < hi_t):
                 x = 0.5 * (lo_t + hi_t)
-            fx = _newton_value(c, tn, x)
+            fx = _force_value(c, cs, split, tn, x)
             t0 = x
             if fx == 0.0:
                 break
@@ -143,7 +172,7 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
             if hi_t - lo_t <= xtol:
                 t0 = lo_t if flo < -fhi else hi_t
                 break
-    s0 = _newton_value(_divided(tn, s[lo:lo + 4]), tn, t0)
+    s0 = _newton_value(cs, tn, t0)
     J0 = _newton_value(_divided(tn, J[lo:lo + 4]), tn, t0)
     F0 = 0.0 if force_rule else _newton_value(_divided(tn, F[lo:lo + 4]), tn, t0)
     if by_overlap and still_plate and _elastic_kernel(F[lo:lo + 4], u[lo:lo + 4]):
@@ -181,11 +210,16 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, ou
 
 
 @jit
-def locate_separation(nodes, n, size, overlap_rule, body, still_plate, out):
+def locate_separation(nodes, n, size, overlap_rule, body, still_plate, glassy, out):
     """:func:`separation_point` for the separation step n of a march whose first ``size`` nodes are
     valid: the four interpolation nodes end at n + 1 when it exists, and s is the target for the
-    overlap rule, or when s also crossed zero in step n (F ~ s^{3/2} is not smooth at its root, s is)."""
+    overlap rule, or when s also crossed zero in step n and ``glassy`` is 0 (F ~ s^{3/2} is not smooth at
+    its root, s is). With ``glassy`` (a nearly elastic kernel's k(0), :func:`separation_point`) the force's
+    root is located on glassy u(s) + (F - glassy u) also then: such a contact's force returns to zero at a
+    small residual overlap, close to where s crosses zero (inside the same step on a coarse grid, where
+    the root of s would be another time)."""
     s = Nodes(*nodes).s
     lo = max(0, min(n - 2, size - 4))
-    by_overlap = overlap_rule or (s[n] <= 0.0 < s[n - 1])
-    return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, still_plate, out)
+    split = 0.0 if overlap_rule else glassy
+    by_overlap = overlap_rule or (split == 0.0 and s[n] <= 0.0 < s[n - 1])
+    return separation_point(nodes, n, lo, by_overlap, not overlap_rule, body, still_plate, split, out)

@@ -48,7 +48,7 @@ import numpy as np
 
 from ..contact.impact import Impact
 from ..materials.expsums import soe
-from ._adaptive_kernels import adaptive_grids, march_adaptive, slope_weights
+from ._adaptive_kernels import adaptive_grids, force_zero_cor, march_adaptive, slope_weights
 from ._records import (
     DECAYED,
     LAST,
@@ -69,14 +69,15 @@ from ._records import (
 from .common import OUTCOME, Result, separation_scalars
 from .extrapolation import extrapolate, weights_for
 from .march import N_EXTRA, Arrays, March, finish
+from .nearly_elastic import glassy_stiffness
 from .validity import FLAGS
 
 __all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "MAX_SEP_STEPS",
-           "MOTION_FLOOR", "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_DECAY", "SEP_STEPS", "SMOOTH_GRIDS",
-           "SMOOTH_WEIGHTS",
-           "PlateTables", "Tables", "exact_rate", "grid_count", "grid_outcomes", "impact_tables", "level_tables",
-           "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome", "run_adaptive",
-           "separation_steps", "slope_weights", "smooth_step", "solve"]
+           "MOTION_FLOOR", "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_DECAY", "SEP_STEPS",
+           "SMOOTH_GRIDS", "SMOOTH_WEIGHTS",
+           "PlateTables", "Tables", "exact_rate", "grid_count", "grid_outcomes", "impact_tables",
+           "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome",
+           "run_adaptive", "separation_steps", "slope_weights", "smooth_step", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -244,14 +245,21 @@ def plate_record(impact, tables: Tables, kind: int) -> tuple[Plate, float]:
             pt.soe_error)
 
 
-def smooth_step(impact, kind: int | None = None) -> float:
+def smooth_step(impact, kind: int | None = None, tc: float | None = None) -> float:
     """The largest step (s) of an accepted grid on which the error has no h^3.5 term
     (``SMOOTH_EXPONENTS``): RESOLVED_DECAY over :func:`exact_rate`, or 0 where the error may have that term
     at any step: a kernel or plate that is not an exact exponential sum without a Dirac term, an elastic
     kernel (its force vanishes with the overlap, as ``|t - t0|^1.5``: the step across the separation leaves
-    an error that depends on where t0 falls in it, which three grids do not remove). ``kind``: the
-    impact's :func:`plate_kind`, where the caller has it. Also 0 where RESOLVED_DECAY is 0 or the grid
+    an error that depends on where t0 falls in it, which three grids do not remove), a nearly elastic one
+    (:func:`glassy_stiffness`; likewise). ``kind``: the impact's :func:`plate_kind` and ``tc`` its
+    contact-time estimate (s), where the caller has them. Also 0 where RESOLVED_DECAY is 0 or the grid
     constants have been set to another number of grids (SMOOTH_GRIDS is then not GRIDS - 1: benchmarks)."""
+    return 0.0 if glassy_stiffness(impact, tc) else _resolved_step(impact, kind)
+
+
+def _resolved_step(impact, kind):
+    """:func:`smooth_step` but for its nearly elastic kernels (a decision that depends on the speed: the
+    level tables, cached for every speed, hold this)."""
     if not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or impact.material.is_elastic:
         return 0.0
     rate = exact_rate(impact, plate_kind(impact) if kind is None else kind)
@@ -291,8 +299,10 @@ def _body(impact) -> tuple:
     return (float(impact.kappa * impact.material.viscosity), float(impact.m), float(impact.v0))
 
 
-#: the separation rules' :class:`~._records.Stop` records, as plain tuples
-_STOPS = {"force": tuple(Stop(0, N_EXTRA)), "overlap": tuple(Stop(1, N_EXTRA))}
+def _stop(rule, glassy):
+    """The march's :class:`~._records.Stop` record as a plain tuple: the separation ``rule`` and the kernel's
+    k(0) (N m^-1.5, :func:`glassy_stiffness`)."""
+    return tuple(Stop(0 if rule == "force" else 1, N_EXTRA, glassy))
 
 
 @dataclass(kw_only=True, frozen=True)
@@ -307,16 +317,18 @@ class _Grid:
     plan: np.ndarray | None = None
 
 
-def _tables_for(impact, h_base, factor, tol, kind):
+def _tables_for(impact, h_base, factor, tol, kind, tc):
     """(horizon (s), number of levels, tables, plate record as a plain tuple, largest relative error of
-    the kernel's and the plate's exponential sums, :func:`smooth_step`, :func:`exact_rate`) for the horizon
-    ``factor`` estimates.
+    the kernel's and the plate's exponential sums, :func:`smooth_step`, :func:`exact_rate`,
+    :func:`glassy_stiffness`) for the horizon ``factor`` estimates.
     They depend on the impact's material and geometry, not on its speed: cached on those (a sweep's points
     and repeated calls share them). The key also holds the module's grid constants and its
     :func:`level_tables` as they are at the call, so that a benchmark or test that sets them is never
     served tables made under others."""
-    return impact_tables(impact.material, impact.geometry, h_base, factor, tol, kind,
-                          (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS))
+    tables = impact_tables(impact.material, impact.geometry, h_base, factor, tol, kind,
+                           (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS))
+    glassy = glassy_stiffness(impact, tc)
+    return (*tables[:5], 0.0 if glassy else tables[5], tables[6], glassy)
 
 
 @functools.lru_cache(maxsize=256)
@@ -331,7 +343,7 @@ def impact_tables(material, geometry, h_base, factor, tol, kind, module):
     tables = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
                           2.0 * horizon, tol)
     plate, plate_error = plate_record(impact, tables, kind)
-    return (horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), smooth_step(impact, kind),
+    return (horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), _resolved_step(impact, kind),
             exact_rate(impact, kind))
 
 
@@ -340,7 +352,8 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
     Returns (March, levels, horizon, factor)."""
     plan = _NO_PLAN if grid.plan is None else grid.plan
     while True:
-        horizon, n_levels, tables, plate, soe_error, _, rate = _tables_for(impact, grid.h_base, factor, tol, kind)
+        horizon, n_levels, tables, plate, soe_error, _, rate, glassy = _tables_for(impact, grid.h_base, factor, tol,
+                                                                                   kind, grid.tc)
         nk = tables.levels.mode_decay.shape[1]
         modes = tuple(Modes(np.zeros(nk), np.ones(Plate(*plate).moduli.size)))
         first = START_LEVEL if grid.fixed_level is None else int(grid.fixed_level)
@@ -354,7 +367,7 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
         arr.g[0] = impact.v0
         while True:
             march_adaptive(tuple(Nodes(t, arr.s, arr.g, arr.F, arr.J, arr.u)), lev, tuple(tables.levels), plate,
-                           _body(impact), control, _STOPS[rule], modes, state, plan, SPLIT_LEVELS - grid.split)
+                           _body(impact), control, _stop(rule, glassy), modes, state, plan, SPLIT_LEVELS - grid.split)
             if state[STATUS] != STATUS_FULL or (state[SEPARATION] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
             arr.grow(2 * arr.n if state[SEPARATION] >= 0 else min(2 * arr.n, max_steps))
@@ -364,7 +377,8 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
                 and factor < MAX_HORIZON):
             step = float(np.max(np.diff(t[: n_done + 1]))) if n_done else math.nan
             march = March(arrays=arr, state=state, n_done=n_done, dt=step, t=t, note=_ghost_note(state, t, n_done),
-                          budget=_budget_text(t, n_done, horizon, grid.tc, max_steps), soe_error=soe_error)
+                          budget=_budget_text(t, n_done, horizon, grid.tc, max_steps), soe_error=soe_error,
+                          glassy=glassy)
             return march, lev, horizon, factor
         factor *= 32.0
 
@@ -473,19 +487,21 @@ def _run_on_floor(impact, tc, h_base, factor, one_call_path, opts):
     march, lev, _, factor = _march(impact, _Grid(h_base=h_base, tc=tc, fixed_level=fixed_level), factor,
                                    ghost=ghost if last_history else 0.0, **kw)
     march.wall = time.perf_counter() - t_start
-    coarse = finish(impact, march, rule=rule, history=last_history, method="adaptive")
+    coarse = _force_zero(finish(impact, march, rule=rule, history=last_history, method="adaptive"), impact, rule,
+                         _tables_for(impact, h_base, factor, tol, kind, tc)[3])
     if not (extrapolate and coarse.ok):
         return coarse
     n_plan = min(march.n_done, int(march.state[SEPARATION]) + N_EXTRA)
     runs = [coarse]
-    n_grids = grid_count(march.dt, smooth_step(impact, kind))  # march.dt: its largest step
+    n_grids = grid_count(march.dt, smooth_step(impact, kind, tc))  # march.dt: its largest step
     for shift in range(1, n_grids):
         last = history and shift == n_grids - 1
         grid = _Grid(h_base=h_base, tc=tc, split=shift, plan=np.repeat(lev[1: n_plan + 1], 2**shift))
         march, _, _, factor = _march(impact, grid, factor, ghost=ghost if last else 0.0,
                                      **{**kw, "max_steps": 2**shift * max_steps})
         march.wall = time.perf_counter() - t_start
-        run = finish(impact, march, rule=rule, history=last, method="adaptive")
+        run = _force_zero(finish(impact, march, rule=rule, history=last, method="adaptive"), impact, rule,
+                          _tables_for(impact, h_base, factor, tol, kind, tc)[3])
         if not run.ok:
             said = run.message.replace(f"steps = {2**shift * max_steps}", f"steps = {2**shift} x {max_steps}")
             run.message = f"the replay of the accepted grid with every step divided by {2**shift} failed: {said}"
@@ -499,6 +515,15 @@ def _run_on_floor(impact, tc, h_base, factor, one_call_path, opts):
     if message:
         fine.validity |= FLAGS["grids_disagree"]
     return fine
+
+
+def _force_zero(res, impact, rule, plate):
+    """``res`` with the COR of a separation by the force rule from the sphere's velocity and the plate's
+    mobility at t0 (``_adaptive_kernels.force_zero_cor``, as the one-call path's grids have it; ``plate``:
+    the march's plate record as a plain tuple)."""
+    if rule == "force" and res.ok:
+        res.cor = float(force_zero_cor(res.t0, res.sphere_velocity, plate, impact.m, impact.v0))
+    return res
 
 
 def one_call(impact, tc, n_grids, *, step_tol, max_steps, rule, tol):
@@ -518,18 +543,20 @@ def grid_outcomes(impact, tc, n_grids, *, step_tol, max_steps, rule, tol, fewer=
     :func:`one_call` declines."""
     h_base = 2.0 ** math.floor(math.log2(tc)) * 2.0**-FLOOR_BITS
     rows, _ = _grid_rows(impact, tc, plate_kind(impact), h_base, n_grids, step_tol, max_steps, rule, tol,
-                         smooth_step(impact) if fewer else 0.0)
+                         smooth_step(impact, tc=tc) if fewer else 0.0)
     return rows
 
 
 def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol, smooth):
     """(rows, the exponential sums' relative error) of :func:`grid_outcomes`; rows None where declined.
     ``smooth``: :func:`smooth_step` (None: the impact's, cached with its tables), or 0 for all ``n_grids``."""
-    horizon, n_levels, tables, plate, soe_error, own, rate = _tables_for(impact, h_base, HORIZON_START, tol, kind)
+    horizon, n_levels, tables, plate, soe_error, own, rate, glassy = _tables_for(impact, h_base, HORIZON_START, tol,
+                                                                                 kind, tc)
     control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / separation_steps(rate, tc), 0.0)  # AdaptiveControl
     out = np.empty((max(GRIDS, n_grids), 11))
-    done = adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, _STOPS[rule],
-                          max_steps, START_LEVEL, INITIAL_SIZE, out, own if smooth is None else smooth)
+    stop = _stop(rule, glassy)
+    done = adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, stop, max_steps,
+                          START_LEVEL, INITIAL_SIZE, out, own if smooth is None else smooth)
     if not done:
         return None, soe_error
     return out[:done], soe_error

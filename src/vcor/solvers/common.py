@@ -171,7 +171,7 @@ def peak(t, y, f=None):
     return float(parabola_peak(np.asarray(t, dtype=float), np.asarray(y, dtype=float), y.size - 1))
 
 
-def separation(t, s, g, F, J, n_sep, rule, m, v0, still_plate=False):
+def separation(t, s, g, F, J, n_sep, rule, m, v0, still_plate=False, glassy=0.0):
     """Locate separation inside [t_{n-1}, t_n] and evaluate the outcome there.
 
     The crossing of F (rule "force"; of s when s also crossed in that step) or of s (rule "overlap")
@@ -179,6 +179,8 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0, still_plate=False):
     (third-order interpolation, error O(dt^4)); s, s', J are interpolated the same way, except s' of an
     elastic kernel (``F = k u``, ``u = sgn(s) |s|^(3/2)``) crossing s = 0 on a plate of constant mobility
     (``still_plate``): s'(t0) = v0 - J(t0)/m there, exactly (its ``F ~ |t - t0|^(3/2)`` is not smooth).
+    ``glassy`` (N m^-1.5): the kernel's finite k(0) (no Dirac term), or 0: a root of F is then located on
+    glassy u(s) + (F - glassy u) (``_separation.separation_point``).
     The interpolant equals the nodes, so the root is always bracketed in a march's separation step;
     anything else raises (no silent guess).
     Returns a dict of the scalars and ``message`` (empty).
@@ -190,7 +192,7 @@ def separation(t, s, g, F, J, n_sep, rule, m, v0, still_plate=False):
     u = np.sign(s) * np.abs(s) ** 1.5  # (every march's u; the paper's explicit one keeps none)
     nodes = tuple(Nodes(*(np.ascontiguousarray(a, dtype=float) for a in (t, s, g, F, J, u))))
     if not locate_separation(nodes, n, len(t), rule == "overlap", tuple(Body(0.0, float(m), float(v0))),
-                             bool(still_plate), out):
+                             bool(still_plate), float(glassy), out):
         # cannot happen for a march's separation step (the interpolant equals the nodes, and the
         # target was > 0 at step n - 1 and <= 0 at step n); loud rather than a silent guess
         by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])

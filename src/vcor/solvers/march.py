@@ -162,7 +162,8 @@ class March:
     """What a march leaves for :func:`finish`: the node ``arrays``, the ``state`` (``_records``), the
     last node ``n_done``, the step ``dt`` (s; the largest step on a variable grid), the time grid ``t``
     (None: uniform, dt n), a ``note`` for the message, the ``budget`` text of a step-budget verdict, the
-    solver's ``wall`` time (s) and the relative error of the exponential sums it used (0: none, or exact)."""
+    solver's ``wall`` time (s), the relative error of the exponential sums it used (0: none, or exact) and
+    the kernel's k(0) the separation is located with (``_records.Stop``; 0: on F itself)."""
 
     arrays: Arrays
     state: np.ndarray
@@ -173,6 +174,7 @@ class March:
     budget: str = ""
     wall: float = 0.0
     soe_error: float = 0.0
+    glassy: float = 0.0
 
 
 def finish(impact, march: March, *, rule, history, method):
@@ -184,7 +186,8 @@ def finish(impact, march: March, *, rule, history, method):
     res = Result(steps=n_done, wall_time=march.wall, dt=dt, method=method, soe_error=march.soe_error)
     status = int(state[STATUS])
     if status == STATUS_SEPARATED or (state[SEPARATION] >= 0 and n_done >= state[SEPARATION] + N_EXTRA):
-        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0, impact.mobility_is_constant)
+        out = separation(t, s, g, F, J, int(state[SEPARATION]), rule, m, v0, impact.mobility_is_constant,
+                         march.glassy)
         res.message = out.pop("message")
         res.__dict__.update(out)
         res.steps = int(state[SEPARATION])

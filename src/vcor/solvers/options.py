@@ -24,6 +24,7 @@ from ..checks import interned, shown
 from ..materials.expsums import MAX_SOE_TOL, MIN_SOE_TOL
 
 __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES",
+           "MIN_STEPS_PER_CONTACT",
            "OPTION_HELP", "OPTION_UNITS", "RTOL_MIN", "SUM_TOL", "SolverOptions", "solver_options"]
 
 #: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
@@ -40,6 +41,8 @@ METHOD_NAMES = ("adaptive", "direct", "ive", "ive-numba", "paper", "soe")
 DEFAULT_METHOD = "adaptive"
 #: methods marching with a fixed time step dt (they take dt, steps_per_contact, max_steps)
 FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
+#: the fewest fixed steps per contact-time estimate (steps_per_contact; a given dt likewise)
+MIN_STEPS_PER_CONTACT = 10
 #: methods whose solver is compiled by numba (the workflow compiles their kernels first, one job per
 #: method; vcor.study.kernels); ``ive`` is scipy's solve_ivp and compiles nothing
 COMPILED_METHODS = ("adaptive", "direct", "ive-numba", "paper", "soe")
@@ -70,10 +73,13 @@ _SPEC = {
                     "(full-history product integration, the paper's scheme, O(N^2)), soe (fixed step, exponential-sum "
                     "history), ive (internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal "
                     "variables, fixed step; Prony kernels), paper (explicit baseline for benchmarks)", METHOD_NAMES),
-    "dt": _spec(None, FIXED_STEP_METHODS, "time step, s (null: contact-time estimate / steps_per_contact)",
+    "dt": _spec(None, FIXED_STEP_METHODS, f"time step, s, at most the contact-time estimate / "
+                f"{MIN_STEPS_PER_CONTACT} (null: the estimate / steps_per_contact; give one of the two)",
                 bounds=("float", 0.0, math.inf, "(0, inf) s"), unit="s"),
-    "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, "automatic dt = contact-time estimate / this (integer >= 10)",
-                               bounds=("int", 10, math.inf, "an integer >= 10"), unit="1"),
+    "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, f"automatic dt = contact-time estimate / this (integer >= "
+                               f"{MIN_STEPS_PER_CONTACT})",
+                               bounds=("int", MIN_STEPS_PER_CONTACT, math.inf,
+                                       f"an integer >= {MIN_STEPS_PER_CONTACT}"), unit="1"),
     "max_steps": _spec(200_000, FIXED_STEP_METHODS + ("ive",), "step budget (integer >= 100): of the fixed-step "
                        "march (4000000 for soe and ive-numba, whose cost is linear in the steps), and of solve_ivp's "
                        "steps for ive (60000, counted as calls of its event over every horizon, a doubled horizon "
@@ -195,6 +201,9 @@ class SolverOptions:
                     raise ValueError(f"solver option {name} must be {text if kind == 'int' else 'in ' + text}, "
                                      f"got {value!r}")
                 values[name] = v
+        if values["dt"] is not None and values["steps_per_contact"] is not None:
+            raise ValueError(f"solver options dt = {values['dt']!r} s and steps_per_contact = "
+                             f"{values['steps_per_contact']!r} both set the time step: give one of them")
         # 2. options the method ignores are errors, not silently dropped
         method = values["method"]
         for name, value in values.items():
@@ -211,7 +220,8 @@ class SolverOptions:
         # 3. fill the method's defaults; everything it does not use stays None
         for name, value in values.items():
             spec = _SPEC[name]
-            used = method in spec["methods"] and not (name == "c2" and not values["volterra"])
+            used = (method in spec["methods"] and not (name == "c2" and not values["volterra"])
+                    and not (name == "steps_per_contact" and values["dt"] is not None))  # (dt sets the step)
             if used and value is None:
                 values[name] = spec["method_defaults"].get(method, spec["default"])
         for name, value in values.items():
@@ -224,6 +234,10 @@ class SolverOptions:
     def replace(self, **changes) -> SolverOptions:
         """A copy with ``changes``; options the new method does not use are dropped first."""
         d = self.to_dict()
+        if changes.get("dt") is not None:
+            d["steps_per_contact"] = None  # (one of them sets the step)
+        if changes.get("steps_per_contact") is not None:
+            d["dt"] = None
         d.update(changes)
         method = d["method"]
         for name in list(d):

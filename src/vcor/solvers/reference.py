@@ -75,6 +75,7 @@ from scipy.optimize import brentq
 
 from ..materials.expsums import soe
 from . import adaptive as _adaptive
+from .nearly_elastic import glassy_stiffness
 
 __all__ = [
     "OUTCOME",
@@ -249,12 +250,13 @@ class SeparationWatch:
         return self.n_sep is not None and n >= self.n_sep + N_EXTRA
 
 
-def _outcome(impact, nodes, n_sep, rule):
-    """The node arrays, the separation index and the separation scalars of a finished march."""
+def _outcome(impact, nodes, n_sep, rule, glassy=0.0):
+    """The node arrays, the separation index and the separation scalars of a finished march (``glassy``:
+    :func:`separation_reference`)."""
     out = nodes.arrays()
     out["n_sep"] = n_sep
     out.update(separation_reference(out["t"], out["s"], out["g"], out["F"], out["J"], n_sep, rule,
-                                    impact.m, impact.v0, impact.mobility_is_constant))
+                                    impact.m, impact.v0, impact.mobility_is_constant, glassy))
     return out
 
 
@@ -800,7 +802,11 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
         nodes.append(t_n, s, g, F, J, u)
         levels.append(level)
         if watch.update(n, s, F):
-            out = _outcome(impact, nodes, watch.n_sep, rule)
+            out = _outcome(impact, nodes, watch.n_sep, rule,
+                           glassy_stiffness(impact, tc))
+            if rule == "force":  # s'(t0) = z'0 - alpha'(t0) J(t0) where F(t0) = 0 (the method's COR)
+                z0 = out["sphere_velocity"]
+                out["cor"] = abs(z0 - mobility(out["t0"])[1] * body.m * (body.v0 - z0)) / body.v0
             out.update(levels=np.array(levels), rejected=rejected)
             return out
         if error is not None and watch.n_sep is None:
@@ -860,7 +866,7 @@ def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_t
     first = adaptive_reference(impact, tc, step_tol, rule, soe_tol=soe_tol)
     plan = first["levels"][: first["n_sep"] + N_EXTRA]
     largest = float(np.max(np.diff(first["t"])))
-    rates = smooth_kernel_rates(impact)
+    rates = None if glassy_stiffness(impact, tc) else smooth_kernel_rates(impact)  # (nearly elastic)
     smooth = rates is not None and max(rates, default=0.0) * largest <= _adaptive.RESOLVED_DECAY
     replays = _adaptive.SPLIT_LEVELS - 1 if smooth else _adaptive.SPLIT_LEVELS
     grids = [first] + [adaptive_reference(impact, tc, step_tol, rule, np.repeat(plan, 2**k), k, soe_tol)
@@ -874,7 +880,7 @@ def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_t
 # ---------------------------------------------------------------------------------------------------
 # separation
 # ---------------------------------------------------------------------------------------------------
-def separation_reference(t, s, g, F, J, n, rule, m, v0, still_plate=False):
+def separation_reference(t, s, g, F, J, n, rule, m, v0, still_plate=False, glassy=0.0):
     """Separation inside [t_{n-1}, t_n] and the outcome there (``_separation.separation_point``).
 
     Parameters
@@ -886,13 +892,16 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0, still_plate=False):
     rule : {"force", "overlap"}
     m, v0 : float
         Sphere mass (kg) and impact speed (m/s).
+    glassy : float
+        The kernel's finite k(0) without a Dirac term (N m^-1.5), or 0.
 
     Returns
     -------
     dict with the names of OUTCOME:
         t0 (s), the root in [t_{n-1}, t_n] of the cubic through the nodes lo..lo + 3
         (lo = max(0, min(n - 2, len(t) - 4))) of F, or of s for rule "overlap" or when s too
-        crossed zero in step n; s_residual = s(t0) (m), g0 = s'(t0) and J0 = J(t0) by the same
+        crossed zero in step n and ``glassy`` is 0; with ``glassy``, of F as glassy u(s(t)) + R(t), s and
+        R = F - glassy u by their cubics; s_residual = s(t0) (m), g0 = s'(t0) and J0 = J(t0) by the same
         cubics, except g0 when s crossed zero with F proportional to u = sgn(s)|s|^{3/2} on the
         nodes (an elastic kernel, to 1e-9) on a plate of constant mobility (``still_plate``):
         g0 = v0 - J0/m, the model's s' at F = 0;
@@ -903,23 +912,35 @@ def separation_reference(t, s, g, F, J, n, rule, m, v0, still_plate=False):
         largest of samples 0..n, refined by the parabola through it and its neighbours.
     """
     t, s, g, F, J = (np.asarray(a, dtype=float) for a in (t, s, g, F, J))
-    by_overlap = rule == "overlap" or (s[n] <= 0.0 < s[n - 1])
     lo = max(0, min(n - 2, t.size - 4))
     window = slice(lo, lo + 4)
 
     def cubic(y):
         return Polynomial.fit(t[window], y[window], 3)
 
-    target = cubic(s if by_overlap else F)
+    def hertz(x):
+        return np.sign(x) * np.abs(x) ** 1.5
+
+    u = hertz(s[window])
+    ref = int(np.argmax(np.abs(u)))
+    elastic = u[ref] != 0.0 and np.max(np.abs(F[window] - F[window][ref] / u[ref] * u)) <= 1e-9 * abs(F[window][ref])
+    glassy = 0.0 if rule == "overlap" else glassy
+    by_overlap = rule == "overlap" or (glassy == 0.0 and s[n] <= 0.0 < s[n - 1])
+
+    if by_overlap or glassy == 0.0:
+        target = cubic(s if by_overlap else F)
+    else:
+        s_cubic, rest = cubic(s), cubic(F - glassy * hertz(s))
+
+        def target(x):
+            return glassy * hertz(s_cubic(x)) + rest(x)
+
     a, b = t[n - 1], t[n]
     if not target(a) > 0.0 >= target(b):
         raise RuntimeError(f"separation step {n}: the target does not change sign")
     t0 = b if target(b) == 0.0 else brentq(target, a, b, xtol=1e-18 * b, rtol=_RTOL, maxiter=500)
     s0, g0, J0 = (float(cubic(y)(t0)) for y in (s, g, J))
-    u = np.sign(s[window]) * np.abs(s[window]) ** 1.5
-    ref = int(np.argmax(np.abs(u)))
-    if (by_overlap and still_plate and u[ref] != 0.0
-            and np.max(np.abs(F[window] - F[window][ref] / u[ref] * u)) <= 1e-9 * abs(F[window][ref])):
+    if by_overlap and still_plate and elastic:
         g0 = v0 - J0 / m
     F0 = 0.0 if rule == "force" else float(cubic(F)(t0))
     z0 = v0 - J0 / m

@@ -21,7 +21,7 @@ from ..fitting.calibrate import check_spec
 from ..fitting.spec import check_fit_spec, expand_fits
 from ..materials.catalogue import Catalogue
 from ..materials.presets import PRESETS
-from ..materials.specs import from_spec
+from ..materials.specs import canonical, from_spec
 from ..plots import AXIS_OPTIONS, FIGURE_OPTIONS, NEEDS_AXIS, needs, options_of
 from ..solvers.applicability import refusal
 from ..solvers.options import METHOD_NAMES, solver_options
@@ -126,6 +126,7 @@ def _catalogue(config: dict, base_dir: Path) -> Catalogue:
     _check_names("calibrations", calibrations, {"preset": PRESETS, "fit": fits, "config material": specs})
     for name, spec in specs.items():
         from_spec(spec, name=name, base_dir=base_dir)
+    specs = {name: canonical(spec) for name, spec in specs.items()}  # 5000000 and 5.0e+6: one spec
     for name, spec in fits.items():
         check_fit_spec(spec, base_dir=base_dir, where=f"fits.{name}")
     catalogue = Catalogue(specs=specs, fits=fits, calibrations=calibrations,

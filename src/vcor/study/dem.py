@@ -36,7 +36,7 @@ from ..materials.shift import at_temperature
 from ..materials.specs import from_spec, shift_function
 from ..solvers.applicability import refusal
 from ..solvers.options import DEFAULT_METHOD, solver_options
-from .grid import axis_values
+from .grid import axis_error, axis_values, first_below
 
 __all__ = ["DEM_KEYS", "check_dem", "dem_material", "entry_models", "hereditary_refusal", "run_dem", "solver_method"]
 
@@ -135,11 +135,11 @@ def _speeds(spec, where):
     try:
         v0 = axis_values(spec["v0"])
     except (ValueError, KeyError, TypeError) as exc:
-        raise ValueError(f"{where}.v0: {exc}") from None
+        raise ValueError(axis_error(f"{where}.v0", exc)) from None
     if isinstance(spec["v0"], dict) and float(spec["v0"]["stop"]) <= float(spec["v0"]["start"]):
         raise ValueError(f"{where}.v0: a range from low to high speed (stop > start), got {spec['v0']!r}")
     if v0[0] <= 0:
-        raise ValueError(f"{where}.v0: impact speeds must be > 0 m/s, got {v0[0]}")
+        raise ValueError(f"{where}.v0{first_below(spec['v0'], 0.0)}: impact speeds must be > 0 m/s, got {v0[0]}")
     if len(v0) < 2:
         raise ValueError(f"{where}.v0: at least two speeds (the laws are fitted over a range), got {v0}")
     return v0

@@ -36,10 +36,12 @@ __all__ = [
     "ROLES",
     "Axis",
     "Grid",
+    "axis_error",
     "axis_length",
     "axis_role",
     "axis_values",
     "canon",
+    "first_below",
     "point_key",
 ]
 
@@ -106,14 +108,15 @@ def canon(v) -> float:
 
 
 def _finite(what, v) -> float:
+    said = f"{what}: must" if what.startswith("[") else f"{what} must"  # an element: "[2]: must" (axis_error)
     if isinstance(v, (bool, str, bytes)) or v is None:
-        raise ValueError(f"{what} must be a finite number, got {v!r}")
+        raise ValueError(f"{said} be a finite number, got {v!r}")
     try:
         x = float(v)
     except (TypeError, ValueError, OverflowError):
-        raise ValueError(f"{what} must be a finite number, got {v!r}") from None
+        raise ValueError(f"{said} be a finite number, got {v!r}") from None
     if not math.isfinite(x):
-        raise ValueError(f"{what} must be a finite number, got {x!r}")
+        raise ValueError(f"{said} be a finite number, got {x!r}")
     return x
 
 
@@ -150,12 +153,28 @@ def axis_length(spec) -> int:
     if isinstance(spec, (str, bytes)) or not isinstance(spec, (list, tuple, np.ndarray, int, float)):
         raise ValueError(f"an axis is a list of numbers or a range {{start, stop, step}} / "
                          f"{{start, stop, num[, log]}}, got {spec!r}")
-    values = list(np.atleast_1d(spec))
+    # a list as it is: numpy would turn [1, "3 m/s"] into text throughout
+    values = list(spec) if isinstance(spec, (list, tuple)) else list(np.atleast_1d(spec))
     if not values:
         raise ValueError("the axis is empty (give at least one value)")
-    for v in values:
-        _finite("value", v)
+    for i, v in enumerate(values):
+        _finite(f"[{i}]", v)
     return len(values)
+
+
+def axis_error(name: str, exc: Exception) -> str:
+    """The message of an axis spec's ValueError ``exc`` under the axis' ``name`` (or path): ``v0[2]: must be
+    ...`` for an element's, ``v0: ...`` for the axis'."""
+    said = str(exc)
+    return f"{name}{said}" if said.startswith("[") else f"{name}: {said}"
+
+
+def first_below(spec, bound: float) -> str:
+    """``[i]``, the index of the first element of a listed axis ``spec`` at or below ``bound``; "" for a range
+    or where none is (the axis' own checks have passed: every element is a finite number)."""
+    if isinstance(spec, dict):
+        return ""
+    return next((f"[{i}]" for i, v in enumerate(np.atleast_1d(spec)) if float(v) <= bound), "")
 
 
 def axis_values(spec) -> list[float]:
@@ -262,7 +281,7 @@ class Grid:
             try:
                 axes.append(Axis.of(name, axis_values(values)))
             except ValueError as exc:
-                raise ValueError(f"{name}: {exc}") from None
+                raise ValueError(axis_error(name, exc)) from None
         if samples is not None:
             axes.append(Axis.of("sample", [float(k) for k in range(samples)]))
         return cls(materials=tuple(scene.get("materials") or ()), axes=tuple(axes))

@@ -71,8 +71,8 @@ def _error_estimate(res, material, v0, opts, geometry) -> dict:
         if fine.ok:
             out["cor_err"], out["t0_err"] = abs(res.cor - fine.cor), abs(res.t0 - fine.t0)
     else:
-        fine, status, message = _status.guarded(simulate, material, v0, options={**opts, "dt": res.dt / 2},
-                                                **geometry)
+        halved = {**opts, "dt": res.dt / 2, "steps_per_contact": None}  # (dt and steps_per_contact: one of them)
+        fine, status, message = _status.guarded(simulate, material, v0, options=halved, **geometry)
         if fine is None:
             return {**out, "error_status": status, "error_message": message}
         if fine.ok:

@@ -30,7 +30,7 @@ from ..contact.impact import GEOMETRY_AXES, make_impact
 from ..materials.catalogue import Catalogue
 from ..solvers.applicability import refusal
 from ..solvers.options import SolverOptions
-from .grid import AXIS_UNITS, MAX_AXIS_VALUES, Grid, axis_length, axis_role, axis_values, canon
+from .grid import AXIS_UNITS, MAX_AXIS_VALUES, Grid, axis_error, axis_length, axis_role, axis_values, canon, first_below
 from .uncertainty import sample_material, samples_file, uncertainty_of
 
 __all__ = [
@@ -79,7 +79,7 @@ def point_count(scene) -> int:
         try:
             n *= axis_length(v)
         except ValueError as exc:
-            raise ValueError(f"{k}: {exc}") from None
+            raise ValueError(axis_error(k, exc)) from None
     spec = scene.get("uncertainty")
     if isinstance(spec, dict) and isinstance(spec.get("bootstrap"), int):
         n *= max(int(spec["bootstrap"]), 1)
@@ -235,7 +235,8 @@ def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None, g
                              else f"{where}.grid: {exc}") from None
     v0 = grid.axis("v0").values
     if v0[0] <= 0:
-        raise ValueError(f"{where}.grid.v0: impact speeds must be > 0 m/s, got {v0[0]}")
+        at = first_below(scene["grid"]["v0"], 0.0)
+        raise ValueError(f"{where}.grid.v0{at}: impact speeds must be > 0 m/s, got {v0[0]}")
     _check_bodies(where, scene, grid)
     _check_body_materials(where, scene, catalogue)
     _check_axis_names(where, scene, grid, catalogue)
@@ -248,9 +249,10 @@ def validate_scene(name: str, scene: dict, catalogue: Catalogue | None = None, g
 
 def check_temperature_axis(name: str, scene: dict, catalogue: Catalogue, grid: Grid) -> None:
     """A grid axis T (deg C) needs every material of the scene to have a shift function (a config
-    material with ``shift:``, valid at the axis' ends, or a fit to raw multi-temperature data, whose
-    shift function is known only after the fit: a T outside its range is then that point's
-    invalid-input status); ValueError naming the key otherwise."""
+    material with ``shift:``, valid at the axis' ends, or a fit to raw multi-temperature data: a table
+    valid on its sets' temperatures, :func:`_check_table_range`; a fitted WLF or Arrhenius function is known
+    only after the fit, and a T outside its range is then that point's invalid-input status); ValueError
+    naming the key otherwise."""
     if "T" not in grid.names:
         return
     temps = grid.axis("T").values
@@ -258,6 +260,7 @@ def check_temperature_axis(name: str, scene: dict, catalogue: Catalogue, grid: G
         fitted = catalogue.source(mat) == "fit"
         data = (catalogue.fits[mat].get("data") or {}) if fitted else {}
         if "file" in data and ("shift_file" in data or _raw_sets(catalogue, data["file"])):
+            _check_table_range(f"scenes.{name}.grid.T", mat, data, catalogue, (temps[0], temps[-1]))
             continue
         shift = None if fitted else catalogue.shift(mat)
         if shift is None:
@@ -272,6 +275,32 @@ def check_temperature_axis(name: str, scene: dict, catalogue: Catalogue, grid: G
                 shift.log_aT(T)
             except ValueError as exc:
                 raise ValueError(f"scenes.{name}.grid.T: material {mat!r}: {exc}") from None
+
+
+def _check_table_range(where: str, mat: str, data: dict, catalogue: Catalogue, ends) -> None:
+    """A fit to raw sets whose shift function is a table (``shift_model: table``, the default) is valid on its
+    sets' temperatures (the means of their T columns) +- TABLE_TOLERANCE, known from the data file before the
+    fit: ValueError naming ``where`` for an end of the axis (``ends``, deg C) outside. A fitted WLF or
+    Arrhenius function's range follows from its fitted constants: a T outside it is that point's
+    invalid-input status. An unreadable file is left to the fit's own check."""
+    from pathlib import Path
+
+    from ..fitting.dma.data import read_table
+    from ..fitting.dma.sets import split_sets
+    from ..fitting.spec import SHIFT_MODELS
+    from ..materials.shift import TABLE_TOLERANCE
+
+    if data.get("shift_model", SHIFT_MODELS[0]) != "table":
+        return
+    try:
+        temps = [s.T for s in split_sets(read_table(Path(catalogue.base_dir) / data["file"]))]
+    except (OSError, ValueError):
+        return
+    lo, hi = min(temps) - TABLE_TOLERANCE, max(temps) + TABLE_TOLERANCE
+    for T in ends:
+        if not lo <= T <= hi:
+            raise ValueError(f"{where}: fit {mat!r}: temperature T must be in [{lo:g}, {hi:g}] deg C, its data's "
+                             f"sets' range (shift_model table is not extrapolated; wlf or arrhenius is), got {T:g}")
 
 
 def _raw_sets(catalogue: Catalogue, file: str) -> bool:

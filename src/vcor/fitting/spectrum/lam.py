@@ -93,6 +93,19 @@ def _one_se(problem, scan, sols, i, N):
     return math.exp(b_), th_b
 
 
+def _edge_note(lam: str, value: float, largest: bool) -> str:
+    """The fit's note when ``lam`` chose an end of LAM_GRID (``value``; the ``largest`` or the smallest):
+    what it says of the data. The fit stands at that lambda; an end of the grid's ten decades means data that
+    ask for more smoothing than its largest value (very noisy) or less than its smallest (noise-free, e.g.
+    synthetic)."""
+    scanned = f"{LAM_GRID[0]:.0e}..{LAM_GRID[-1]:.0e}"
+    if largest:
+        return (f"lambda by {lam}: {value:.3g}, the largest of the scanned {scanned}: the data ask for at least "
+                f"this much smoothing (very noisy data?); the fit is the smoothest of the scan")
+    return (f"lambda by {lam}: {value:.3g}, the smallest of the scanned {scanned}: the data ask for no more "
+            f"smoothing than this (noise-free data, e.g. synthetic); the fit follows them that closely")
+
+
 def _by_name(problem, th, lam, notes):
     """(lam, theta, scan) for a lambda chosen by name (module docstring)."""
     scan, sols = _scan(problem, th)
@@ -100,7 +113,7 @@ def _by_name(problem, th, lam, notes):
     N = problem.data_residual(sols[-1]).size
     i = _lcurve_corner(scan) if lam == "lcurve" else int(np.argmin(scan["gcv"]))
     if i in (0, L.size - 1):
-        notes.append(f"{lam} chose the edge of lam_grid ({L[i]:.3g}); widen the grid")
+        notes.append(_edge_note(lam, float(L[i]), i == 0))
     lam_used, th = float(L[i]), sols[i]
     if lam == "gcv" and 0 < i < L.size - 1:
         lam_used, th = _parabola(problem, scan, i, th)
