@@ -14,7 +14,7 @@ import yaml
 import vcor
 from vcor import materials as M
 from vcor import spheres as S
-from vcor.fitting import dma, fits, spec
+from vcor.fitting import calibrate, dma, fits, spec
 from vcor.fitting import prony as fit
 from vcor.solvers.options import METHOD_NAMES
 from vcor.study import scene
@@ -248,6 +248,13 @@ ROWS = [
     ("fit: measured data without T_ref", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv"}}, base_dir=ROOT, where="fits.x"),
      ["fits.x.data.T_ref missing: the master curve's reference temperature (deg C)"]),
+    ("calibrate: COR data of unequal lengths", lambda: calibrate.CorData(v0=[1.0, 2.0], cor=[0.5]),
+     ["CorData: v0, cor (and cor_std) need one value per impact, got lengths [2, 1]"]),
+    ("calibrate: a NaN COR", lambda: calibrate.CorData(v0=[1.0, 2.0], cor=[0.5, math.nan]),
+     ["CorData.cor[1]: a COR must be in (0, 1], got nan"]),
+    ("calibrate: a COR above 1", lambda: calibrate.CorData(v0=[1.0], cor=[1.2]), ["CorData.cor[0]", "(0, 1]", "1.2"]),
+    ("calibrate: a zero standard deviation", lambda: calibrate.CorData(v0=[1.0], cor=[0.5], cor_std=[0.0]),
+     ["CorData.cor_std[0]: a standard deviation must be > 0, got 0.0"]),
     ("simulate: dt and steps_per_contact both given", lambda: vcor.simulate(
         "sls", 1.0, method="direct", dt=1e-7, steps_per_contact=100),
      ["dt = 1e-07 s and steps_per_contact = 100 both set the time step: give one of them"]),

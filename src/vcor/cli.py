@@ -228,10 +228,19 @@ def impact_options() -> list:
     return _add_impact(argparse.ArgumentParser().add_subparsers())
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose refusals are one line (the message, then where the options are listed), as
+    vcor's own refusals, instead of argparse's usage block first; exit code 2. Its subcommands' parsers
+    are of the same class (argparse makes them with the parent's)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (options: {self.prog} -h)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser; the solver flags come from :class:`vcor.solvers.options.SolverOptions`."""
-    p = argparse.ArgumentParser(prog="vcor", description="vcor: the viscoelastic coefficient of restitution. "
-                                "SI units throughout.")
+    p = _OneLineParser(prog="vcor", description="vcor: the viscoelastic coefficient of restitution. "
+                      "SI units throughout.")
     p.add_argument("--version", action="version", version=f"vcor {__version__}")
     sub = p.add_subparsers(dest="command", required=True,
                            metavar="{impact,materials,export,lammps-plugin," + ",".join(STUDY_COMMANDS) + "}")

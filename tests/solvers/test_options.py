@@ -2,6 +2,7 @@
 defaults and allowed values from ``vcor.solvers.options.SolverOptions``."""
 
 import dataclasses
+import json
 from pathlib import Path
 
 import pytest
@@ -128,8 +129,13 @@ def test_defaults_are_filled_for_the_method_and_unused_options_stay_unset():
         solver_options({"stepsize": 1e-7})
 
 
-def test_simulate_records_the_resolved_options():
+def test_a_sweep_records_the_resolved_options():
+    """Keywords and a SolverOptions give one run; a sweep dataset records the resolved options whole
+    (``solver_settings``), every option the method does not use as None."""
     res = vcor.simulate("sls", 1.0, method="ive", rtol=1e-8)
-    assert res.ok
+    assert res.ok and res.method.startswith("ive")
     res2 = vcor.simulate("sls", 1.0, options=SolverOptions(method="ive", rtol=1e-8))
     assert res2.cor == res.cor
+    ds = vcor.sweep({"materials": ["sls"], "grid": {"v0": [1.0]}, "solver": {"method": "ive", "rtol": 1e-8}},
+                    workers=1, progress=False)
+    assert json.loads(ds.attrs["solver_settings"])["solver"] == SolverOptions(method="ive", rtol=1e-8).to_dict()

@@ -40,14 +40,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io.csvfile import cell_number, data_rows, read_rows, units_row
-from ..io.csvfile import header as column_names
 from ..materials import REGISTRY
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
 from ..materials.specs import from_spec
 from ..solvers import validity as _validity
 from ..solvers.common import UNITS
+from .cor_data import CorData, read_cor_data
 
 __all__ = ["COND_LIMIT", "Calibration", "CorData", "band", "calibrate", "calibration_dataset", "check_spec",
            "read_cor_data", "run_calibration", "scaled"]
@@ -62,55 +61,8 @@ FACTOR_LIMIT = 10.0
 DIFF_STEP = 1e-4
 #: keys of a calibration spec
 SPEC_KEYS = {"data", "material", "free", "geometry", "solver"}
-_UNITS = {"v0": {"m/s": 1.0, "cm/s": 0.01}, "cor": {"-": 1.0, "": 1.0, "1": 1.0},
-          "cor_std": {"-": 1.0, "": 1.0, "1": 1.0}}
 #: residual of a trial point the material refuses (large against any COR misfit)
 _REFUSED = 10.0
-
-
-@dataclass(frozen=True)
-class CorData:
-    """Measured COR: impact speeds ``v0`` (m/s), ``cor``, optional standard deviations ``cor_std``,
-    the file and the line of each point."""
-
-    v0: np.ndarray
-    cor: np.ndarray
-    cor_std: np.ndarray | None = None
-    path: str = "data"
-    lines: tuple = ()
-
-
-def read_cor_data(path, what: str = "COR data file") -> CorData:
-    """Read ``v0,cor[,cor_std]`` (module docstring); every error names the file (a missing one as ``what``),
-    the line and the column: a missing or unknown column, a non-numeric or non-finite cell (NaN), v0 <= 0,
-    a COR outside (0, 1], cor_std <= 0."""
-    rows = read_rows(path, what)
-    header = column_names(path, rows)
-    for col in ("v0", "cor"):
-        if col not in header:
-            raise ValueError(f"{path}, line 1: missing column {col!r} (columns: v0, cor, optional cor_std), "
-                             f"got {header}")
-    unknown = [c for c in header if c not in _UNITS]
-    if unknown:
-        raise ValueError(f"{path}, line 1, column {unknown[0]!r}: unknown column; allowed: v0, cor, cor_std")
-    scale, start = units_row(path, rows, header, _UNITS, dict.fromkeys(header, 1.0))
-    cols, lines = {c: [] for c in header}, []
-    for lineno, row in data_rows(path, rows, header, start):
-        for col, cell in zip(header, row):
-            value = cell_number(path, lineno, col, cell) * scale[col]
-            where = f"{path}, line {lineno}, column {col!r}"
-            if col == "v0" and not value > 0:
-                raise ValueError(f"{where}: impact speed must be > 0 m/s, got {cell.strip()}")
-            if col == "cor" and not 0 < value <= 1:
-                raise ValueError(f"{where}: a COR must be in (0, 1], got {cell.strip()}")
-            if col == "cor_std" and not value > 0:
-                raise ValueError(f"{where}: cor_std must be > 0, got {cell.strip()}")
-            cols[col].append(value)
-        lines.append(lineno)
-    if not lines:
-        raise ValueError(f"{path}: no data rows")
-    std = np.array(cols["cor_std"]) if "cor_std" in cols else None
-    return CorData(np.array(cols["v0"]), np.array(cols["cor"]), std, str(path), tuple(lines))
 
 
 def scaled(material, modulus_scale: float = 1.0, log_aT: float = 0.0):
