@@ -132,10 +132,15 @@ def separation_point(nodes, n, lo, by_overlap, force_rule, body, still_plate, gl
     y = s if by_overlap else F
     split = 0.0 if by_overlap else glassy
     cs = _divided(tn, s[lo:lo + 4])
-    rest = F[lo:lo + 4].copy()
-    for j in range(4):
-        rest[j] -= split * _hertz(s[lo + j])
-    c = cs if by_overlap else _divided(tn, rest)
+    if by_overlap:
+        c = cs
+    elif split == 0.0:
+        c = _divided(tn, F[lo:lo + 4])
+    else:
+        rest = F[lo:lo + 4].copy()
+        for j in range(4):
+            rest[j] -= split * _hertz(s[lo + j])
+        c = _divided(tn, rest)
     a = t[n - 1]
     b = t[n]
     fa = _force_value(c, cs, split, tn, a)
