@@ -262,6 +262,12 @@ ROWS = [
      ["dt must be in (0, 0.0002739] s (at least 10 steps per contact-time estimate", "got 0.001"]),
     ("simulate: a rigid target with rigid=False", lambda: vcor.simulate("sls", 1.0, target="rigid", rigid=False),
      ["target 'rigid' with rigid=False: give one of them"]),
+    ("config: an empty grid axis", lambda: _validate(_config_with(
+        lambda c: c.update(scenes={"s": {"materials": ["sls"], "grid": {"v0": []}}}))),
+     ["scenes.s.grid.v0: the list is empty; give at least 1 value(s)"]),
+    ("config: a length written with its unit", lambda: _validate(_config_with(
+        lambda c: c.update(scenes={"s": {"materials": ["sls"], "grid": {"v0": [1.0]}, "geometry": {"r": "3 mm"}}}))),
+     ["scenes.s.geometry.r: expected a number (in m, > 0), got '3 mm'"]),
     ("config: a negative speed in a listed grid axis is named by its index", lambda: _validate(_config_with(
         lambda c: c.update(scenes={"s": {"materials": ["sls"], "grid": {"v0": [1.0, -3.0, 10.0]}}}))),
      ["scenes.s.grid.v0[1]: impact speeds must be > 0 m/s, got -3"]),

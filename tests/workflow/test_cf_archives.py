@@ -160,5 +160,6 @@ def test_a_key_given_twice_stops_the_run_before_any_job(make_project, smk, tmp_p
                                   "    grid: {v0: [1.0]}\n")
     out = smk(path, "-n", "--configfile", "my.yaml", check=False)
     said = out.stdout + out.stderr
-    assert out.returncode != 0 and "my.yaml, line 4, column 5: key 'materials' is given twice" in said, said
+    # named as given, relative to the project (Snakemake keeps --configfile paths absolute)
+    assert out.returncode != 0 and "config file my.yaml, line 4, column 5: key 'materials' is given twice" in said, said
     assert not (path / "results").exists()

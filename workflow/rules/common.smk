@@ -30,7 +30,7 @@ SCHEMA = Path(workflow.basedir) / "workflow" / "schemas" / "config.schema.yaml"
 # (configfile: and --configfile) is read again strictly, so that a repeated key stops the run
 for _path in workflow.configfiles:
     try:
-        vyamlfile.load_yaml(_path, what="config file")
+        vyamlfile.load_yaml(vyamlplace.shown(_path), what="config file")
     except ValueError as exc:
         raise WorkflowError(str(exc)) from None
 try:

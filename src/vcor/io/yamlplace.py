@@ -21,7 +21,7 @@ import contextlib
 import re
 from pathlib import Path
 
-__all__ = ["key_path", "locate", "located"]
+__all__ = ["key_path", "locate", "located", "shown"]
 
 
 _PATH = r"[^\[\]]+(\[\d+\]|\.[^.\[\]]+)*"
@@ -105,6 +105,12 @@ def located(message: str, files) -> str:
     if best is None:
         return message
     path, (line, column) = best
-    with contextlib.suppress(ValueError):  # relative to the working directory (Snakemake keeps them absolute)
-        path = Path(path).resolve().relative_to(Path.cwd().resolve())
-    return f"config file {path}, line {line}, column {column}: {message}"
+    return f"config file {shown(path)}, line {line}, column {column}: {message}"
+
+
+def shown(path) -> Path:
+    """``path`` as a message shows it: relative to the working directory where it is inside it (Snakemake
+    keeps its config files' paths absolute), else as it is."""
+    with contextlib.suppress(ValueError):
+        return Path(path).resolve().relative_to(Path.cwd().resolve())
+    return Path(path)

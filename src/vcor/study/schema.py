@@ -188,6 +188,15 @@ def _alternatives(error):
     return near
 
 
+def _unit_range(sub: dict) -> str:
+    """" in m, > 0" for a property whose schema names its unit (its "units" annotation) and bounds; ""
+    without: what a number there must be, in SI without a unit of its own (a value such as '3 mm' is text)."""
+    limits = {"exclusiveMinimum": ">", "minimum": ">=", "maximum": "<=", "exclusiveMaximum": "<"}
+    bounds = [f"{limits[k]} {sub[k]}" for k in limits if k in sub]
+    said = ", ".join(([f"in {sub['units']}"] if sub.get("units") else []) + bounds)
+    return f" ({said})" if said else ""
+
+
 def explain(error, schema: dict) -> str:
     """One line for a jsonschema ``ValidationError`` (module docstring)."""
     where, given, rule = _where(error.absolute_path), error.instance, error.validator
@@ -219,11 +228,14 @@ def explain(error, schema: dict) -> str:
     if rule == "const":
         return f"{where}: {_short(given)} is not allowed; allowed: {error.validator_value!r}"
     if rule == "type":
-        return f"{where}: expected {_form({'type': error.validator_value})}, got {_short(given)}{text_hint(given)}"
+        return (f"{where}: expected {_form({'type': error.validator_value})}{_unit_range(sub)}, got {_short(given)}"
+                f"{text_hint(given)}")
     limits = {"minimum": ">=", "maximum": "<=", "exclusiveMinimum": ">", "exclusiveMaximum": "<"}
     if rule in limits:  # with the property's unit, where the schema names one (its "units" annotation)
         unit = f" {sub['units']}" if sub.get("units") else ""
         return f"{where}: must be {limits[rule]} {error.validator_value}{unit}, got {_short(given)}{unit}"
+    if rule == "minItems" and given == []:
+        return f"{where}: the list is empty; give at least {error.validator_value} value(s)"
     if rule in ("minItems", "maxItems", "minProperties", "maxProperties"):
         what = "item" if "Items" in rule else "entry"
         bound = "at least" if rule.startswith("min") else "at most"
