@@ -5,33 +5,34 @@ Benchmarks and tests use :func:`compiled_signatures` to check that no kernel is 
 literal argument in a call from another kernel, e.g. a constant 0 or True, makes numba compile a
 second copy, ~1 s of compile per process for the adaptive march).
 
-Compiled kernels are cached on disk (numba's ``cache=True``: ``NUMBA_CACHE_DIR`` when set, otherwise
-``__pycache__`` beside the modules). With an empty cache, parallel workflow jobs would each compile
-the same kernels (~7 s for the adaptive method, ~11 s for every method). :func:`load_kernels` runs
-one small impact per method a job uses while holding an exclusive lock on that method's file in the
-cache folder: the first job compiles a method's kernels and writes the cache, the others wait and
-then load them (~0.3 s); two jobs compile two different methods at the same time. (A kernel that two
-methods share may then be compiled twice; numba writes its cache files atomically.) The workflow
-also compiles each method in a job of its own (rule ``kernels``) before the jobs that use it, so
-that waiting for a compile leaves no core idle while jobs without kernels (fits) could run.
+Compiled kernels are cached on disk (numba's ``cache=True``, in a folder per version of the kernel sources
+inside ``NUMBA_CACHE_DIR`` when set, otherwise inside ``__pycache__`` beside the modules: ``_jit``). With an
+empty cache, parallel workflow jobs would each compile the same kernels (~7 s for the adaptive method, ~11 s
+for every method). :func:`load_kernels` runs one small impact per method a job uses while holding an exclusive
+lock on that method's file in the cache folder: the first job compiles a method's kernels and writes the
+cache, the others wait and then load them (~0.3 s); two jobs compile two different methods at the same time.
+(A kernel that two methods share may then be compiled twice; numba writes its cache files atomically.) The
+workflow also compiles each method in a job of its own (rule ``kernels``) before the jobs that use it, so that
+waiting for a compile leaves no core idle while jobs without kernels (fits) could run.
 """
 
 from __future__ import annotations
 
 import contextlib
 import fcntl
-import os
 import time
 from pathlib import Path
 
 import numba
 
-from . import _adaptive_kernels, _fixed_kernels, _separation, _step, erfcx
+from . import _adaptive_kernels, _fixed_kernels, _jit, _separation, _step, erfcx
 
-__all__ = ["KERNEL_MODULES", "cache_folder", "compiled_signatures", "load_kernels", "lock_name"]
+__all__ = ["KERNEL_MODULES", "KERNEL_SOURCES", "cache_folder", "compiled_signatures", "load_kernels", "lock_name"]
 
 #: the modules that hold numba kernels
 KERNEL_MODULES = (_step, _fixed_kernels, _adaptive_kernels, _separation, erfcx)
+#: the files whose hash names the kernels' cache folder (:func:`cache_folder`)
+KERNEL_SOURCES = _jit.KERNEL_SOURCES
 
 
 def compiled_signatures() -> dict[str, list]:
@@ -45,10 +46,9 @@ def compiled_signatures() -> dict[str, list]:
 
 
 def cache_folder() -> Path:
-    """Where numba caches vcor's kernels: ``NUMBA_CACHE_DIR`` when set, else ``__pycache__`` beside the
-    kernel modules."""
-    env = os.environ.get("NUMBA_CACHE_DIR")
-    return Path(env) if env else Path(_step.__file__).parent / "__pycache__"
+    """Where numba caches vcor's kernels (``_jit.cache_folder``: a folder per version of the kernel sources in
+    ``NUMBA_CACHE_DIR`` when set, else in ``__pycache__`` beside the kernel modules)."""
+    return _jit.cache_folder()
 
 
 def lock_name(method: str) -> str:
