@@ -248,6 +248,10 @@ ROWS = [
     ("fit: measured data without T_ref", lambda: spec.check_fit_spec(
         {"model": "prony", "data": {"file": "data/pyvisco/freq_user_raw.csv"}}, base_dir=ROOT, where="fits.x"),
      ["fits.x.data.T_ref missing: the master curve's reference temperature (deg C)"]),
+    ("calibrate: a COR data file that does not exist", lambda: vcor.calibrate(
+        {"data": "nothere.csv", "material": "sls", "free": {"beta": [100.0, 1e5]}}, name="c"),
+     ["calibration.data: the COR data file 'nothere.csv' does not exist in", "(the project folder, which relative "
+      "paths are taken from)"]),
     ("calibrate: COR data of unequal lengths", lambda: calibrate.CorData(v0=[1.0, 2.0], cor=[0.5]),
      ["CorData: v0, cor (and cor_std) need one value per impact, got lengths [2, 1]"]),
     ("calibrate: a NaN COR", lambda: calibrate.CorData(v0=[1.0, 2.0], cor=[0.5, math.nan]),

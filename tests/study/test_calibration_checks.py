@@ -136,8 +136,11 @@ def test_a_forward_model_that_fails_names_the_parameters_as_numbers(tmp_path, mo
 
 def test_a_missing_data_file_names_its_key(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    with pytest.raises(ValueError, match=r"^calibration\.data: the COR data file 'nope\.csv' does not exist$"):
+    folder = str(tmp_path.resolve())
+    with pytest.raises(ValueError) as refused:
         vcor.calibrate({**SPEC, "data": "nope.csv"})
+    assert str(refused.value) == (f"calibration.data: the COR data file 'nope.csv' does not exist in {folder!r} "
+                                  f"(the project folder, which relative paths are taken from)")
 
 
 @pytest.mark.parametrize("calibrations, message", [
