@@ -475,3 +475,17 @@ def test_an_unknown_option_is_refused_by_its_command_in_one_line(argv, capsys):
     err = capsys.readouterr().err
     assert stop.value.code == 2 and err.count("\n") == 1, err
     assert err == f"vcor {argv[0]}: error: unrecognized arguments: --bogus (options: vcor {argv[0]} -h)\n"
+
+
+def test_vcor_dem_says_on_stderr_what_it_solved_and_why_a_speed_is_flagged(tmp_path, capsys):
+    """Moduli written in MPa (a user's slip): every speed is far outside the small-indentation range. The
+    files' paths go to stdout as before; stderr has the counts, one flagged speed's reason (the dataset's
+    validity_message) and the trend warning where there is one."""
+    config = tmp_path / "c.yaml"
+    config.write_text("dem:\n  mpa:\n    sphere: {material: {model: sls, E_glassy: 40, alpha: 600, beta: 5000},"
+                      " r: 0.003, rho: 1200}\n    target: {sphere: {}}\n    v0: [0.2, 2.5]\n")
+    assert cli.main(["dem", "--config", str(config), "--name", "mpa", "--project", str(tmp_path)]) == 0
+    out, err = capsys.readouterr()
+    assert out.splitlines()[0].endswith("mpa.nc")
+    assert "vcor dem: mpa: 2 points, 0 ok, 2 flagged (large_indentation 2" in err
+    assert "vcor dem: a flagged speed: s_max / r = " in err

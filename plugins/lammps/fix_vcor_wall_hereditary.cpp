@@ -66,7 +66,14 @@ FixVcorWallHereditary::FixVcorWallHereditary(LAMMPS *lmp, int narg, char **arg) 
                hi);
   std::vector<std::string> values(arg + 6, arg + narg);
   const std::string why = vcor::parse_law(values, law);
-  if (!why.empty()) error->all(FLERR, "fix {} vcor/wall/hereditary: {}", id, why);
+  if (!why.empty()) {
+    // a forgotten lo or hi (NULL) shifts every number after it by one, and the count comes out odd
+    const std::string shifted = why.find("odd count") == std::string::npos
+        ? std::string()
+        : std::string("; lo and hi were read as ") + arg[4] + " and " + arg[5] +
+            " (m): if one of them is missing, write NULL for it";
+    error->all(FLERR, "fix {} vcor/wall/hereditary: {}{}", id, why, shifted);
+  }
   if (domain->periodicity[dim])
     error->all(FLERR, "fix vcor/wall/hereditary: a wall across the periodic dimension {}", "xyz"[dim]);
 
@@ -125,6 +132,7 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
   store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, law.nterms(), vcor::clock_of(lmp));
   wall_force[0] = wall_force[1] = wall_force[2] = 0.0;
   double contacts = 0.0;
+  vcor::Deepest deepest;
   for (int i = 0; i < nlocal; ++i) {
     if (!(mask[i] & groupbit)) continue;
     for (int side = 0; side < 2; ++side) {
@@ -134,6 +142,7 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
       if (delta <= 0.0) continue;
       const double u = delta * std::sqrt(delta);
       const double mi = rmass ? rmass[i] : (mass ? mass[type[i]] : 0.0);    // the wall does not move
+      deepest.note(vcor::Key{tag[i], side}, delta / radius[i]);
       const double g = store.advance(vcor::Key{tag[i], side}, law, u, radius[i], mi);
       contacts += 1.0;
       if (g <= 0.0) continue;    // clipped at zero: the sphere has left the wall
@@ -151,6 +160,10 @@ void FixVcorWallHereditary::post_force(int /*vflag*/)
     warned = vcor::run_of(lmp);
     if (comm->me == 0)
       error->warning(FLERR, vcor::resolution_message("fix vcor/wall/hereditary", store.shortest, update->dt, true));
+  }
+  if (deepest.overlap > vcor::LARGE_OVERLAP && !warned_overlap) {
+    warned_overlap = true;
+    if (comm->me == 0) error->warning(FLERR, vcor::overlap_message("fix vcor/wall/hereditary", deepest, true));
   }
 }
 

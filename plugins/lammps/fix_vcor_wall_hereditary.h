@@ -37,6 +37,7 @@ class FixVcorWallHereditary : public Fix {
   double ncontacts;            // touching contacts
   double nmin;                 // the smallest n of the time-step rule among the contacts ended so far
   vcor::RunId warned;          // the run the time-step warning was last given in
+  bool warned_overlap = false;  // the large-overlap warning is given once
 };
 
 }    // namespace LAMMPS_NS

@@ -175,6 +175,7 @@ void PairVcorHereditary::compute(int eflag, int vflag)
   vcor::require_positive_time_step(lmp, "pair_style vcor/hereditary");
   store.begin(update->ntimestep, vcor::simulation_time(lmp), update->dt, maxterms, vcor::clock_of(lmp));
   long touching = 0;
+  vcor::Deepest deepest;
 
   for (int ii = 0; ii < inum; ++ii) {
     const int i = ilist[ii];
@@ -200,6 +201,7 @@ void PairVcorHereditary::compute(int eflag, int vflag)
       const double u = delta * std::sqrt(delta);
       const vcor::Key key = tag[i] < tag[j] ? vcor::Key{tag[i], tag[j]} : vcor::Key{tag[j], tag[i]};
       const double reff = radi * radius[j] / radsum;
+      deepest.note(key, delta / reff);
       const double mi = rmass ? rmass[i] : (mass ? mass[itype] : 0.0);
       const double mj = rmass ? rmass[j] : (mass ? mass[type[j]] : 0.0);
       // the reduced mass measures the time-step rule's n (Store::advance). With one of the two atoms
@@ -234,6 +236,11 @@ void PairVcorHereditary::compute(int eflag, int vflag)
     warned = vcor::run_of(lmp);
     if (comm->me == 0)
       error->warning(FLERR, vcor::resolution_message("pair_style vcor/hereditary", store.shortest, update->dt, false));
+  }
+
+  if (deepest.overlap > vcor::LARGE_OVERLAP && !warned_overlap) {
+    warned_overlap = true;
+    if (comm->me == 0) error->warning(FLERR, vcor::overlap_message("pair_style vcor/hereditary", deepest, false));
   }
 
   if (vflag_fdotr) virial_fdotr_compute();

@@ -37,6 +37,7 @@ class PairVcorHereditary : public Pair {
   int maxterms;
   int stride;                     // ntypes + 1 when allocated
   vcor::RunId warned;             // the run the time-step warning was last given in
+  bool warned_overlap = false;     // the large-overlap warning is given once
 
   void allocate();
   vcor::Law &law(int i, int j) { return laws[i * stride + j]; }

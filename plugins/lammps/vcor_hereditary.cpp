@@ -206,6 +206,20 @@ static std::string contact_text(const Key &key, bool wall)
   return "atoms " + std::to_string(key.a) + " and " + std::to_string(key.b);
 }
 
+// vcor's own bound (vcor.solvers.validity: s_max / r > 0.1 is large_indentation)
+const double LARGE_OVERLAP = 0.1;
+
+std::string overlap_message(const std::string &who, const Deepest &deepest, bool wall)
+{
+  std::ostringstream s;
+  s.precision(3);
+  s << who << ": an overlap of " << deepest.overlap << " of the effective radius (" << contact_text(deepest.key, wall)
+    << "), above " << LARGE_OVERLAP << ": Hertz contact holds for overlaps small against the radius. Moduli "
+    << "written in MPa or kPa instead of Pa give this (units si: E_inf and E_i in Pa, beta_i in 1/s); so do "
+    << "speeds beyond the material's range (warned once)";
+  return s.str();
+}
+
 std::string jump_message(const std::string &who, const Store::Jump &jump, bool wall)
 {
   std::ostringstream s;

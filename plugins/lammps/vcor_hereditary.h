@@ -207,6 +207,24 @@ std::string jump_message(const std::string &who, const Store::Jump &jump, bool w
 // One line for error->warning: who, and the contact the time step dt resolved worst (Store::shortest).
 std::string resolution_message(const std::string &who, const Store::Ended &ended, double dt, bool wall);
 
+// The deepest contact of one evaluation: its key and its overlap over its effective radius.
+struct Deepest {
+  Key key{0, 0};
+  double overlap = 0.0;
+  void note(const Key &k, double fraction)
+  {
+    if (fraction > overlap) {
+      overlap = fraction;
+      key = k;
+    }
+  }
+};
+// One line for error->warning: who, and the deepest contact of an evaluation past LARGE_OVERLAP.
+std::string overlap_message(const std::string &who, const Deepest &deepest, bool wall);
+// An overlap past this fraction of the effective radius draws one warning (the first time): Hertz contact
+// holds for overlaps small against the radius (vcor flags s_max / r > 0.1 as large_indentation).
+extern const double LARGE_OVERLAP;
+
 // A contact resolved with fewer than this many time steps per Hertz contact time (n of the rule
 // dt = t_H(Ebar(dt)) / n, measured by resolution() when a contact ends) draws one warning per run
 // (vcor_hereditary.cpp says why this number).

@@ -9,8 +9,10 @@ Each writes what the workflow's rule writes for the entry (the same dataset, by 
 refuses bad input with the workflow's one-line message naming the key, before any work (exit code 2).
 A sweep's points that did not end ``ok`` are stored with their status, never an error: the command
 writes the dataset, prints the counts and exits 0, or 1 when no point ended ``ok`` (nothing to use: the
-statuses and messages in the file say why). Ctrl-C stops a sweep at once, its worker processes with it
-(exit code 130).
+statuses and messages in the file say why). ``vcor dem`` prints the files' paths on standard output and, on
+standard error, the counts, one flagged speed's reason (every speed's: the dataset's ``validity_message``)
+and the trend warning where a law goes the other way from vcor's COR. Ctrl-C stops a sweep at once, its
+worker processes with it (exit code 130).
 """
 
 from __future__ import annotations
@@ -119,10 +121,22 @@ def _calibrate(args) -> int:
 
 def _dem(args) -> int:
     from .study.api import dem_export
+    from .study.summary import outcome_of
 
-    written = dem_export(args.name, config=args.config).write(args.project)
+    exported = dem_export(args.name, config=args.config)
+    written = exported.write(args.project)
     for path in written.values():
         print(path)
+    ds = exported.dataset
+    done = outcome_of(ds)
+    print(f"vcor dem: {args.name}: {done.points} points, {done.text()}: {written['nc']}", file=sys.stderr)
+    if done.flagged:
+        flagged = ds["validity"].values.ravel() != 0
+        first = str(ds["validity_message"].values.ravel()[flagged][0])
+        print(f"vcor dem: a flagged speed: {first} (every speed's reason: the dataset's validity_message)",
+              file=sys.stderr)
+    if ds.attrs.get("trend_warning"):
+        print(f"vcor dem: WARNING: {ds.attrs['trend_warning']}", file=sys.stderr)
     return 0
 
 

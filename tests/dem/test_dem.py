@@ -295,6 +295,11 @@ def test_the_files_a_dem_user_reads_say_how_well_each_law_follows_vcor(tmp_path)
     files = export_.write(tmp_path)
     ds = export_.dataset
     assert ds.attrs["trend_warning"] and int(ds["validity"].max()) > 0
+    # the words point to the dataset's validity_message: it holds, per flagged speed, why
+    flagged = ds["validity"].values != 0
+    reasons = ds["validity_message"].values
+    assert all(reasons[flagged]) and not any(reasons[~flagged]), reasons
+    assert "s_max / r" in reasons[flagged][-1] and ds["validity_message"].attrs["long_name"]
     for key, names in (("deck", ["lammps-viscoelastic", "lammps-coeff-restitution"]), ("yade", ["yade-mindlin"]),
                       ("parameters", [str(m) for m in ds["model"].values])):
         text = files[key].read_text()

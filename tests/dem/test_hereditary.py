@@ -108,6 +108,9 @@ def test_a_config_entry_has_the_law_where_the_plugin_can_take_it():
         "nu": ({"sphere": {"material": "sls", "nu": 0.45}, "target": {"sphere": {"material": "sls", "nu": 0.4}},
                 "solver": {"method": "direct"}}, "Eq. 1"),
         "default-nu": ({"sphere": {"material": "sls", "nu": 0.5}, "target": {"sphere": {"material": "sls"}}}, ""),
+        "twin-nu": ({"sphere": {"material": "sls", "nu": 0.45}, "target": {"sphere": {"nu": 0.4}},
+                     "solver": {"method": "direct"}}, "Eq. 1"),
+        "twin-same-nu": ({"sphere": {"material": "sls", "nu": 0.45}, "target": {"sphere": {"r": 0.004}}}, ""),
         "plate": ({"sphere": {"material": "sls"}, "target": {"plate": {}}}, "plate"),
     }
     project = load_project({"dem": {k: {**base, **v} for k, (v, _) in entries.items()}}, ".")

@@ -8,7 +8,9 @@ several MPI ranks, a ``reset_timestep`` that moves the time in a contact, units 
 step not above 0 s and a wall position that is not a number stop LAMMPS with an error naming the cause;
 the deck refuses v0, nsteps and T out of range in one line; a rebuild from other sources into the same
 folder and a plain CMake build work and say what they are; a ``minimize`` in a contact does not
-advance its history; a time step too large for the time-step rule draws one warning per run; a
+advance its history; a time step too large for the time-step rule draws one warning per run, an
+overlap past 0.1 of the effective radius (moduli in MPa) one warning; a wall fix missing lo or hi says
+how it read them; a
 packing of 500 spheres runs 1e5 steps under gravity, and refuses a law it does not have."""
 
 import re
@@ -243,6 +245,11 @@ def _warnings(stdout: str) -> list[str]:
     return [x for x in stdout.splitlines() if x.startswith("WARNING")]
 
 
+def _resolution_warnings(stdout: str) -> list[str]:
+    """The time-step rule's warnings (an under-resolved step also overshoots into the large-overlap one)."""
+    return [x for x in _warnings(stdout) if "resolves a contact with n = " in x]
+
+
 def _n_of(warning: str) -> float:
     """The n of the time-step rule a resolution warning names."""
     return float(re.search(r"resolves a contact with n = (\S+) steps per Hertz contact time", warning).group(1))
@@ -269,7 +276,7 @@ def test_a_time_step_too_large_for_the_rule_warns_once(lmp, vcor_plugin, tmp_pat
     runs = {}
     for n in (2, 3, 5, 10, 30):
         out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", str(n), screen=True)
-        runs[n] = (cor_of(out), _warnings(out.stdout))
+        runs[n] = (cor_of(out), _resolution_warnings(out.stdout))
     print(f"\n{target}: vcor's COR {want:.6f}; at -var nsteps n the COR error and the n warned of")
     for n, (cor, warnings) in runs.items():
         print(f"  n = {n:2d}: {cor - want:+.1e}, " + (", ".join(f"{_n_of(w):.3g}" for w in warnings) or "no warning"))
@@ -285,14 +292,14 @@ def test_a_time_step_too_large_for_the_rule_warns_once(lmp, vcor_plugin, tmp_pat
                            ("in.every", "run 300 pre no every 100 " + " ".join(f'"{c}"' for c in reverse) + "\n")):
         variant = _variant(deck, name, [(_RESET, commands)])
         out = run_lammps(lmp, variant, "-var", "plugin", str(vcor_plugin), "-var", "nsteps", "2", screen=True)
-        warnings = _warnings(out.stdout)
+        warnings = _resolution_warnings(out.stdout)
         assert len(warnings) == 3 and all(w.startswith(f"WARNING: {who}: ") for w in warnings), (name, warnings)
     if target == "pair":
         packing = tmp_path / "in.packing"
         packing.write_text(PACKING.read_text())
         out = run_lammps(lmp, packing, "-var", "plugin", str(vcor_plugin), "-var", "dt", "1e-4", "-var", "settle",
                          "3000", screen=True)
-        warnings = _warnings(out.stdout)
+        warnings = _resolution_warnings(out.stdout)
         print("\n" + "\n".join(warnings))
         assert len(warnings) == 2, warnings
         assert {w.split(":")[1].strip() for w in warnings} == {"pair_style vcor/hereditary", "fix vcor/wall/hereditary"}
@@ -347,6 +354,37 @@ def test_bad_coefficients_stop_lammps_naming_the_coefficient(lmp, vcor_plugin, t
     assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
     who = "pair_coeff * * vcor/hereditary: " if where == "pair_coeff" else "fix wall vcor/wall/hereditary: "
     assert errors[0].startswith(f"ERROR: {who}") and message in errors[0], errors[0]
+
+
+def test_a_wall_fix_missing_lo_or_hi_says_how_it_read_them(lmp, vcor_plugin, tmp_path):
+    """The wall fix with its NULL forgotten: the numbers shift by one and the series' count comes out odd;
+    the ERROR line says so and how lo and hi were read."""
+    _, deck = _deck(tmp_path, "sls", "rigid", v0=[1.0])
+    bad = _variant(deck, "in.bad", [("xplane 0.0 NULL ${coeffs}\n", "xplane 0.0 ${coeffs}\n")])
+    out = run_lammps(lmp, bad, "-var", "plugin", str(vcor_plugin), check=False)
+    errors = _errors(out.stdout)
+    assert out.returncode != 0 and len(errors) == 1, out.stdout[-2000:]
+    assert "(an odd count: E_1 has no beta_1); lo and hi were read as 0.0 and " in errors[0], errors[0]
+    assert "(m): if one of them is missing, write NULL for it" in errors[0], errors[0]
+
+
+@pytest.mark.parametrize("target", ["pair", "wall"])
+def test_moduli_in_mpa_draw_one_large_overlap_warning(lmp, vcor_plugin, tmp_path, target):
+    """The coefficients' moduli divided by 1e6 (a user who writes MPa where si wants Pa): the spheres sink
+    deep into each other; LAMMPS warns once, naming the overlap, the contact and the likely cause. The
+    deck as written (Pa) draws no such warning."""
+    ds, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
+    coeffs = [float(c) for c in re.search(r'variable coeffs  string "([^"]*)"', deck.read_text()).group(1).split()]
+    mpa = " ".join(repr(c / 1e6 if k == 0 or k % 2 else c) for k, c in enumerate(coeffs))  # E_inf E_1 beta_1 ...
+    soft = _variant(deck, "in.mpa", [("${coeffs}\n", f"{mpa}\n")])
+    who = "pair_style vcor/hereditary" if target == "pair" else "fix vcor/wall/hereditary"
+    warnings = _warnings(run_lammps(lmp, soft, "-var", "plugin", str(vcor_plugin), screen=True,
+                                    check=False).stdout)
+    large = [w for w in warnings if "of the effective radius (" in w and "an overlap of" in w]
+    assert len(large) == 1 and large[0].startswith(f"WARNING: {who}: an overlap of "), warnings
+    assert "Moduli written in MPa or kPa instead of Pa give this" in large[0], large[0]
+    plain = _warnings(run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin), screen=True).stdout)
+    assert not [w for w in plain if "an overlap of" in w], plain
 
 
 @pytest.mark.parametrize(("walls", "message"), [("abc NULL", "lo = 'abc' is not a finite number (m) or NULL"),

@@ -3,7 +3,8 @@
 The dataset (CF attributes as every vcor dataset) has the dimensions ``model`` (the DEM laws,
 :data:`vcor.dem.laws.MODELS`), ``v0`` (m/s) and, for a temperature sweep, ``T`` (deg C):
 
-* ``cor(v0[, T])``: vcor's COR, with ``status``, ``message`` and ``validity`` per point;
+* ``cor(v0[, T])``: vcor's COR, with ``status``, ``message``, ``validity`` and ``validity_message`` (why a
+  flag is set) per point;
 * ``cor_model(model, v0[, T])`` and ``error = cor_model - cor``;
 * ``max_abs_error(model[, T])`` over the speeds, and ``v0_within_lo``, ``v0_within_hi``: the widest
   run of consecutive speeds on which ``abs(error) <= WITHIN`` (NaN when there is none);
@@ -92,6 +93,7 @@ _NAMES = {"cor": "vcor's COR (hereditary contact, the contact ends where the for
           "v0_within_lo": f"lowest speed of the widest run of speeds with abs(error) <= {WITHIN}",
           "v0_within_hi": f"highest speed of the widest run of speeds with abs(error) <= {WITHIN}",
           "message": "solver message", "validity": "validity flags of an ok result (vcor.solvers.validity)",
+          "validity_message": "why the validity flags are set: the quantity, its value and the limit",
           "soe_error": LONG_NAMES["soe_error"],
           "opposite_trend": "1 where the law's COR changes with speed in the opposite sense to vcor's over the "
                             f"range and misses it by more than {WITHIN} (vcor.dem.trend): no value of its "
@@ -179,6 +181,7 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
     status = np.array([[code(s) for s in c.status] for c in collisions], dtype=np.int8)
     message = np.array([[str(m) for m in c.message] for c in collisions])
     validity = np.array([c.validity for c in collisions], dtype=np.int8)
+    validity_message = np.array([[str(m) for m in c.validity_message] for c in collisions])
     soe_error = np.array([c.soe_error for c in collisions], dtype=float)
     ok = status == code("ok")
     opposed = np.array([trend.opposite(cor[t], cor_model[t], ok[t], WITHIN) for t in range(nt)], dtype=np.int8)
@@ -193,6 +196,7 @@ def dem_dataset(name: str, collisions: list, fits: list, temperatures=None, conf
         "status": squeeze(("T", "v0"), status),
         "message": squeeze(("T", "v0"), message),
         "validity": squeeze(("T", "v0"), validity),
+        "validity_message": squeeze(("T", "v0"), validity_message),
         "soe_error": squeeze(("T", "v0"), soe_error),
         "cor_model": squeeze(("T", "model", "v0"), cor_model),
         "error": squeeze(("T", "model", "v0"), error),

@@ -58,6 +58,8 @@ class Collision:
     #: per speed, as status and message (required: the dataset stores it)
     soe_error: list
     validity: list = field(default_factory=list)
+    #: per speed, the sentence that says why a validity flag is set ("" where none is)
+    validity_message: list = field(default_factory=list)
     #: the contact material, its effective modulus factor (E_c = factor E) and the target's kind
     #: (``sphere``, ``rigid``, ``plate``): what vcor's own law (lammps-hereditary) is built from
     material: object = None
@@ -116,7 +118,8 @@ def collision(material, v0, *, sphere: dict | None = None, target="rigid", optio
     near = int(np.argmin(np.where(ok, np.abs(np.log(v0 / v_ref)), np.inf)))
     contact, mat, factor = _contact(a, b, target, float(t0[near]), v_ref)
     return Collision(v0=v0, cor=cor, t0=t0, status=[r.status for r in results], message=[r.message for r in results],
-                     contact=contact, v_ref=v_ref, validity=[r.validity for r in results], material=mat,
+                     contact=contact, v_ref=v_ref, validity=[r.validity for r in results],
+                     validity_message=[r.validity_message for r in results], material=mat,
                      modulus_factor=factor, target_kind=_target_kind(target),
                      soe_error=[float(r.soe_error) for r in results])
 

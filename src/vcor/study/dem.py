@@ -115,10 +115,14 @@ def hereditary_refusal(spec: dict, catalogue: Catalogue) -> str:
         return REFUSALS["kelvin-voigt"]
     body = (target.get("sphere") or {}) if isinstance(target, dict) else {}
     other = body.get("material")
-    if other is None or other == "rigid":
+    if other == "rigid":
         return ""
     default_nu = NU_DEFAULTS["steel" if mine == "elastic" else "polymer"]  # one material: one family's default
-    same = other == sphere["material"] and body.get("nu", default_nu) == sphere.get("nu", default_nu)
+    if other is None:  # the sphere's twin (vcor.contact.pair.twin_defaults): its nu unless the target sets one
+        other = sphere["material"]
+        same = body.get("nu", sphere.get("nu", default_nu)) == sphere.get("nu", default_nu)
+    else:
+        same = other == sphere["material"] and body.get("nu", default_nu) == sphere.get("nu", default_nu)
     if not same and (mine != "elastic" or _viscous(other, catalogue) != "elastic"):
         return REFUSALS["eq1"]
     return ""
