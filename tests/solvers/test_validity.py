@@ -79,6 +79,47 @@ def test_a_captured_sphere_whose_grids_disagree_is_flagged():
     assert not vcor.simulate("butyl-fc", 1.0).validity & validity.FLAGS["grids_disagree"]
 
 
+def test_a_sphere_leaving_below_the_cor_floor_is_flagged_whatever_its_grids():
+    """An elastic sphere (E = 1e8 Pa, defaults r = 10 mm, steel) on a plate of h = 1 mm and 10 kg/m^3 at 1 m/s
+    is captured: the plate's mobility (alpha m = 0.097 s) slows it as e^(-t / alpha m) for ~25 time constants
+    until the softening Hertz spring lets it turn; it leaves at 2.69e-13 m/s, t0 = 2.73131 s (an independent
+    LSODA solve of s' = w - alpha k s^1.5, w' = -k s^1.5 / m). Separation is then located where a force of
+    ~1e-15 N, the rounding of the march's history sum, meets zero: t0 moves by ~1e-3 relative with step_tol,
+    not as a power of the step. At the default the grids' t0 shrank as h^2 by chance (ratios 3.8, 3.8) and
+    the result was extrapolated, 9e-4 off in t0, unflagged. Below COR_FLOOR it keeps the finest grid's values
+    and carries grids_disagree (the COR is zero to COR_FLOOR; its digits match the reference)."""
+    from scipy.integrate import solve_ivp
+
+    from vcor.solvers import adaptive, extrapolation
+    from vcor.solvers.common import OUTCOME
+    mat, geometry = {"model": "elastic", "E": 1e8}, {"h": 1e-3, "rho_b": 10.0}
+    r = vcor.simulate(mat, 1.0, **geometry)
+    imp = make_impact(mat, 1.0, geometry)
+    k, m, alpha = float(imp.kernel(0.0)), imp.m, float(imp.alpha(0.0))
+
+    def rhs(t, y):
+        f = k * max(y[0], 0.0) ** 1.5
+        return [y[1] - alpha * f, -f / m]
+
+    def touch(t, y):
+        return y[0]
+
+    touch.terminal, touch.direction = True, -1
+    ref = solve_ivp(rhs, (1e-9, 10.0), [1e-9, 1.0], method="LSODA", rtol=1e-12, atol=1e-32, events=touch)
+    t0, cor = float(ref.t_events[0][0]), abs(float(ref.y_events[0][0][1]))
+    print(f"\nt0 {r.t0:.7g} s (reference {t0:.7g}), COR {r.cor:.4g} (reference {cor:.4g})")
+    assert r.ok and r.cor < extrapolation.COR_FLOOR and abs(r.cor / cor - 1) < 0.05 and abs(r.t0 / t0 - 1) < 1e-2
+    assert r.validity & validity.FLAGS["grids_disagree"], (r.validity, r.message)
+    assert "not Richardson-extrapolated" in r.message and "below 1e-09" in r.message, r.message
+    # grids whose differences shrink exactly as h^2 are still not extrapolated below COR_FLOOR
+    rows = [[{"t0": 2.7 + 0.05 * 4.0**-j, "cor": 3e-13 + 1e-13 * 4.0**-j}.get(x, 1.0) for x in OUTCOME]
+            for j in range(4)]
+    values, message = extrapolation.extrapolate(rows, adaptive.RICHARDSON_WEIGHTS)
+    assert values == rows[-1][:len(values)] and "below 1e-09" in message
+    rows = [[x * 1e4 if i == 0 else x for i, x in enumerate(row)] for row in rows]  # COR 3e-9: extrapolated
+    assert extrapolation.extrapolate(rows, adaptive.RICHARDSON_WEIGHTS)[1] == ""
+
+
 def test_direct_on_kelvin_voigt_says_when_it_is_not_accurate():
     """Kelvin-Voigt with tau = 1 s (the preset's modulus; the viscous force stops the sphere within
     5 us, the COR is ~2e-6): fixed-step direct is 2 % off in the COR and 16 % in the peak force and

@@ -9,7 +9,11 @@ finest grids, (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for the
 measured 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two error terms of opposite sign
 the ratio alone can leave the band where the grids agree closely, which the gap test covers).
 Otherwise (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens of per cent apart,
-erratic ratios) the values of the finest grid are kept and the message says so.
+erratic ratios) the values of the finest grid are kept and the message says so. So they are where the
+finest grid's COR is below COR_FLOOR, whatever the grids: the sphere then leaves slower than the step
+control follows (its motion scale is at least ``_records.MOTION_FLOOR`` v0) and t0 is where a force of the
+order of the rounding of its history sum meets zero (a captured sphere: an elastic sphere on a 1 mm plate
+of 10 kg/m^3 leaves at 2.7e-13 m/s; its t0 moves by 1e-3 with step_tol, not as any power of the step).
 """
 
 from __future__ import annotations
@@ -65,6 +69,13 @@ def extrapolate(runs, weights):
             f"differences between the three finest grids do not shrink as h^2 (ratios "
             f"{difference_ratio(rows, _T0):.3g} for t0, {difference_ratio(rows, _COR):.3g} for the COR; "
             f"asymptotically 4); values of the finest grid")
+    if last[_COR] < COR_FLOOR:
+        # the grids may agree or even shrink as h^2 by chance: their t0 is not held to the method's accuracy
+        return last[:n], (
+            f"not Richardson-extrapolated: the sphere leaves at a COR of {last[_COR]:.3g} (finest grid), below "
+            f"{COR_FLOOR:g}, slower than the step control follows and at a force near the rounding of its "
+            f"history sum, so t0 is not held to the method's accuracy (grids: t0 "
+            f"{', '.join(f'{r[_T0]:.7g}' for r in rows)} s); values of the finest grid")
     return extrapolated, ""
 
 

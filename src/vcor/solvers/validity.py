@@ -23,8 +23,9 @@ no_rebound               16    the sphere still moves towards the target at sepa
                                they relax); the COR describes this contact only, not the sphere's
                                final rebound (a plate of bounded deflection is struck again)
 grids_disagree           32    method ``adaptive``: its nested grids are not in the asymptotic range
-                               of the Richardson extrapolation, or it would give a negative COR
-                               (``vcor.solvers.extrapolation``),
+                               of the Richardson extrapolation, or it would give a negative COR, or
+                               the COR is below ``extrapolation.COR_FLOOR`` (the sphere leaves
+                               slower than the step control follows; ``vcor.solvers.extrapolation``),
                                so the values are the finest grid's and their error is not held to
                                the method's accuracy (the message gives the grids' differences): a
                                separation time that is ill-conditioned, as where a creeping force
@@ -46,6 +47,7 @@ import numpy as np
 
 from ..materials.expsums import FIT_ACCEPT
 from .common import OUTCOME
+from .extrapolation import COR_FLOOR
 from .options import SUM_TOL
 
 __all__ = ["FLAGS", "MAX_ENERGY_RESIDUAL", "MAX_INDENTATION", "MAX_SPEED_FRACTION", "MIN_DAMPING_STEPS", "SOLVER_FLAGS",
@@ -112,7 +114,8 @@ def finalised(res, impact, options):
     notes, flags = [], res.validity & SOLVER_FLAGS
     if flags & _GRIDS_DISAGREE:
         notes.append("the nested grids of method adaptive are not in the asymptotic range of its Richardson "
-                     "extrapolation, or it would give a negative COR (the message says which): the values are "
+                     f"extrapolation, or it would give a negative COR, or the COR is below {COR_FLOOR:g} (the message "
+                     "says which): the values are "
                      "the finest grid's, "
                      "their error is not held to the method's accuracy (an ill-conditioned separation time, as of "
                      "a force creeping to zero)")
