@@ -93,17 +93,17 @@ ROWS = [
     ("unknown material", lambda: vcor.simulate("rubber", 10.0), ["unknown material", "sls"]),
     # --- materials ---------------------------------------------------------------------------
     ("SLS(alpha=True)", lambda: M.SLS(15e6, True, 1200), ["alpha", "[0, inf) 1/s", "True"]),
-    ("SLS negative modulus", lambda: M.SLS(-15e6, 300, 1200), ["E_glassy", "(0, inf) Pa"]),
-    ("SLS E_glassy = '15e6'", lambda: M.SLS("15e6", 300, 1200), ["E_glassy", "(0, inf) Pa"]),
+    ("SLS negative modulus", lambda: M.SLS(-15e6, 300, 1200), ["E_glassy", "(0, 1e+20] Pa"]),
+    ("SLS E_glassy = '15e6'", lambda: M.SLS("15e6", 300, 1200), ["E_glassy", "(0, 1e+20] Pa"]),
     ("SLS increasing modulus", lambda: M.SLS(15e6, 2400, 1200), ["alpha", "increase"]),
     ("Prony negative term", lambda: M.Prony(1e6, (-5e5,), (100.0,)), ["E[0]", "increase"]),
     ("Prony negative rate", lambda: M.Prony(1e6, (1e6,), (-10.0,)), ["beta[0]", "[0, inf) 1/s"]),
     ("Prony term True", lambda: M.Prony(1e6, (True,), (10.0,)), ["E[0]", "True"]),
     ("Prony lengths differ", lambda: M.Prony(1e6, (1e6, 2e6), (10.0,)), ["equal length"]),
-    ("fractional E0 negative", lambda: M.FractionalPower(-1.0, 1.0), ["E0", "[0, inf) Pa"]),
+    ("fractional E0 negative", lambda: M.FractionalPower(-1.0, 1.0), ["E0", "[0, 1e+20] Pa"]),
     ("CERF b1 = 0", lambda: M.Cerf(1.0, 1.0, 0.0), ["b1", "(0, inf)"]),
     ("Kelvin-Voigt tau negative", lambda: M.KelvinVoigt(1e6, -1.0), ["tau", "[0, inf) s"]),
-    ("Elastic E NaN", lambda: M.Elastic(float("nan")), ["E must be in (0, inf) Pa"]),
+    ("Elastic E NaN", lambda: M.Elastic(float("nan")), ["E must be in (0, 1e+20] Pa"]),
     ("preset name unknown", lambda: M.get("rubber"), ["unknown material", "sls"]),
     # --- cases and solver options ------------------------------------------------------------
     ("case 1 with a relaxing material", lambda: vcor.simulate("sls", 10.0, case=1), ["case 1", "elastic material"]),
@@ -581,8 +581,9 @@ def test_two_fluid_spheres_get_a_result():
     assert res.status in ("ok", "no-separation", "diverged") and res.message is not None
 
 
-@pytest.mark.parametrize("material", [M.SLS(1e300, 0, 1e300), M.Prony(1e300, (1e300,), (1e300,))])
+@pytest.mark.parametrize("material", [M.SLS(1e20, 0, 1e300), M.Prony(0.0, (1e20,), (1e300,))])
 def test_ive_on_overflowing_scales_is_diverged_with_its_reason(material):
+    """The largest modulus (vcor.materials.base.MAX_MODULUS) relaxing at a rate of 1e300/s."""
     res = vcor.simulate(material, 1.0, method="ive")
     assert res.status == "diverged" and "non-finite" in res.message, res.message
 
@@ -592,7 +593,7 @@ def test_ive_on_overflowing_scales_is_diverged_with_its_reason(material):
 def test_a_cerf_rate_beyond_double_precision_gets_a_verdict_or_a_refusal(method):
     """b1 = 1e300 s^-1/2 (b1^4 overflows): a non-ok status or a ValueError, not Python's OverflowError."""
     try:
-        res = vcor.simulate({"model": "cerf", "E0": 1e300, "E1": 1e300, "b1": 1e300}, 1.0, method=method)
+        res = vcor.simulate({"model": "cerf", "E0": 1e20, "E1": 1e20, "b1": 1e300}, 1.0, method=method)
     except ValueError as exc:
         assert str(exc)
     else:

@@ -156,6 +156,20 @@ def test_vcor_fit_keeps_the_shift_function_and_gives_the_material_at_a_temperatu
         plain.at(20.0)
 
 
+@pytest.mark.parametrize("key, text, said", [
+    ("file", "f,E_stor,E_loss\n1,1e6,1e5\n2,oops,1e5\n", "line 3, column 'E_stor': 'oops' is not a number"),
+    ("shift_file", "T,log_aT\nC,-\n-50,4\n20,x\n", "line 4, column 'log_aT': 'x' is not a number"),
+])
+def test_a_malformed_file_of_a_fit_is_refused_naming_the_config_key_that_names_it(tmp_path, key, text, said):
+    """The refusal of a fit's data or shift-factor file starts with the config key that names the file, then
+    the file, the line and the column (a config file's place goes in front: tests/study)."""
+    (tmp_path / "bad.csv").write_text(text)
+    data = {"file": str(DATA / "freq_user_raw.csv"), "T_ref": -5.0, key: "bad.csv"}
+    with pytest.raises(ValueError) as err:
+        spec.check_fit_spec({"model": "prony", "data": data}, base_dir=tmp_path, where="fits.x")
+    assert str(err.value) == f"fits.x.data.{key}: {tmp_path / 'bad.csv'}, {said}"
+
+
 def test_method_free_is_refused_naming_its_replacement():
     """``method: free`` is refused in one line naming the key and ``method: spectrum``; a spectrum fit
     records the local extrema of its tan delta over the master curve's range."""

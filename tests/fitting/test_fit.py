@@ -22,6 +22,15 @@ def auto_prony(data):
     return fit.fit_prony(data, None, tol=0.01)
 
 
+def test_a_cerf_fit_walking_beyond_the_largest_modulus_stops_there(data):
+    """On fractional data the CERF fit walks E1 and b1 up together (E1/b1 fixed); started near the largest
+    modulus (MAX_MODULUS), its trial points beyond it are refused, not an error, and the fit ends inside."""
+    from vcor.materials.base import MAX_MODULUS
+
+    res = fit.fit_cerf(data, start=(2.28e6, 3e19, 7.5e13))
+    assert res.material.E1 <= MAX_MODULUS and max(res.metrics.values()) < 1e-6
+
+
 def test_data_window_maps_band_with_t_equal_one_over_omega(data):
     assert data.omega[0] == pytest.approx(2 * np.pi * 1e2) and data.omega[-1] == pytest.approx(2 * np.pi * 1e5)
     assert data.t[0] == pytest.approx(1 / data.omega[-1]) and data.t[-1] == pytest.approx(1 / data.omega[0])

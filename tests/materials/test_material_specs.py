@@ -61,13 +61,13 @@ BAD = [
      ["materials.m.E_glasy: unknown key", "(missing ['E_glassy'])", "did you mean 'E_glassy'?"]),
     ({"model": "sls", "E_glassy": "soft", "alpha": 10, "beta": 20}, ["materials.m.E_glassy", "number"]),
     # a modulus written with an unsigned exponent (text to YAML): its real range, and the fix
-    ({"model": "elastic", "E": "7.0e10"}, ["materials.m.E must be in (0, inf) Pa", "write 7.0e+10"]),
+    ({"model": "elastic", "E": "7.0e10"}, ["materials.m.E must be in (0, 1e+20] Pa", "write 7.0e+10"]),
     ({"model": "sls", "E_glassy": 1e6, "alpha": 30, "beta": 20}, ["materials.m", "alpha must be in [0, beta]"]),
-    ({"model": "prony", "E_inf": 1e6, "E": [-2e6], "beta": [10]}, ["materials.m", "E[0]", "[0, inf) Pa"]),
+    ({"model": "prony", "E_inf": 1e6, "E": [-2e6], "beta": [10]}, ["materials.m", "E[0]", "[0, 1e+20] Pa"]),
     # each value's true range, also for a number that arrived as text
-    ({"model": "prony", "E_inf": 1e6, "E": ["2e6"], "beta": [10]}, ["materials.m.E[0] must be in [0, inf) Pa"]),
+    ({"model": "prony", "E_inf": 1e6, "E": ["2e6"], "beta": [10]}, ["materials.m.E[0] must be in [0, 1e+20] Pa"]),
     ({"model": "prony", "E_inf": 1e6, "E": [2e6], "beta": [-10]}, ["materials.m.beta[0] must be in [0, inf) 1/s"]),
-    ({"model": "prony", "E_inf": "1e6", "E": [2e6], "beta": [10]}, ["materials.m.E_inf must be in [0, inf) Pa"]),
+    ({"model": "prony", "E_inf": "1e6", "E": [2e6], "beta": [10]}, ["materials.m.E_inf must be in [0, 1e+20] Pa"]),
     ({"model": "prony", "E_0": 1e7, "g": ["0.5"], "tau": [1]}, ["materials.m.g[0] must be in [0, 1) (a number)"]),
     ({"model": "prony", "E_inf": 1e6, "E": [2e6, 1e6], "beta": [10]}, ["2 moduli but 1"]),
     ({"model": "prony", "E_inf": 1e6, "E": [2e6], "beta": [10], "tau": [0.1]}, ["tau", "beta", "not both"]),
@@ -92,18 +92,20 @@ IN_FILE = [  # (the material's entry, the text its refusal points at, the refusa
      "materials.my-sls2.E_glasy: unknown key; a sls material takes ['E_glassy', 'alpha', 'beta'] (missing "
      "['E_glassy']); did you mean 'E_glassy'?"),
     ("my-sls2: {model: sls, E_glassy: -40.0e+6, alpha: 500, beta: 5000}", "E_glassy",
-     "materials.my-sls2.E_glassy must be in (0, inf) Pa, got -40000000.0"),
+     "materials.my-sls2.E_glassy must be in (0, 1e+20] Pa, got -40000000.0"),
     ('my-sls2: {model: sls, E_glassy: "40 MPa", alpha: 500, beta: 5000}', "E_glassy",
-     "materials.my-sls2.E_glassy must be in (0, inf) Pa (a number), got '40 MPa'"),
+     "materials.my-sls2.E_glassy must be in (0, 1e+20] Pa (a number), got '40 MPa'"),
     ("my-sls2: {model: sls, E_glassy: 40e6, alpha: 500, beta: 5000}", "E_glassy",
-     "materials.my-sls2.E_glassy must be in (0, inf) Pa (a number), got '40e6': text, not a number"),
+     "materials.my-sls2.E_glassy must be in (0, 1e+20] Pa (a number), got '40e6': text, not a number"),
     ("my-p: {model: prony, E_inf: 5.0e+6, E: [12e6, 25.0e+6], tau: [3.0e-3, 5.0e-4]}", "12e6",
-     "materials.my-p.E[0] must be in [0, inf) Pa (a number), got '12e6': text, not a number"),
+     "materials.my-p.E[0] must be in [0, 1e+20] Pa (a number), got '12e6': text, not a number"),
     ("my-p:\n    model: prony\n    E_inf: 5.0e+6\n    E: [12.0e+6, -25.0e+6, 40.0e+6]\n"
-     "    tau: [3.0e-3, 5.0e-4, 8.0e-5]", "-25.0e+6", "materials.my-p.E[1] must be in [0, inf) Pa, got -25000000.0"),
+     "    tau: [3.0e-3, 5.0e-4, 8.0e-5]", "-25.0e+6", "materials.my-p.E[1] must be in [0, 1e+20] Pa, got -25000000.0"),
     ("my-sls2: {model: sls, E_glassy: 40.0e+6, alpha: 6000, beta: 5000}", "alpha",
      "materials.my-sls2.alpha must be in [0, beta] = [0, 5000.0] 1/s (alpha > beta makes the relaxation modulus "
      "increase), got 6000.0"),
+    ("my-sls2: {model: sls, E_glassy: 1.0e+300, alpha: 300, beta: 1200}", "E_glassy",
+     "materials.my-sls2.E_glassy must be in (0, 1e+20] Pa, got 1e+300"),
     ("my-sls2: {model: sls, E_glassy: 40.0e+6, alpha: 500}", "my-sls2",
      "materials.my-sls2 (sls): missing ['beta']; a sls material takes ['E_glassy', 'alpha', 'beta']"),
 ]
@@ -127,8 +129,9 @@ def test_a_bad_material_in_a_config_file_names_the_place_of_its_parameter(tmp_pa
 
 @pytest.mark.parametrize("table, words", [
     ("tau,E\n0.1,1e6\n0.01,lots\n", ["t.csv, line 3, column 'E'", "'lots' is not a number"]),
+    ("tau,E\n0.1,1e300\n", ["t.csv, line 2, column 'E'", "[0, 1e+20] Pa"]),
     ("tau,modulus\n0.1,1e6\n", ["t.csv, line 1", "one of E (Pa) or g"]),
-    ("tau,E\n0.1,-1e6\n", ["t.csv, line 2, column 'E'", "[0, inf) Pa"]),
+    ("tau,E\n0.1,-1e6\n", ["t.csv, line 2, column 'E'", "[0, 1e+20] Pa"]),
     ("tau,E\n0,1e6\n", ["t.csv, line 2, column 'tau'", "(0, inf) s"]),
     ("beta,E\n-1,1e6\n", ["t.csv, line 2, column 'beta'", "[0, inf) 1/s"]),
     ("tau,E\n0.1\n", ["t.csv, line 2", "1 cells"]),
@@ -140,6 +143,20 @@ def test_bad_csv_names_file_line_and_column(tmp_path, table, words):
         from_spec({"model": "prony", "E_inf": 1e6, "file": "t.csv"}, name="m", base_dir=tmp_path)
     for w in words:
         assert w in str(err.value), (w, str(err.value))
+
+
+def test_a_malformed_table_is_refused_naming_the_config_key_that_names_it(tmp_path, monkeypatch):
+    """A config material's table that cannot be read is refused with the key that names the file (and that
+    key's place in the config file) before the table's own file, line and column."""
+    (tmp_path / "t.csv").write_text("tau,E\n0.1,1e6\n0.01,lots\n")
+    entry = "tab: {model: prony, E_inf: 3.0e+6, file: t.csv}"
+    (tmp_path / "my.yaml").write_text(f"materials:\n  {entry}\n" + SCENE_T.format(name="tab"))
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError) as err:
+        vcor.sweep("t", config="my.yaml")
+    text = str(err.value)
+    assert text.startswith(f"config file my.yaml, line 2, column {3 + entry.index('file')}: materials.tab.file: "), text
+    assert text.endswith("t.csv, line 3, column 'E': 'lots' is not a number") and "\n" not in text, text
 
 
 def test_a_table_takes_the_ranges_of_inline_lists(tmp_path):

@@ -7,6 +7,7 @@ import pytest
 from scipy.integrate import quad
 
 from vcor import materials as M
+from vcor.materials.base import MAX_MODULUS
 
 ALL = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
 
@@ -152,6 +153,32 @@ def test_scalar_modulus_against_mpmath(name):
 def test_scalar_modulus_at_zero():
     assert M.FractionalPower(E0=1e6, E1=2e5).modulus_at(0.0) == math.inf
     assert M.FractionalPower(E0=1e6, E1=0.0).modulus_at(0.0) == 1e6
+
+
+#: each model's modulus parameters: (constructor of the parameter's value, its name in the refusal, its range)
+MODULI = {
+    "sls E_glassy": (lambda x: M.SLS(x, 300.0, 1200.0), "E_glassy", "(0, 1e+20] Pa"),
+    "prony E_inf": (lambda x: M.Prony(x, (1e6,), (1e3,)), "E_inf", "[0, 1e+20] Pa"),
+    "prony E": (lambda x: M.Prony(1e6, (2e6, x), (1e3, 1e4)), "Prony E[1]", "[0, 1e+20] Pa"),
+    "elastic E": (lambda x: M.Elastic(x), "E", "(0, 1e+20] Pa"),
+    "kelvin-voigt E": (lambda x: M.KelvinVoigt(x, 1e-4), "E", "(0, 1e+20] Pa"),
+    "cerf E0": (lambda x: M.Cerf(x, 6.765e8, 700.0), "E0", "[0, 1e+20] Pa"),
+    "cerf E1": (lambda x: M.Cerf(4.42e5, x, 700.0), "E1", "[0, 1e+20] Pa"),
+    "fractional E0": (lambda x: M.FractionalPower(x, 8.85e5), "E0", "[0, 1e+20] Pa"),
+    "fractional E1": (lambda x: M.FractionalPower(2.28e6, x), "E1", "[0, 1e+20] Pa s^0.5"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(MODULI))
+def test_a_modulus_above_the_largest_is_refused_when_the_material_is_made(name):
+    """A modulus of 1e300 Pa is refused in one line naming the parameter and its range (it used to reach the
+    solvers: a diverged run, or a ValueError of the exponential sum or the contact-time estimate); the
+    largest modulus itself, MAX_MODULUS, is taken."""
+    make, parameter, interval = MODULI[name]
+    with pytest.raises(ValueError) as err:
+        make(1e300)
+    assert str(err.value) == f"{parameter} must be in {interval}, got 1e+300"
+    assert make(MAX_MODULUS).glassy >= MAX_MODULUS
 
 
 @pytest.mark.parametrize("name", sorted(M.PRESETS))

@@ -20,6 +20,16 @@ def test_prony_type_kernels_are_exact(name):
     np.testing.assert_array_equal(rep.material.relaxation_modulus(t), M.Prony(*mat.prony_terms()).relaxation_modulus(t))
 
 
+def test_a_sum_above_the_largest_modulus_is_built():
+    """The sum of a fractional law's modes grows as t_min^-1/2 without a bound: one above a material's largest
+    modulus (MAX_MODULUS) is built, as a representation (ExponentialSum), not a material."""
+    from vcor.materials.base import MAX_MODULUS
+
+    rep = S.soe(M.FractionalPower(1e6, 1e17), 1e-12, 1e-3)
+    assert rep.checked_error <= 1e-10 and rep.material.glassy > MAX_MODULUS
+    assert rep.material.kind == "exponential-sum"
+
+
 @pytest.mark.parametrize("name", ["butyl-fc", "butyl-cerf"])
 @pytest.mark.parametrize("tol", [1e-6, 1e-8, 1e-10])
 def test_kernel_within_tolerance_on_the_interval(name, tol):

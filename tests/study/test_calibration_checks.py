@@ -81,6 +81,19 @@ def test_a_calibration_of_a_config_file_is_refused_at_its_line_and_column(tmp_pa
         vcor.calibrate("x", config=tmp_path / "my.yaml")
 
 
+def test_a_malformed_cor_data_file_names_the_key_that_names_it(tmp_path, monkeypatch):
+    """A COR data file that cannot be read is refused before any work with the config key that names it (and
+    its place in the config file), then the data file, line and column."""
+    _no_solving(monkeypatch)
+    (tmp_path / "cor.csv").write_text("v0,cor\n1.0,0.40\n3.0,abc\n")
+    (tmp_path / "my.yaml").write_text("calibrations:\n  x:\n    data: cor.csv\n    material: sls\n"
+                                      "    free: {beta: [100, 1.0e+5]}\n")
+    with pytest.raises(ValueError) as err:
+        vcor.calibrate("x", config=tmp_path / "my.yaml")
+    assert re.fullmatch(r"config file .*my\.yaml, line 3, column 5: calibrations\.x\.data: .*cor\.csv, line 3, "
+                        r"column 'cor': 'abc' is not a number", str(err.value)), str(err.value)
+
+
 def test_a_missing_prony_table_names_its_key_its_place_and_the_folder(tmp_path):
     """The config's materials are checked whole: a material whose table is missing refuses the config, also
     for an entry that does not use it (as the workflow refuses it)."""

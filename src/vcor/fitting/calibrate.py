@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..io.csvfile import project_file
+from ..io.csvfile import named_by, project_file
 from ..materials import REGISTRY
 from ..materials import models as _materials
 from ..materials.presets import get as _preset
@@ -469,8 +469,9 @@ def check_spec(spec: dict, *, catalogue, where: str = "calibration", pending=())
                          f"unknown {sorted(unknown)}, missing {sorted(missing)}")
     if not isinstance(spec["data"], str):
         raise ValueError(f"{where}.data: the path of a CSV file (v0,cor[,cor_std]), got {spec['data']!r}")  # noqa: TRY004 (config values)
-    data = read_cor_data(project_file(f"{where}.data", spec["data"], catalogue.base_dir, "the COR data file"),
-                         f"{where}.data: the COR data file")
+    path = project_file(f"{where}.data", spec["data"], catalogue.base_dir, "the COR data file")
+    with named_by(f"{where}.data"):
+        data = read_cor_data(path, "the COR data file")
     if isinstance(spec["material"], str) and spec["material"] in pending:
         catalogue.check(spec["material"], f"{where}.material")
         return data

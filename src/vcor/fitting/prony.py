@@ -254,6 +254,10 @@ def _fit_prony_n(data, n, domain):
                      settings={"model": "prony", "n_terms": n, "domain": domain, "nfev": int(sol.nfev)})
 
 
+#: residual (per point, relative) of a trial point the material refuses: large against any misfit of a fit
+_REFUSED = 10.0
+
+
 def fit_cerf(data: FitData, *, domain: str = "both", start=(0.442e6, 0.6765e9, 700.0)) -> FitResult:
     """CERF law E0 + E1 erfcx(b1 sqrt t), started from the paper's Eq. 24 set."""
     t_start = time.perf_counter()
@@ -264,9 +268,19 @@ def fit_cerf(data: FitData, *, domain: str = "both", start=(0.442e6, 0.6765e9, 7
         return _materials.Cerf(float(e0), float(e1), float(b1))
 
     # On the pure fractional law the optimum is the limit b1 -> inf with E1/b1 fixed (the CERF family
-    # contains the power law as a limit); the evaluation cap stops that walk once the residual is tiny.
-    sol = least_squares(lambda x: _residuals(make(x), data, domain), x0, method="trf", x_scale="jac",
-                        xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=300)
+    # contains the power law as a limit); the evaluation cap stops that walk once the residual is tiny, and a
+    # trial point beyond a parameter's range (E1 above vcor.materials.base.MAX_MODULUS) is refused: a large
+    # residual, so that the walk stops there.
+    size = _residuals(make(x0), data, domain).size
+
+    def residual(x):
+        try:
+            mat = make(x)
+        except ValueError:
+            return np.full(size, _REFUSED)
+        return _residuals(mat, data, domain)
+
+    sol = least_squares(residual, x0, method="trf", x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10, max_nfev=300)
     mat = make(sol.x)
     settings = {"model": "cerf", "domain": domain, "nfev": int(sol.nfev), "optimizer_status": int(sol.status),
                 "start": list(start)}

@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ..checks import positive
-from ..io.csvfile import project_file
+from ..io.csvfile import named_by, project_file
 from ..materials.catalogue import FIT_SCALARS
 from .dma.laws import SHIFT_LAWS
 
@@ -150,10 +150,21 @@ def check_builtin_data(d, where: str) -> None:
             raise ValueError(f"{where}.{k} must be an integer >= 3, got {d[k]!r}")
 
 
+def _read(key: str, value, base_dir, what: str):
+    """The DMA or shift-factor table the config ``key`` names (:func:`vcor.fitting.dma.data.read_table`); its
+    refusals name the key, and the file, line and column."""
+    from .dma.data import read_table
+
+    path = project_file(key, value, base_dir, what)
+    with named_by(key):
+        return read_table(path)
+
+
 def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
-    """What can be checked of a fit spec before fitting, naming ``<where>.<key>`` (or the data file's
-    line and column): the model, and for measured data the keys, T_ref, and the files read and checked
-    (frequency-domain data; raw sets at two or more temperatures; shift factors covering the sets).
+    """What can be checked of a fit spec before fitting, naming ``<where>.<key>`` (for a data file's content,
+    that key and then the file's line and column): the model, and for measured data the keys, T_ref, and the
+    files read and checked (frequency-domain data; raw sets at two or more temperatures; shift factors covering
+    the sets).
 
     Examples
     --------
@@ -171,14 +182,15 @@ def check_fit_spec(spec: dict, base_dir=".", where: str = "fit") -> None:
     if "file" not in (spec.get("data") or {}):
         check_builtin_data(spec.get("data") or {}, f"{where}.data")
         return
-    from .dma.data import check_data, read_table
+    from .dma.data import check_data
     from .dma.sets import split_sets
 
     d, T_ref, shift_model = check_measured(spec, where)
-    raw = read_table(project_file(f"{where}.data.file", d["file"], base_dir, "the DMA file"))
-    shifts = (read_table(project_file(f"{where}.data.shift_file", d["shift_file"], base_dir, "the shift-factor file"))
+    raw = _read(f"{where}.data.file", d["file"], base_dir, "the DMA file")
+    shifts = (_read(f"{where}.data.shift_file", d["shift_file"], base_dir, "the shift-factor file")
               if "shift_file" in d else None)
-    check_data(raw, shifts)
+    with named_by(f"{where}.data"):  # the sets of the data file, the shift factors' cover of them
+        check_data(raw, shifts)
     if d.get("instrument_lag") and not raw.is_raw:
         raise ValueError(f"{where}.data.instrument_lag: {raw.path} is a master curve (no T, Set columns); the lag is "
                          f"told from the material by superposing sets at two or more temperatures")

@@ -1,12 +1,14 @@
-"""Reading small numeric CSV files with errors that name the file, the line and the column."""
+"""Reading small numeric CSV files with errors that name the file, the line and the column (and, for a file a
+config names, the config key: :func:`named_by`)."""
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import math
 from pathlib import Path
 
-__all__ = ["cell_number", "data_rows", "header", "is_number", "project_file", "read_rows", "units_row"]
+__all__ = ["cell_number", "data_rows", "header", "is_number", "named_by", "project_file", "read_rows", "units_row"]
 
 
 def project_file(key: str, value, base_dir, what: str) -> Path:
@@ -20,6 +22,17 @@ def project_file(key: str, value, base_dir, what: str) -> Path:
                                                 f"relative paths are taken from)")
         raise ValueError(f"{key}: {what} {str(value)!r} does not exist{folder}")
     return full
+
+
+@contextlib.contextmanager
+def named_by(key: str):
+    """Read a file that the config ``key`` names: a ValueError raised within (the file's refusal, naming the
+    file, the line and the column) is raised again with the key in front, as the config's other refusals
+    start: ``fits.f.data.file: data/dma.csv, line 3, column 'E_stor': 'oops' is not a number``."""
+    try:
+        yield
+    except ValueError as exc:
+        raise ValueError(f"{key}: {exc}") from None
 
 
 def read_rows(path, what: str) -> list[list[str]]:

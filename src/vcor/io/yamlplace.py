@@ -9,7 +9,7 @@ place in front::
     config file my.yaml, line 12, column 14: scenes.my-grid.grid.v0[0]: expected a number, got '36 km/h'
 
 The path is the text before the message's first ": ", or its first word when that is a dotted path
-(``materials.my-sls.E_glassy must be in (0, inf) Pa, ...``). The place is that of the deepest part of
+(``materials.my-sls.E_glassy must be in (0, 1e+20] Pa, ...``). The place is that of the deepest part of
 the path the file holds: the key of a mapping entry, or the item of a list (for a key that is not
 allowed, the key itself). A message that does not start with a key path, or whose path no file holds,
 is returned unchanged.

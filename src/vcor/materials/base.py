@@ -14,6 +14,12 @@ Every model provides
 * ``scaled(modulus, time)`` the same model with E(t) -> modulus E(t / time) (time-temperature
   superposition and calibration scale every model through this one method).
 
+The time functions (``relaxation_modulus``, ``relaxation_rate``, ``antiderivative``, ``modulus_at``) are
+causal: E(t) = 0 before the strain step, so each gives 0 at t < 0, elementwise (an array holding some
+negative times is not an error, as a :mod:`scipy.stats` density is 0 outside its support), and t = 0
+gives the limit t -> 0+. A model implements them for t >= 0 only: :class:`Material` wraps every
+subclass's own definitions (:func:`causal`), so no model can extrapolate its formula to t < 0.
+
 A model registers itself by subclassing :class:`Material` with a ``kind`` class keyword,
 ``class Cerf(Material, kind="cerf")``, and stating its ``TITLE``, ``FORMULA`` and ``PARAMETERS``
 (:class:`Parameter`: name, UDUNITS unit, meaning) in the class body. :data:`REGISTRY` maps every
@@ -32,10 +38,12 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..checks import number
 from ..checks import positive as _positive
 
-__all__ = ["GL_NODES", "GL_WEIGHTS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES", "SECOND_MOMENT_PANELS",
-           "Family", "Material", "Parameter", "from_dict", "unregister"]
+__all__ = ["GL_NODES", "GL_WEIGHTS", "MAX_MODULUS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES",
+           "SECOND_MOMENT_PANELS", "TIME_FUNCTIONS", "Family", "Material", "Parameter", "causal", "from_dict",
+           "modulus", "unregister"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
 #: the only singularity, t = 0, is at least one step away, so 12 nodes are exact to rounding)
@@ -49,6 +57,21 @@ GL_NODES, GL_WEIGHTS = np.polynomial.legendre.leggauss(12)
 #: the result's scale against scipy's quad, tests/materials/test_second_moment.py)
 SECOND_MOMENT_NODES = 12
 SECOND_MOMENT_PANELS = 20
+
+
+#: the largest modulus a material takes, Pa (and the largest fractional coefficient E1, Pa s^0.5): 1e8 times the
+#: stiffest solid (diamond, E ~ 1.05e12 Pa), so no measured material comes near it, while a law used at the limit
+#: of its family stays inside (a CERF fit to fractional data walks E1 and b1 up together, E1/b1 fixed: the shipped
+#: butyl-cerf-fit ends at E1 = 2.6e16 Pa); and far below the moduli at which the solvers' arithmetic leaves double
+#: precision (the paper's impact: from 1e200 to 1e250 Pa, a diverged march or an exponential sum or contact-time
+#: estimate that overflows). A larger value is refused when the material is made, naming the parameter and range.
+MAX_MODULUS = 1e20
+
+
+def modulus(name: str, value, *, allow_zero: bool = False, unit: str = "Pa") -> float:
+    """A modulus parameter: a finite number in (0, MAX_MODULUS] (with ``allow_zero``, [0, MAX_MODULUS]), else
+    ValueError naming ``name`` and that range (:func:`vcor.checks.number`)."""
+    return number(name, value, 0.0, MAX_MODULUS, lo_open=not allow_zero, hi_open=False, unit=unit)
 
 
 #: what a parameter's value is: one number, one number per Prony term, or a material (``to_dict`` form)
@@ -166,6 +189,47 @@ def _register(cls, kind) -> None:
                              configurable=bool(cls.CONFIGURABLE))
 
 
+#: the elementwise time functions of a model, each 0 at t < 0 (a subclass's own definition is wrapped by
+#: :func:`causal`); ``modulus_at`` (one time) is wrapped alike
+TIME_FUNCTIONS = ("relaxation_modulus", "relaxation_rate", "antiderivative")
+
+
+def causal(fn):
+    """``fn``, a model's E(t), dE/dt or antiderivative (elementwise in its first argument ``t``, s), evaluated
+    only where t >= 0, and 0 where t < 0: the relaxation modulus is causal (0 before the strain step), and so
+    are its rate and its antiderivatives from 0. A NaN time is passed to ``fn`` as it is; the result has the
+    shape of ``t`` (a numpy scalar for a scalar). A function wrapped already is returned as it is."""
+    if getattr(fn, "causal", False):
+        return fn
+
+    @functools.wraps(fn)
+    def evaluate(self, t, *args, **kwargs):
+        t = np.asarray(t, dtype=float)
+        before = t < 0
+        if not before.any():
+            return fn(self, t, *args, **kwargs)
+        out = np.zeros(t.shape)
+        after = ~before
+        out[after] = fn(self, t[after], *args, **kwargs)  # (also when empty: the arguments are checked)
+        return out[()]
+
+    evaluate.causal = True
+    return evaluate
+
+
+def _causal_at(fn):
+    """``fn``, a model's ``modulus_at(t)`` (one time, s), with 0 at t < 0 (:func:`causal`)."""
+    if getattr(fn, "causal", False):
+        return fn
+
+    @functools.wraps(fn)
+    def evaluate(self, t):
+        return 0.0 if t < 0 else fn(self, t)
+
+    evaluate.causal = True
+    return evaluate
+
+
 def unregister(kind: str) -> None:
     """Remove a registered kind (a model defined for a while, as in a test); ValueError if unknown."""
     if kind not in _REGISTRY:
@@ -191,7 +255,11 @@ class Material:
 
     A subclass given the class keyword ``kind`` is registered (module docstring); its class body
     states ``TITLE``, ``FORMULA`` and ``PARAMETERS``, and ``CONFIGURABLE = False`` when a config spec
-    may not name it."""
+    may not name it.
+
+    E(t) is causal: the time functions give 0 at t < 0, elementwise, and the limit t -> 0+ at t = 0. A
+    subclass implements them for t >= 0; its own definitions of :data:`TIME_FUNCTIONS` and ``modulus_at``
+    are wrapped when the class is made (:func:`causal`), so every model, built in or added, agrees."""
 
     kind: ClassVar[str] = "material"
     TITLE: ClassVar[str] = ""
@@ -202,24 +270,70 @@ class Material:
 
     def __init_subclass__(cls, kind: str | None = None, **kwargs):
         super().__init_subclass__(**kwargs)
+        for name in TIME_FUNCTIONS:
+            if name in cls.__dict__:
+                setattr(cls, name, causal(cls.__dict__[name]))
+        if "modulus_at" in cls.__dict__:
+            cls.modulus_at = _causal_at(cls.__dict__["modulus_at"])
         if kind is not None:
             _register(cls, kind)
 
     # -- to be provided by subclasses -------------------------------------------------
     def relaxation_modulus(self, t):  # pragma: no cover - abstract
+        """The relaxation modulus E(t): its regular part (a Dirac term is :attr:`viscosity`).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time since the strain step, s. Any real time: E(t) is causal, so t < 0 gives 0, elementwise
+            (an array holding some negative times is not an error); t = 0 gives E(0+) (``inf`` for the
+            fractional law).
+
+        Returns
+        -------
+        numpy.ndarray or numpy.float64
+            E(t) in Pa, of the shape of ``t``.
+        """
         raise NotImplementedError
 
     def relaxation_rate(self, t):  # pragma: no cover - abstract
+        """dE/dt of the regular part for t > 0 (the jump E(0+) at t = 0 is not included).
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time, s: t < 0 gives 0 (E is causal), t = 0 the limit t -> 0+ (``-inf`` where it is singular).
+
+        Returns
+        -------
+        numpy.ndarray or numpy.float64
+            dE/dt in Pa/s, of the shape of ``t``.
+        """
         raise NotImplementedError
 
     def modulus_at(self, t: float) -> float:
-        """E(t) at one time t (s), Pa (subclasses may evaluate it without arrays)."""
+        """E(t) at one time t (s), Pa: 0 for t < 0, as :meth:`relaxation_modulus` (subclasses may evaluate
+        it without arrays)."""
         return float(self.relaxation_modulus(np.array([t]))[0])
 
     def complex_modulus(self, omega):  # pragma: no cover - abstract
         raise NotImplementedError
 
     def antiderivative(self, t, order: int = 1):  # pragma: no cover - abstract
+        """The antiderivative from 0 of the regular part of E: K1(t) = int_0^t E, K2(t) = int_0^t K1.
+
+        Parameters
+        ----------
+        t : float or array_like
+            Time, s: t < 0 gives 0 (E is causal: it vanishes before 0).
+        order : int
+            1 (Pa s) or 2 (Pa s^2); ValueError otherwise.
+
+        Returns
+        -------
+        numpy.ndarray or numpy.float64
+            K1(t) or K2(t), of the shape of ``t``.
+        """
         raise NotImplementedError
 
     def params(self) -> dict:  # pragma: no cover - abstract

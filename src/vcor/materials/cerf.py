@@ -11,7 +11,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..checks import positive as _positive
-from .base import Material, Parameter
+from .base import Material, Parameter, modulus
 
 __all__ = ["Cerf"]
 
@@ -68,9 +68,9 @@ class Cerf(Material, kind="cerf"):
     Parameters
     ----------
     E0 : float
-        Rubbery modulus, Pa, >= 0.
+        Rubbery modulus, Pa, in [0, 1e20] (:data:`~vcor.materials.base.MAX_MODULUS`).
     E1 : float
-        Relaxing part, Pa, >= 0 (glassy modulus E0 + E1).
+        Relaxing part, Pa, in [0, 1e20] (glassy modulus E0 + E1).
     b1 : float
         Rate parameter, s^-1/2 ... in the paper's units "1/s" with x = b1 sqrt(t);
         b1^2 is a rate in 1/s. Must be > 0.
@@ -87,8 +87,8 @@ class Cerf(Material, kind="cerf"):
     b1: float
 
     def __post_init__(self):
-        _positive("E0", self.E0, allow_zero=True, unit="Pa")
-        _positive("E1", self.E1, allow_zero=True, unit="Pa")
+        modulus("E0", self.E0, allow_zero=True)
+        modulus("E1", self.E1, allow_zero=True)
         _positive("b1", self.b1, unit="s^-1/2")
         if self.E0 + self.E1 <= 0:
             raise ValueError("Cerf: E0 + E1 must be > 0")

@@ -113,6 +113,7 @@ class ExponentialSum(Prony, kind="exponential-sum"):
         object.__setattr__(self, "E", e)
         object.__setattr__(self, "beta", b)
         object.__setattr__(self, "_term_arrays", (np.asarray(e, float), np.asarray(b, float)))
+        object.__setattr__(self, "_term_pairs", tuple(zip(e, b)))  # for modulus_at
 
     @property
     def is_elastic(self) -> bool:

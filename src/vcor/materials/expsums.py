@@ -68,8 +68,9 @@ MIN_SOE_TOL = 1e-13
 @dataclass(frozen=True, kw_only=True)
 class SOE:
     """An exponential-sum representation: ``material`` (a Prony with E(inf) + slow-mode constant,
-    moduli E_k in Pa, rates beta_k in 1/s; for a fitted two-body modulus an
-    :class:`~vcor.materials.expfit.ExponentialSum`, whose terms may be negative), the interval
+    moduli E_k in Pa, rates beta_k in 1/s: the material's own terms where it is Prony-type, else an
+    :class:`~vcor.materials.expfit.ExponentialSum`, not bound by a material's largest modulus: the sum of a
+    fractional law's modes grows as t_min^-1/2; a fitted two-body modulus's terms may be negative), the interval
     [t_min, t_max] in s, the a-priori bound (NaN where none is derived: exact representations have 0),
     and the largest relative error found on the check's log-spaced times (0 for exact
     representations): of the transient E(t) - E(inf) for the completely monotone laws, of the modulus
@@ -252,7 +253,7 @@ LOW_CUT_LOWERINGS = 8
 
 
 def _trapezoid_sum(e0: float, rho, h: float, s_min: float, s_max: float):
-    """(Prony of E0 + the trapezoid sum of the spectrum ``rho`` on nodes h apart in log s from s_min to s_max,
+    """(ExponentialSum of E0 + the trapezoid sum of the spectrum ``rho`` on nodes h apart in log s from s_min to s_max,
     the constant of the nodes below s_min, the nodes s (1/s), their weights (Pa)): the nodes below s_min
     continue the grid, where e^-st ~ 1 on [0, t_max]."""
     x = np.arange(math.log(s_min), math.log(s_max) + 0.5 * h, h)
@@ -260,4 +261,5 @@ def _trapezoid_sum(e0: float, rho, h: float, s_min: float, s_max: float):
     weights = h * rho(s) * s
     below = s[0] * np.exp(-h * np.arange(1, 400))
     constant = float(np.sum(h * rho(below) * below))
-    return _materials.Prony(e0 + constant, tuple(map(float, weights)), tuple(map(float, s))), constant, s, weights
+    return (ExponentialSum(e0 + constant, tuple(map(float, weights)), tuple(map(float, s))), constant, s,
+            weights)

@@ -9,8 +9,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..checks import positive as _positive
-from .base import Material, Parameter
+from .base import Material, Parameter, modulus
 
 __all__ = ["FractionalPower"]
 
@@ -26,9 +25,9 @@ class FractionalPower(Material, kind="fractional"):
     Parameters
     ----------
     E0 : float
-        Rubbery modulus, Pa, >= 0.
+        Rubbery modulus, Pa, in [0, 1e20] (:data:`~vcor.materials.base.MAX_MODULUS`).
     E1 : float
-        Fractional coefficient, Pa s^0.5, >= 0.
+        Fractional coefficient, Pa s^0.5, in [0, 1e20] (the same bound).
     """
 
     TITLE: ClassVar[str] = "fractional, order 1/2 (Bagley-Torvik), Green 2026 Eq. 23"
@@ -40,8 +39,8 @@ class FractionalPower(Material, kind="fractional"):
     E1: float
 
     def __post_init__(self):
-        _positive("E0", self.E0, allow_zero=True, unit="Pa")
-        _positive("E1", self.E1, allow_zero=True, unit="Pa s^0.5")
+        modulus("E0", self.E0, allow_zero=True)
+        modulus("E1", self.E1, allow_zero=True, unit="Pa s^0.5")
         if self.E0 + self.E1 <= 0:
             raise ValueError("FractionalPower: E0 + E1 must be > 0")
 

@@ -9,7 +9,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..checks import positive as _positive
-from .base import Material, Parameter
+from .base import Material, Parameter, modulus
 
 __all__ = ["KelvinVoigt"]
 
@@ -24,7 +24,7 @@ class KelvinVoigt(Material, kind="kelvin-voigt"):
     Parameters
     ----------
     E : float
-        Elastic modulus, Pa, > 0.
+        Elastic modulus, Pa, in (0, 1e20] (:data:`~vcor.materials.base.MAX_MODULUS`).
     tau : float
         Retardation time, s, >= 0.
     """
@@ -38,7 +38,7 @@ class KelvinVoigt(Material, kind="kelvin-voigt"):
     tau: float
 
     def __post_init__(self):
-        _positive("E", self.E, unit="Pa")
+        modulus("E", self.E)
         _positive("tau", self.tau, allow_zero=True, unit="s")
 
     @property

@@ -16,7 +16,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..checks import positive as _positive
-from .base import Material, Parameter
+from .base import MAX_MODULUS, Material, Parameter, modulus
 
 __all__ = ["MOMENT_SERIES", "SECOND_MOMENT_SERIES", "SECOND_SERIES_SWITCH", "SERIES_SWITCH", "Prony"]
 
@@ -42,23 +42,26 @@ def _rows(first, x, n):
     return first * np.exp(-np.multiply.outer(np.arange(n, dtype=float), x))
 
 
-def _term(name, value, unit):
-    """One Prony modulus or rate: a finite number >= 0 (a negative modulus would make E(t) increase)."""
+def _term(name, value, unit, hi):
+    """One Prony modulus (``hi`` MAX_MODULUS) or rate (``hi`` inf): a finite number in [0, hi] (a negative
+    modulus would make E(t) increase)."""
     if isinstance(value, numbers.Real) and not isinstance(value, bool) and value < 0:
         why = " (a negative term makes the relaxation modulus increase)" if "E[" in name else ""
-        raise ValueError(f"{name} must be in [0, inf) {unit}{why}, got {value!r}")
+        raise ValueError(f"{name} must be in [0, {hi:g}{']' if hi < math.inf else ')'} {unit}{why}, got {value!r}")
+    if hi < math.inf:
+        return modulus(name, value, allow_zero=True, unit=unit)
     return _positive(name, value, allow_zero=True, unit=unit)
 
 
-def _terms(name, values, unit) -> tuple:
-    """Prony moduli or rates as floats, each checked by :func:`_term`; floats that are all finite and
-    >= 0 (every material a fit or a temperature shift builds) pass in one vectorised check."""
+def _terms(name, values, unit, hi=math.inf) -> tuple:
+    """Prony moduli (``hi`` MAX_MODULUS) or rates as floats, each checked by :func:`_term`; floats that are all
+    finite and in [0, hi] (every material a fit or a temperature shift builds) pass in one vectorised check."""
     seq = np.atleast_1d(np.asarray(values, dtype=object))
     if all(isinstance(x, float) for x in seq):
         arr = seq.astype(float)
-        if np.isfinite(arr).all() and (arr >= 0).all():
+        if np.isfinite(arr).all() and (arr >= 0).all() and (arr <= hi).all():
             return tuple(arr.tolist())
-    return tuple(_term(f"{name}[{i}]", x, unit) for i, x in enumerate(seq))
+    return tuple(_term(f"{name}[{i}]", x, unit, hi) for i, x in enumerate(seq))
 
 
 @dataclass(frozen=True)
@@ -70,9 +73,9 @@ class Prony(Material, kind="prony"):
     Parameters
     ----------
     E_inf : float
-        Rubbery (equilibrium) modulus, Pa, >= 0.
+        Rubbery (equilibrium) modulus, Pa, in [0, 1e20] (:data:`~vcor.materials.base.MAX_MODULUS`).
     E : sequence of float
-        Term moduli, Pa, each >= 0 (negative terms would make E(t) increase).
+        Term moduli, Pa, each in [0, 1e20] (negative terms would make E(t) increase).
     beta : sequence of float
         Relaxation rates, 1/s, each >= 0 (beta_i = 1/tau_i).
     """
@@ -89,8 +92,8 @@ class Prony(Material, kind="prony"):
     beta: tuple = ()
 
     def __post_init__(self):
-        _positive("E_inf", self.E_inf, allow_zero=True, unit="Pa")
-        e = _terms("Prony E", self.E, "Pa")
+        modulus("E_inf", self.E_inf, allow_zero=True)
+        e = _terms("Prony E", self.E, "Pa", MAX_MODULUS)
         b = _terms("Prony beta", self.beta, "1/s")
         if len(e) != len(b):
             raise ValueError(f"Prony: E and beta must have equal length, got {len(e)} and {len(b)}")

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 from ..checks import positive as _positive
-from .base import Parameter
+from .base import Parameter, modulus
 from .prony import Prony
 
 __all__ = ["SLS"]
@@ -23,7 +23,7 @@ class SLS(Prony, kind="sls"):
     Parameters
     ----------
     E_glassy : float
-        Glassy modulus E_g, Pa, > 0.
+        Glassy modulus E_g, Pa, in (0, 1e20] (:data:`~vcor.materials.base.MAX_MODULUS`).
     alpha, beta : float
         Rates in 1/s with 0 <= alpha <= beta; rubbery modulus E_g alpha/beta.
         beta = 0 (then alpha must be 0) is the elastic limit E(t) = E_g used by the
@@ -41,7 +41,7 @@ class SLS(Prony, kind="sls"):
     alpha: float = 0.0
 
     def __init__(self, E_glassy: float, alpha: float, beta: float):
-        eg = _positive("E_glassy", E_glassy, unit="Pa")
+        eg = modulus("E_glassy", E_glassy)
         a = _positive("alpha", alpha, allow_zero=True, unit="1/s")
         b = _positive("beta", beta, allow_zero=True, unit="1/s")
         if a > b:

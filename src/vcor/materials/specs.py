@@ -29,10 +29,11 @@ import difflib
 import math
 from pathlib import Path
 
-from ..checks import number, positive
-from ..io.csvfile import cell_number, data_rows, project_file, read_rows
+from ..checks import number
+from ..io.csvfile import cell_number, data_rows, named_by, project_file, read_rows
 from ..io.csvfile import header as column_names
 from . import models as _materials
+from .base import MAX_MODULUS, modulus
 from .shift import ShiftFunction
 
 __all__ = ["PRONY_SPEC_KEYS", "canonical", "from_spec", "read_prony_csv", "shift_function", "spec_models"]
@@ -50,16 +51,17 @@ def spec_models() -> dict:
             for kind, fam in _materials.REGISTRY.items() if fam.configurable}
 
 
-def _numbers(where, values, unit, lo=0.0, hi=math.inf, *, lo_open=False):
-    """Each of ``values`` (a non-empty list) a number in [lo, hi) (or (lo, hi) with ``lo_open``); the
-    errors name ``where[i]`` and that range with ``unit``."""
+def _numbers(where, values, unit, lo=0.0, hi=math.inf, *, lo_open=False, hi_open=True):
+    """Each of ``values`` (a non-empty list) a number in [lo, hi) (or (lo, hi) with ``lo_open``, [lo, hi] with
+    ``hi_open`` False); the errors name ``where[i]`` and that range with ``unit``."""
     if not isinstance(values, (list, tuple)) or not values:
         raise ValueError(f"{where} must be a non-empty list of numbers{f' ({unit})' if unit else ''}, got {values!r}")
-    return [number(f"{where}[{i}]", v, lo, hi, lo_open=lo_open, unit=unit) for i, v in enumerate(values)]
+    return [number(f"{where}[{i}]", v, lo, hi, lo_open=lo_open, hi_open=hi_open, unit=unit)
+            for i, v in enumerate(values)]
 
 
 #: the ranges of a Prony table's columns, as a config's inline lists have them (:func:`_prony`)
-_TABLE_RANGES = {"tau": "(0, inf) s", "beta": "[0, inf) 1/s", "E": "[0, inf) Pa", "g": "[0, 1)"}
+_TABLE_RANGES = {"tau": "(0, inf) s", "beta": "[0, inf) 1/s", "E": f"[0, {MAX_MODULUS:g}] Pa", "g": "[0, 1)"}
 
 
 def read_prony_csv(path) -> dict:
@@ -78,7 +80,8 @@ def read_prony_csv(path) -> dict:
     for lineno, row in data_rows(path, rows, header, 1):
         for col, cell in zip(header, row):
             value = cell_number(path, lineno, col, cell)
-            if value < 0 or (col == "tau" and value == 0) or (col == "g" and value >= 1):
+            if (value < 0 or (col == "tau" and value == 0) or (col == "g" and value >= 1)
+                    or (col == "E" and value > MAX_MODULUS)):
                 raise ValueError(f"{path}, line {lineno}, column {col!r}: {cell.strip()} is outside "
                                  f"{_TABLE_RANGES[col]}")
             out[col].append(value)
@@ -102,7 +105,9 @@ def _prony(where, spec, base_dir):
         clash = keys & {"E", "beta", "tau", "g"}
         if clash:
             raise ValueError(f"{where}: give the terms either in file or as {sorted(clash)}, not both")
-        table.update(read_prony_csv(_table_path(f"{where}.file", spec["file"], base_dir)))
+        path = _table_path(f"{where}.file", spec["file"], base_dir)
+        with named_by(f"{where}.file"):
+            table.update(read_prony_csv(path))
     if "tau" in table and "beta" in table:
         raise ValueError(f"{where}: give relaxation times tau (s) or rates beta (1/s), not both")
     if "tau" in table:
@@ -115,7 +120,7 @@ def _prony(where, spec, base_dir):
         if "E_0" not in spec or "E_inf" in spec or "E" in table:
             raise ValueError(f"{where}: the normalised form needs E_0 (instantaneous modulus, Pa) and g, "
                              f"without E_inf or E")
-        e0 = positive(f"{where}.E_0", spec["E_0"], unit="Pa")
+        e0 = modulus(f"{where}.E_0", spec["E_0"])
         g = _numbers(f"{where}.g", table["g"], "", 0.0, 1.0)
         if any(x < 0 for x in g) or not sum(g) < 1:
             raise ValueError(f"{where}.g: relative moduli must be >= 0 with sum < 1 (the long-term modulus "
@@ -126,8 +131,8 @@ def _prony(where, spec, base_dir):
             raise ValueError(f"{where}.E_0 belongs to the normalised form (with g); with moduli E give E_inf")
         if "E" not in table or "E_inf" not in spec:
             raise ValueError(f"{where}: a prony material needs E_inf (Pa) and moduli E (Pa), or E_0 and g")
-        e_inf = positive(f"{where}.E_inf", spec["E_inf"], allow_zero=True, unit="Pa")
-        moduli = _numbers(f"{where}.E", table["E"], "Pa")
+        e_inf = modulus(f"{where}.E_inf", spec["E_inf"], allow_zero=True)
+        moduli = _numbers(f"{where}.E", table["E"], "Pa", hi=MAX_MODULUS, hi_open=False)
     if len(moduli) != len(beta):
         raise ValueError(f"{where}: {len(moduli)} moduli but {len(beta)} relaxation times/rates")
     try:
