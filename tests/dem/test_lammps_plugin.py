@@ -112,6 +112,10 @@ def test_a_temperature_entry_takes_its_series_by_temperature(lmp, vcor_plugin, t
     out = run_lammps(lmp, deck, check=False)  # no plugin given
     assert out.returncode == 1 and "in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin " \
                                    "build prints it), got NONE" in out.stderr
+    out = run_lammps(lmp, deck, "-var", "plugin", str(vcor_plugin.parent), check=False)  # the build folder
+    assert out.returncode == 1 and out.stderr.strip() == (
+        f"in.hereditary needs -var plugin <the path of vcorplugin.so>, got the folder {vcor_plugin.parent}: give "
+        f"the file in it (vcor lammps-plugin build prints its path)"), out.stderr
 
 
 def _variant(deck: Path, name: str, edits: list[tuple[str, str]]) -> Path:

@@ -60,6 +60,10 @@ variable found   equal is_file(${{plugin}})
 if "${{found}} == 0" then &
    "print 'in.hereditary needs -var plugin <the path of vcorplugin.so> (vcor lammps-plugin build prints it), &
 got ${{plugin}}' append /dev/stderr screen no" "quit 1"
+variable folder  equal is_file(${{plugin}}/.)
+if "${{folder}} == 1" then &
+   "print 'in.hereditary needs -var plugin <the path of vcorplugin.so>, got the folder ${{plugin}}: give the file &
+in it (vcor lammps-plugin build prints its path)' append /dev/stderr screen no" "quit 1"
 plugin           load ${{plugin}}
 """
 #: the time step's fixed point, solved in the deck (the same iteration as hereditary_law.time_step)

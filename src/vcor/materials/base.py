@@ -42,7 +42,8 @@ from ..checks import number
 from ..checks import positive as _positive
 
 __all__ = ["GL_NODES", "GL_WEIGHTS", "MAX_MODULUS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES",
-           "SECOND_MOMENT_PANELS", "TIME_FUNCTIONS", "Family", "Material", "Parameter", "causal", "from_dict",
+           "SECOND_MOMENT_PANELS", "TIME_FUNCTIONS", "Family", "Material", "Parameter", "causal", "causal_inline",
+           "from_dict",
            "modulus", "unregister"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
@@ -215,6 +216,14 @@ def causal(fn):
 
     evaluate.causal = True
     return evaluate
+
+
+def causal_inline(fn):
+    """Mark a model's ``modulus_at`` that gives 0 at t < 0 itself (a comparison in its body): :class:`Material`
+    leaves it unwrapped, so that it costs no second call (the contact-time estimate asks for it eight times
+    per impact, the march's tables more). The built-in models' are so; an added model's is wrapped."""
+    fn.causal = True
+    return fn
 
 
 def _causal_at(fn):

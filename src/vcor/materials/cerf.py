@@ -11,7 +11,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..checks import positive as _positive
-from .base import Material, Parameter, modulus
+from .base import Material, Parameter, causal_inline, modulus
 
 __all__ = ["Cerf"]
 
@@ -109,7 +109,10 @@ class Cerf(Material, kind="cerf"):
         e1, b = self.E1, self.b1
         return (lambda t: e1 * erfcx(b * np.sqrt(t))), (lambda s: e1 * b / math.pi / (np.sqrt(s) * (s + b * b)))
 
+    @causal_inline
     def modulus_at(self, t: float) -> float:
+        if t < 0:
+            return 0.0
         return self.E0 + self.E1 * float(erfcx(self.b1 * math.sqrt(t)))
 
     def relaxation_rate(self, t):

@@ -10,7 +10,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..checks import positive as _positive
-from .base import GL_NODES, GL_WEIGHTS, Material, Parameter
+from .base import GL_NODES, GL_WEIGHTS, Material, Parameter, causal_inline
 
 __all__ = ["EqOne"]
 
@@ -84,9 +84,10 @@ class EqOne(Material, kind="eq1"):
             out = A * B / (A + B)
         return np.where(np.isinf(A), B, np.where(np.isinf(B), A, out))
 
+    @causal_inline
     def modulus_at(self, t: float) -> float:
         """E'(t) at one time t (s), Pa, from the bodies' own scalar evaluations (the contact-time
-        estimate asks for it at every impact)."""
+        estimate asks for it at every impact); 0 at t < 0, where both bodies' moduli are."""
         a, b = self.c_a * self.a.modulus_at(t), self.c_b * self.b.modulus_at(t)
         if math.isinf(a) or math.isinf(b):
             return b if math.isinf(a) else a

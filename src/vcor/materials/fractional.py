@@ -9,7 +9,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .base import Material, Parameter, modulus
+from .base import Material, Parameter, causal_inline, modulus
 
 __all__ = ["FractionalPower"]
 
@@ -63,8 +63,11 @@ class FractionalPower(Material, kind="fractional"):
         e1 = self.E1
         return (lambda t: e1 / np.sqrt(np.pi * t)), (lambda s: e1 / math.pi / np.sqrt(s))
 
+    @causal_inline
     def modulus_at(self, t: float) -> float:
-        if t <= 0:
+        if t < 0:
+            return 0.0
+        if t == 0:
             return math.inf if self.E1 > 0 else self.E0
         return self.E0 + self.E1 / math.sqrt(math.pi * t)
 

@@ -16,7 +16,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..checks import positive as _positive
-from .base import MAX_MODULUS, Material, Parameter, modulus
+from .base import MAX_MODULUS, Material, Parameter, causal_inline, modulus
 
 __all__ = ["MOMENT_SERIES", "SECOND_MOMENT_SERIES", "SECOND_SERIES_SWITCH", "SERIES_SWITCH", "Prony"]
 
@@ -130,7 +130,10 @@ class Prony(Material, kind="prony"):
             terms = np.where(np.multiply.outer(np.isinf(t), b == 0), e, terms)
         return self.E_inf + terms.sum(axis=-1)
 
+    @causal_inline
     def modulus_at(self, t: float) -> float:
+        if t < 0:
+            return 0.0
         total = self.E_inf
         for e, b in self._term_pairs:
             total += e * math.exp(-b * t)
