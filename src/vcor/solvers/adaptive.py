@@ -69,7 +69,7 @@ from ._records import (
 from .common import OUTCOME, Result, separation_scalars
 from .extrapolation import extrapolate, weights_for
 from .march import N_EXTRA, Arrays, March, finish
-from .nearly_elastic import glassy_stiffness
+from .nearly_elastic import contact_octave, glassy_stiffness, octave_stiffness
 from .validity import FLAGS
 
 __all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "MAX_SEP_STEPS",
@@ -299,9 +299,10 @@ def _body(impact) -> tuple:
     return (float(impact.kappa * impact.material.viscosity), float(impact.m), float(impact.v0))
 
 
+@functools.lru_cache(maxsize=64)
 def _stop(rule, glassy):
-    """The march's :class:`~._records.Stop` record as a plain tuple: the separation ``rule`` and the kernel's
-    k(0) (N m^-1.5, :func:`glassy_stiffness`)."""
+    """(Cached: a few per sweep.) The march's :class:`~._records.Stop` record as a plain tuple: the separation
+    ``rule`` and the kernel's k(0) (N m^-1.5, :func:`glassy_stiffness`)."""
     return tuple(Stop(0 if rule == "force" else 1, N_EXTRA, glassy))
 
 
@@ -326,15 +327,18 @@ def _tables_for(impact, h_base, factor, tol, kind, tc):
     :func:`level_tables` as they are at the call, so that a benchmark or test that sets them is never
     served tables made under others."""
     tables = impact_tables(impact.material, impact.geometry, h_base, factor, tol, kind,
-                           (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS))
-    glassy = glassy_stiffness(impact, tc)
+                           (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS),
+                           contact_octave(tc))
+    glassy = tables[7]
     return (*tables[:5], 0.0 if glassy else tables[5], tables[6], glassy)
 
 
 @functools.lru_cache(maxsize=256)
-def impact_tables(material, geometry, h_base, factor, tol, kind, module):
-    """(Cached.) :func:`_tables_for` of an impact of ``material`` and ``geometry`` (any speed); ``module``:
-    (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS) at the call."""
+def impact_tables(material, geometry, h_base, factor, tol, kind, module, octave):
+    """(Cached.) :func:`_tables_for` of an impact of ``material`` and ``geometry`` (any speed) but for its 0
+    smooth step where nearly elastic, with :func:`glassy_stiffness` last; ``module``: (level_tables, FLOOR_BITS,
+    SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS) at the call; ``octave``: the power of two at or
+    below the contact-time estimate (s, ``nearly_elastic.contact_octave``; h_base's unless the floor is lowered)."""
     impact = Impact(material, 1.0, geometry)  # the speed enters none of the tables
     level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION = module[:4]  # noqa: N806 (the module's, as keyed)
     top = h_base * 2.0**FLOOR_BITS
@@ -344,7 +348,7 @@ def impact_tables(material, geometry, h_base, factor, tol, kind, module):
                           2.0 * horizon, tol)
     plate, plate_error = plate_record(impact, tables, kind)
     return (horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), _resolved_step(impact, kind),
-            exact_rate(impact, kind))
+            exact_rate(impact, kind), octave_stiffness(impact.material, float(impact.kappa), octave))
 
 
 def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind):

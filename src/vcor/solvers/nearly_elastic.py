@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 import math
 
-__all__ = ["NEARLY_ELASTIC", "glassy_stiffness"]
+__all__ = ["NEARLY_ELASTIC", "contact_octave", "glassy_stiffness", "octave_stiffness"]
 
 
 def glassy_stiffness(impact, tc: float | None = None) -> float:
@@ -24,12 +24,19 @@ def glassy_stiffness(impact, tc: float | None = None) -> float:
     a small residual overlap, where the cubic through F is rough; and it takes all Richardson grids (as an
     elastic kernel: ``adaptive.smooth_step``). One decision per impact, the same on every Richardson grid.
     ``tc``: the impact's contact-time estimate (s), where the caller has it."""
-    top = 2.0 ** math.floor(math.log2(impact.contact_time_estimate() if tc is None else tc))
-    return _glassy(impact.material, float(impact.kappa), top)
+    return octave_stiffness(impact.material, float(impact.kappa), contact_octave(
+        impact.contact_time_estimate() if tc is None else tc))
+
+
+def contact_octave(tc: float) -> float:
+    """The power of two at or below the contact-time estimate ``tc`` (s): the window of the decision."""
+    return 2.0 ** math.floor(math.log2(tc))
 
 
 @functools.lru_cache(maxsize=256)
-def _glassy(material, kappa, top):
+def octave_stiffness(material, kappa: float, top: float) -> float:
+    """(Cached.) :func:`glassy_stiffness` of ``material`` with k = ``kappa`` E (m^0.5) over the window ``top``
+    (s, :func:`contact_octave`): the form the adaptive method's cached tables take it in."""
     if material.viscosity != 0.0 or material.is_elastic:
         return 0.0
     e0 = float(material.relaxation_modulus(0.0))
