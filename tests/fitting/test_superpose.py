@@ -78,6 +78,23 @@ def test_wlf_and_arrhenius_fits_recover_their_constants():
     assert a["E_a"] == pytest.approx(150e3, rel=1e-9) and a["rms"] < 1e-12
 
 
+def test_shift_laws_through_as_many_sets_as_constants_state_no_error():
+    """Three sets, one at T_ref (which every WLF curve and Arrhenius line passes through): the two WLF
+    constants go exactly through the other two shifts, so the residual scatter says nothing of their errors:
+    inf, not 0; a fourth set gives finite errors that cover a perturbed shift. Arrhenius likewise with two sets."""
+    rng = np.random.default_rng(3)
+    T = np.array([0.0, 20.0, 40.0])
+    y = wlf_log_aT(T, 20.0, C1, C2) + np.array([0.01, 0.0, -0.01])
+    w = sp.wlf_fit(T, y, 20.0)
+    assert w["C1_std"] == w["C2_std"] == math.inf and w["rms"] < 1e-9
+    T4 = np.array([0.0, 20.0, 40.0, 60.0])
+    w4 = sp.wlf_fit(T4, wlf_log_aT(T4, 20.0, C1, C2) + rng.normal(0.0, 0.01, 4) * (T4 != 20.0), 20.0)
+    assert 0.0 < w4["C1_std"] < math.inf and 0.0 < w4["C2_std"] < math.inf
+    a = sp.arrhenius_fit(np.array([20.0, 40.0]), np.array([0.0, -1.0]), 20.0)
+    assert a["E_a_std"] == math.inf
+    assert 0.0 < sp.arrhenius_fit(T, np.array([1.1, 0.0, -1.0]), 20.0)["E_a_std"] < math.inf
+
+
 def test_master_curve_and_superposition_rms():
     data = synthetic(0, 0.0)
     mc = sp.master_curve(data, TRUE)

@@ -49,8 +49,9 @@ def wlf_fit(T, log_aT, T_ref, sigma=None):
     Returns
     -------
     dict
-        ``C1`` (-), ``C2`` (K), ``C1_std``, ``C2_std`` (linearised), ``residual`` (decades, fit - data)
-        and its ``rms``.
+        ``C1`` (-), ``C2`` (K), ``C1_std``, ``C2_std`` (linearised, from the residual scatter; ``inf`` where
+        at most two sets lie away from T_ref, through which the two constants pass exactly), ``residual``
+        (decades, fit - data) and its ``rms``.
     """
     from scipy.optimize import least_squares  # on use: planning a run imports the law names only
 
@@ -68,11 +69,16 @@ def wlf_fit(T, log_aT, T_ref, sigma=None):
             fit = least_squares(res, x0=[c1, max(c2, 2 * lo)], bounds=([0.0, lo], list(WLF_UPPER)), method="trf")
             if best is None or fit.cost < best.cost:
                 best = fit
-    dof = max(y.size - 2, 1)
-    cov = np.linalg.pinv(best.jac.T @ best.jac) * (2 * best.cost / dof)
+    # a set at T_ref lies on every WLF curve: it carries no degree of freedom
+    dof = int(np.count_nonzero(dT != 0)) - 2
+    if dof < 1:  # two constants through two shifts: their scatter says nothing of their errors
+        c1_std = c2_std = math.inf
+    else:
+        cov = np.linalg.pinv(best.jac.T @ best.jac) * (2 * best.cost / dof)
+        c1_std, c2_std = math.sqrt(max(cov[0, 0], 0)), math.sqrt(max(cov[1, 1], 0))
     r = wlf_log_aT(T, T_ref, *best.x) - y
-    return {"C1": float(best.x[0]), "C2": float(best.x[1]), "C1_std": float(math.sqrt(max(cov[0, 0], 0))),
-            "C2_std": float(math.sqrt(max(cov[1, 1], 0))), "residual": r, "rms": float(np.sqrt(np.mean(r**2)))}
+    return {"C1": float(best.x[0]), "C2": float(best.x[1]), "C1_std": float(c1_std), "C2_std": float(c2_std),
+            "residual": r, "rms": float(np.sqrt(np.mean(r**2)))}
 
 
 def arrhenius_fit(T, log_aT, T_ref, sigma=None):
@@ -82,14 +88,16 @@ def arrhenius_fit(T, log_aT, T_ref, sigma=None):
     Returns
     -------
     dict
-        ``E_a`` (J/mol), ``E_a_std``, ``residual`` (decades, fit - data), ``rms``.
+        ``E_a`` (J/mol), ``E_a_std`` (``inf`` where one set lies away from T_ref: the line passes through it
+        exactly), ``residual`` (decades, fit - data), ``rms``.
     """
     x = 1.0 / (np.asarray(T, float) + ZERO_CELSIUS) - 1.0 / (T_ref + ZERO_CELSIUS)
     y = np.asarray(log_aT, float)
     w = _weights(y, sigma, 2)
     slope = float(np.sum(w * x * y) / np.sum(w * x * x))
     r = slope * x - y
-    se = math.sqrt(float(np.sum(w * r**2)) / max(y.size - 1, 1) / float(np.sum(w * x * x)))
+    dof = int(np.count_nonzero(x != 0)) - 1  # a set at T_ref lies on every Arrhenius line
+    se = math.sqrt(float(np.sum(w * r**2)) / dof / float(np.sum(w * x * x))) if dof >= 1 else math.inf
     k = GAS_CONSTANT * math.log(10.0)
     return {"E_a": slope * k, "E_a_std": se * k, "residual": r, "rms": float(np.sqrt(np.mean(r**2)))}
 
