@@ -74,6 +74,7 @@ def test_one_speed_is_reported_unidentifiable(clean):
     assert not cal.identified.any()
     assert all("combination" in n for n in cal.notes)
     assert np.all(np.isinf(cal.stderr)) and np.all(np.isinf(cal.upper95))
+    assert np.all(cal.lower95 == 0.0)  # E_glassy and beta are positive: their whole range starts at 0
 
 
 def test_one_speed_flags_every_parameter_whatever_the_null_direction(tmp_path):

@@ -300,11 +300,12 @@ def _material_limits(model, x) -> list[tuple[int, str]]:
 
 
 def _intervals(model, x, sx, identified, q):
-    """(estimate, stderr, lower95, upper95) in the parameters' own units (inf where not identified)."""
+    """(estimate, stderr, lower95, upper95) in the parameters' own units; where not identified, the interval is
+    the whole range (-inf, inf), or (0, inf) for a positive parameter (fitted in log), and stderr inf."""
     p = model.params(x)
     lower, upper = model.params(x - q * sx), model.params(x + q * sx)
     stderr = np.where(model.linear, sx, p * sx)
-    return (p, np.where(identified, stderr, np.inf), np.where(identified, lower, -np.inf),
+    return (p, np.where(identified, stderr, np.inf), np.where(identified, lower, np.where(model.linear, -np.inf, 0.0)),
             np.where(identified, upper, np.inf))
 
 
