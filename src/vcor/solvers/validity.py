@@ -115,10 +115,8 @@ def finalised(res, impact, options):
     if flags & _GRIDS_DISAGREE:
         notes.append("the nested grids of method adaptive are not in the asymptotic range of its Richardson "
                      f"extrapolation, or it would give a negative COR, or the COR is below {COR_FLOOR:g} (the message "
-                     "says which): the values are "
-                     "the finest grid's, "
-                     "their error is not held to the method's accuracy (an ill-conditioned separation time, as of "
-                     "a force creeping to zero)")
+                     "says which): the values are the finest grid's, their error is not held to the method's "
+                     "accuracy (an ill-conditioned separation time, as of a force creeping to zero)")
     r = impact.geometry.r
     if res.s_max / r > MAX_INDENTATION:
         flags |= FLAGS["large_indentation"]

@@ -118,11 +118,10 @@ def hereditary_refusal(spec: dict, catalogue: Catalogue) -> str:
     if other == "rigid":
         return ""
     default_nu = NU_DEFAULTS["steel" if mine == "elastic" else "polymer"]  # one material: one family's default
-    if other is None:  # the sphere's twin (vcor.contact.pair.twin_defaults): its nu unless the target sets one
-        other = sphere["material"]
-        same = body.get("nu", sphere.get("nu", default_nu)) == sphere.get("nu", default_nu)
-    else:
-        same = other == sphere["material"] and body.get("nu", default_nu) == sphere.get("nu", default_nu)
+    nu = sphere.get("nu", default_nu)
+    twin = other is None  # the sphere's twin (vcor.contact.pair.twin_defaults): its material, and its nu unless set
+    other = sphere["material"] if twin else other
+    same = other == sphere["material"] and body.get("nu", nu if twin else default_nu) == nu
     if not same and (mine != "elastic" or _viscous(other, catalogue) != "elastic"):
         return REFUSALS["eq1"]
     return ""
