@@ -297,6 +297,32 @@ def test_a_changed_shift_function_changes_the_identity():
         from_spec({"model": "fractional", "E0": 1e6, "E1": 1e6, "shift": {**WLF, "C2": -1.0}}, name="f")
 
 
+def test_a_scene_without_a_temperature_axis_takes_its_materials_without_shift_functions():
+    """A scene without a T axis is given the catalogue without config shift functions: the same material,
+    the identity of that material without a shift function (so an edited C1 changes none of its points),
+    while a scene with a T axis keeps the shift and its identity."""
+    from vcor.materials import Catalogue
+    from vcor.study.config import load_project
+
+    other = {**T_CONFIG["materials"]["warm-prony"], "shift": {**WLF, "C1": 9.0}}
+    bare = {k: v for k, v in other.items() if k != "shift"}
+    for spec in (T_CONFIG["materials"]["warm-prony"], other):
+        cat = Catalogue(specs={"warm-prony": spec})
+        plain = cat.without_shifts()
+        assert plain.shift("warm-prony") is None and cat.shift("warm-prony") is not None
+        assert plain.material("warm-prony") == cat.material("warm-prony")
+        assert plain.identity("warm-prony") == Catalogue(specs={"warm-prony": bare}).identity("warm-prony")
+    cold = {"materials": ["warm-prony"], "grid": {"v0": [1.0]}}
+    config = {**T_CONFIG, "scenes": {**T_CONFIG["scenes"], "cold": cold}}
+    project = load_project(config)
+    assert project.scene_catalogue("cold").shift("warm-prony") is None
+    assert project.scene_catalogue("temp").shift("warm-prony") is not None
+    entry = {"sphere": {"material": "warm-prony"}, "v0": [1.0, 3.0]}
+    project = load_project({**config, "dem": {"cold": entry, "warm": {**entry, "T": [0.0, 20.0]}}})
+    assert project.dem_catalogue("cold").shift("warm-prony") is None
+    assert project.dem_catalogue("warm").shift("warm-prony") is not None
+
+
 def test_a_catalogue_subset_holds_the_named_materials_and_what_they_are_built_from(tmp_path):
     from vcor.materials import Catalogue
 

@@ -403,3 +403,30 @@ def test_lint_and_format(smk):
     fmt = subprocess.run([sys.executable, "-m", "snakefmt", "--check", "Snakefile", "workflow/"], cwd=ROOT,
                          capture_output=True, text=True, check=False)
     assert fmt.returncode == 0, fmt.stderr
+
+
+def test_an_edited_shift_function_reruns_only_scenes_with_a_temperature_axis(make_project, smk, tmp_path):
+    """A scene without a temperature axis takes its materials at their reference temperature: editing a
+    config material's WLF constants re-solves the scene that sweeps T and none of the other's jobs (its
+    points keep their identity, that of the material without a shift function)."""
+    gum = {"model": "sls", "E_glassy": 2.0e7, "alpha": 500.0, "beta": 2000.0,
+           "shift": {"model": "wlf", "C1": 8.0, "C2": 120.0, "T_ref": 20.0}}
+    config = {"materials": {"gum": gum},
+              "scenes": {"plain": {"materials": ["gum"], "grid": {"v0": [1.0, 3.0]}, "moduli": ["gum"]},
+                         "warm": {"materials": ["gum"], "grid": {"v0": [1.0], "T": [20.0, 40.0]}}}}
+    path = make_project(tmp_path, config)
+    smk(path, "-j1")
+    plain = {p.name: p.read_bytes() for p in (path / "results/plain").rglob("*.nc")}
+    config["materials"]["gum"]["shift"]["C1"] = 9.0
+    (path / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
+    out = smk(path, "-n", "-j1", "--quiet", "rules")
+    text = out.stdout + out.stderr
+    lines = {ln.split()[0]: int(ln.split()[1]) for ln in text.splitlines() if len(ln.split()) == 2
+             and ln.split()[1].isdigit()}
+    assert lines.get("sweep_shard") == 1 and lines.get("aggregate") == 1 and "moduli" not in lines, text
+    smk(path, "-j1")
+    assert {p.name: p.read_bytes() for p in (path / "results/plain").rglob("*.nc")} == plain
+    with xr.open_dataset(path / "results/warm/sweep.nc") as ds:
+        cor = float(ds["cor"].isel(material=0).sel(T=40.0, v0=1.0))
+    catalogue = Catalogue(specs=config["materials"])
+    assert cor == pytest.approx(vcor.simulate(catalogue.at("gum", T=40.0), 1.0).cor, rel=1e-9)

@@ -120,18 +120,23 @@ CATALOGUE = PROJECT.catalogue
 MATERIAL_DIR = CATALOGUE.material_dir
 
 
-def catalogue_spec(names):
+def catalogue_spec(names, catalogue=CATALOGUE):
     """The catalogue of the materials ``names`` as a plain mapping, a param of the jobs that use them
     (they rebuild it with Catalogue(**spec)): only their entries, so that editing other materials of the
-    config re-runs none of these jobs (vcor.materials.Catalogue.subset)."""
-    return dataclasses.asdict(CATALOGUE.subset(names))
+    config re-runs none of these jobs (vcor.materials.Catalogue.subset). ``catalogue``: a scene's
+    (vcor.study.project.Project.scene_catalogue) for its jobs."""
+    return dataclasses.asdict(catalogue.subset(names))
 
 
 def get_scene_catalogue(wildcards):
-    """The catalogue of the materials a scene's jobs use (its sweep, tables, histories, bodies)."""
+    """The catalogue of the materials a scene's jobs use (its sweep, tables, histories, bodies), as the
+    scene takes them (without shift functions when it has no temperature axis)."""
     sc = SCENES[wildcards.scene]
     runs = (sc.config.get("histories") or {}).get("runs", [])
-    return catalogue_spec(sc.used_materials() + [run[0] for run in runs])
+    return catalogue_spec(
+        sc.used_materials() + [run[0] for run in runs],
+        PROJECT.scene_catalogue(wildcards.scene),
+    )
 
 
 # fingerprints of the code that computes (every computing rule takes it as a param, so changed code
@@ -158,7 +163,8 @@ _PLANS = {}
 
 def material_identities(scene):
     """{material name: content identity} of a scene's swept materials (vcor.materials.Catalogue)."""
-    return {m: CATALOGUE.identity(m) for m in SCENES[scene].materials}
+    catalogue = PROJECT.scene_catalogue(scene)
+    return {m: catalogue.identity(m) for m in SCENES[scene].materials}
 
 
 def shard_plan(scene):
@@ -290,7 +296,9 @@ def shard_materials(wildcards):
 
 
 def get_shard_catalogue(wildcards):
-    return catalogue_spec(shard_materials(wildcards))
+    return catalogue_spec(
+        shard_materials(wildcards), PROJECT.scene_catalogue(wildcards.scene)
+    )
 
 
 def get_shard_material_files(wildcards):

@@ -17,7 +17,9 @@ rule convergence_case:
         code=CODE,
         material="{material_case}",
         v0=get_convergence_v0s,
-        catalogue=lambda wildcards: catalogue_spec([wildcards.material_case]),
+        catalogue=lambda wildcards: catalogue_spec(
+            [wildcards.material_case], PROJECT.scene_catalogue(wildcards.scene)
+        ),
     script:
         "../scripts/convergence_case.py"
 

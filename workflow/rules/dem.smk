@@ -24,7 +24,9 @@ for _dem in PROJECT.dem:
             code=CODE,
             name=_dem,
             spec=PROJECT.dem[_dem],
-            catalogue=catalogue_spec(PROJECT.dem_materials(_dem)),
+            catalogue=catalogue_spec(
+                PROJECT.dem_materials(_dem), PROJECT.dem_catalogue(_dem)
+            ),
         script:
             "../scripts/dem.py"
 

@@ -18,6 +18,7 @@ materials by identity, so a changed spec, table, data file or code recomputes ex
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import functools
 import hashlib
@@ -105,6 +106,16 @@ class Catalogue:
 
         return Catalogue(specs=pick(self.specs), fits=pick(self.fits), calibrations=pick(self.calibrations),
                          material_dir=self.material_dir, base_dir=self.base_dir)
+
+    def without_shifts(self) -> Catalogue:
+        """The catalogue with the shift functions of its config materials left out: what the jobs of a scene
+        without a temperature axis are given. Its materials are taken at their reference temperature, where
+        no shift function enters a number, so that editing one (a WLF C1) re-runs none of its jobs; their
+        identities are those of the same materials without a shift function. Fits and calibrations keep
+        theirs (read from their files, part of what their identity covers)."""
+        specs = {k: {key: v for key, v in spec.items() if key != "shift"} if isinstance(spec, dict) else spec
+                 for k, spec in self.specs.items()}
+        return dataclasses.replace(self, specs=specs)
 
     def check(self, name: str, where: str) -> None:
         """ValueError naming ``where`` unless ``name`` is known."""

@@ -128,7 +128,7 @@ def sweep_archive(scene: dict | str, *, config: Any = None, workers: int | None 
     show = wanted(progress)
     study = resolve_scene(scene, config, name)
     sc, project = study.scene, study.project
-    with _ready(project.catalogue, sc.used_materials(), sc.uncertainty) as catalogue:
+    with _ready(project.scene_catalogue(study.name), sc.used_materials(), sc.uncertainty) as catalogue:
         points = identified_points(sc.config, {m: catalogue.identity(m) for m in sc.materials}, sc.grid)
         shard = solve_points(points, sc.settings, catalogue, workers=processes, progress=show,
                              from_data=project.fitted_to_data)
@@ -337,7 +337,7 @@ def dem_export(dem: dict | str, *, config: Any = None, name: str | None = None) 
     study = resolve_entry("dem", dem, name, config, "dem")
     project, spec = study.project, study.project.dem[study.name]
     load_kernels([solver_method(spec)])
-    with _ready(project.catalogue, project.dem_materials(study.name)) as ready:
+    with _ready(project.dem_catalogue(study.name), project.dem_materials(study.name)) as ready:
         collisions, fits, temps = run_dem(study.name, spec, ready)
     ds = dem_dataset(study.name, collisions, fits, temps, config=spec)
     archive = Archive(dataset=ds, title=f"vcor DEM parameters, {study.name}")
@@ -383,7 +383,7 @@ def histories(scene: dict | str, *, config: Any = None, name: str | None = None)
     study = resolve_scene(scene, config, name, "histories")
     sc = study.project.scenes[study.name]
     spec = sc.config["histories"]
-    with _ready(study.project.catalogue, sorted({run[0] for run in spec["runs"]})) as ready:
+    with _ready(study.project.scene_catalogue(study.name), sorted({run[0] for run in spec["runs"]})) as ready:
         archive = histories_archive(study.name, spec, sc.settings, ready)
     return archive.loaded(command="vcor.histories")
 
@@ -406,7 +406,7 @@ def moduli(scene: dict | str, *, config: Any = None, name: str | None = None) ->
     """
     study = resolve_scene(scene, config, name, "moduli")
     names = study.project.scenes[study.name].moduli_materials()
-    with _ready(study.project.catalogue, names) as ready:
+    with _ready(study.project.scene_catalogue(study.name), names) as ready:
         archive = moduli_archive(names, ready)
     return archive.loaded(command="vcor.moduli")
 
@@ -454,6 +454,6 @@ def convergence(scene: dict | str, *, config: Any = None, name: str | None = Non
     """
     study = resolve_scene(scene, config, name, "convergence")
     spec = study.project.scenes[study.name].config["convergence"]
-    with _ready(study.project.catalogue, spec["materials"]) as ready:
+    with _ready(study.project.scene_catalogue(study.name), spec["materials"]) as ready:
         cases = [convergence_case(m, spec["v0"], ready).loaded(command="vcor.convergence") for m in spec["materials"]]
     return convergence_archive(spec, cases).loaded(command="vcor.convergence")

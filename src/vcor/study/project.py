@@ -87,6 +87,11 @@ class Scene:
         """The materials whose moduli the scene tabulates: its ``moduli`` list, else its swept materials."""
         return list(self.config.get("moduli", self.materials))
 
+    def isothermal(self) -> bool:
+        """True when the scene has no temperature axis: its materials are taken at their reference
+        temperature (:meth:`Project.scene_catalogue`)."""
+        return self.grid is None or "T" not in self.grid.names
+
     def body_materials(self) -> list[str]:
         """Names of the catalogue the scene's sphere and plate name (not ``rigid``, not inline specs)."""
         bodies = [(self.config.get(k) or {}).get("material") for k in ("sphere", "plate")]
@@ -115,6 +120,11 @@ class Project:
         return frozenset(n for n, spec in self.catalogue.fits.items() if "data" in spec)
 
     # -- scenes -----------------------------------------------------------------------------------
+    def scene_catalogue(self, scene: str) -> Catalogue:
+        """The catalogue a scene's jobs are given: the project's, without the shift functions of config
+        materials when the scene has no temperature axis (:meth:`Catalogue.without_shifts`)."""
+        return self.catalogue.without_shifts() if self.scenes[scene].isothermal() else self.catalogue
+
     def scene_targets(self, scene: str) -> list[str]:
         """Every output of a scene (its datasets, figures, tables, the files of the materials it uses that
         are not presets), paths relative to the project: the workflow's default target requires them
@@ -223,6 +233,11 @@ class Project:
         bodies = [spec["sphere"]] + (list(target.values()) if isinstance(target, dict) else [])
         return [b["material"] for b in bodies
                 if isinstance(b, dict) and isinstance(b.get("material"), str) and b["material"] != "rigid"]
+
+    def dem_catalogue(self, name: str) -> Catalogue:
+        """The catalogue a ``dem:`` entry's job is given: as :meth:`scene_catalogue`, without the shift
+        functions of config materials when the entry has no temperatures ``T``."""
+        return self.catalogue if "T" in self.dem[name] else self.catalogue.without_shifts()
 
     def dem_material_files(self, name: str) -> list[str]:
         """The computed material files (fits, calibrations) a ``dem:`` entry's job reads."""
