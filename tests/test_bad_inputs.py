@@ -338,6 +338,28 @@ ROWS = [
     ("config: option the method ignores",
      lambda: _validate(_config_with(lambda c: c["scenes"]["sls"].update(solver={"method": "ive", "dt": 1e-6}))),
      ["scenes.sls.solver", "dt", "not used by method 'ive'"]),
+    # --- the work-precision study: what its jobs would meet after the kernels and the ladders -----
+    ("config: a work-precision material twice",
+     lambda: _validate(_scene("convergence", convergence={"materials": ["sls", "sls"], "v0": [10]})),
+     ["scenes.convergence.convergence.materials", "at most once", "['sls', 'sls']"]),
+    ("config: a work-precision speed twice",
+     lambda: _validate(_scene("convergence", convergence={"materials": ["sls"], "v0": [10, 10.0]})),
+     ["scenes.convergence.convergence.v0", "at most once"]),
+    ("config: a work-precision speed NaN",
+     lambda: _validate(_scene("convergence", convergence={"materials": ["sls"], "v0": [10, math.nan]})),
+     ["scenes.convergence.convergence.v0[1]", "v0 must be in [1e-09, 100000] m/s", "nan"]),
+    ("config: a work-precision speed out of range",
+     lambda: _validate(_scene("convergence", convergence={"materials": ["sls"], "v0": [1.0e9]})),
+     ["scenes.convergence.convergence.v0[0]", "v0 must be in [1e-09, 100000] m/s"]),
+    ("study: a work-precision speed infinite",
+     lambda: vcor.convergence({"convergence": {"materials": ["sls"], "v0": [math.inf]}}),
+     ["scene.convergence.v0[0]", "v0 must be in [1e-09, 100000] m/s", "inf"]),
+    ("config: a geometry the work-precision study would not solve",
+     lambda: _validate(_scene("convergence", geometry={"h": 0.005})),
+     ["scenes.convergence.geometry", "default geometry", "takes no geometry"]),
+    ("config: a plate the work-precision study would not solve",
+     lambda: _validate(_scene("convergence", plate={"material": "sls", "h": 0.005})),
+     ["scenes.convergence.plate", "default geometry"]),
 ]
 
 

@@ -31,8 +31,15 @@ def work_precision(conv, opts):
             ax.set_ylabel("COR error |COR - reference|")
             # decades only: the minor ticks of twelve log-log panels made up half of the drawing time
             ax.minorticks_off()
-    handles, labels = axes[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncol=min(len(labels), 5), fontsize=7)
+    # one entry per solver drawn in any panel: a solver may not apply to the first panel's material (ive on
+    # a fractional law), and its line elsewhere still needs its name
+    drawn = {}
+    for ax in axes.flat:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            drawn.setdefault(label, handle)
+    labels = [lab for lab in dict.fromkeys(solver_label(str(s)) for s in conv["solver"].values) if lab in drawn]
+    fig.legend([drawn[lab] for lab in labels], labels, loc="outside lower center", ncol=min(len(labels), 5),
+               fontsize=7)
     fig.suptitle("Work-precision: COR error against run time (reference: Richardson-extrapolated direct; "
                  "dotted: 1e-6)")
     return fig

@@ -316,6 +316,16 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) ->
     _check_figures(name, scene, catalogue, grid)
     for mat in scene.get("convergence", {}).get("materials", []):
         catalogue.check(mat, f"{where}.convergence.materials")
+    bodies = [k for k in ("geometry", "sphere", "plate") if "convergence" in scene and k in scene]
+    if bodies:  # the study's references and ladders are those of one impact geometry, the default one
+        raise ValueError(f"{where}.{bodies[0]}: the work-precision study (convergence) solves the default geometry "
+                         f"(vcor.contact.impact.GEOMETRY_DEFAULTS) and takes no {bodies[0]}; put the convergence "
+                         f"block in a scene without geometry, sphere or plate")
+    for i, v0 in enumerate(scene.get("convergence", {}).get("v0", [])):
+        try:  # the speed's range is the same for every material (a preset stands in: a fit's file may not exist yet)
+            make_impact("sls", v0, {})
+        except ValueError as exc:
+            raise ValueError(f"{where}.convergence.v0[{i}]: {exc}") from None
     for mat in scene.get("moduli", []):
         catalogue.check(mat, f"{where}.moduli")
     for mat, method in scene.get("histories", {}).get("runs", []):
