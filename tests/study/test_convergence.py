@@ -73,3 +73,49 @@ def test_a_kelvin_voigt_material_gets_the_methods_that_take_it():
     # the cross-check exists (ive applies) and says how far the reference is from it
     print(f"\nkelvin-voigt 3 m/s: |reference - ive rtol 1e-12| = {convergence.reference_gap(ds):.1e}")
     assert np.isfinite(convergence.reference_gap(ds))
+
+
+def test_the_reference_records_its_error_estimate_and_orders_leave_out_its_floor():
+    """The reference's error estimate (its distance to the extrapolation one step coarser) is at least its
+    true error (against ive at rtol 1e-12, SLS at 10 m/s); the floor below which errors measure the reference is
+    stored, and the observed orders are fitted above it only: errors that flatten at the reference's own
+    error give no order (a ladder of errors C h^2 that meets a floor of 2e-6)."""
+    ds = convergence.study("sls", 10.0, repeat=1)
+    estimate, gap = float(ds["cor_ref_error"]), convergence.reference_gap(ds)
+    print(f"\nsls v0 = 10: reference error estimate {estimate:.1e}, |reference - ive rtol 1e-12| {gap:.1e}")
+    assert gap <= estimate < 1e-8
+    assert float(ds["err_cor_floor"]) == convergence.ERROR_FLOOR * max(estimate, gap)
+    assert int(ds["reference_status"]) == status.code("ok") and str(ds["reference_message"].values) == ""
+    assert np.isfinite(float(ds["cor_ref_volterra_error"]))
+    # synthetic: one solver whose errors fall as steps^-2 down to a floor of 2e-6, where they flatten
+    steps = np.array([250.0, 500.0, 1000.0, 2000.0, 4000.0, 8000.0])
+    err = np.maximum(1e-3 * (250.0 / steps) ** 2, 2e-6)
+    case = ds.isel(solver=[0], level=range(steps.size)).copy(deep=True)
+    case["param"][:] = steps
+    case["err_cor"][:] = err
+    case["err_cor_floor"] = 6e-6
+    assert 1.99 < convergence.observed_order(case, str(case["solver"].values[0])) < 2.01
+    case["err_cor_floor"] = 0.0
+    assert convergence.observed_order(case, str(case["solver"].values[0])) < 1.9  # the floor bends the fit
+
+
+def test_a_reference_that_does_not_finish_says_why(monkeypatch):
+    """A reference run that ends with another status leaves the errors NaN and the case says why (status and
+    message), instead of NaN errors beside runs that are ok."""
+    from vcor.solvers import simulate as front
+
+    real = front.simulate
+
+    def failing(material, v0, **kw):
+        r = real(material, v0, **kw)
+        if kw.get("method") == "direct" and kw.get("steps_per_contact") == convergence.REF_STEPS[1]:
+            r.status, r.message, r.cor, r.t0 = "step-budget", "stopped by the step budget (test)", np.nan, np.nan
+        return r
+
+    monkeypatch.setattr(front, "simulate", failing)
+    ds = convergence.study("sls", 3.0, repeat=1)
+    assert int(ds["reference_status"]) == status.code("step-budget")
+    assert "16000 steps per contact time ended step-budget: stopped by the step budget (test)" in str(
+        ds["reference_message"].values)
+    assert np.all(np.isnan(ds["err_cor"].sel(solver="direct-a").values))
+    assert np.isnan(float(ds["cor_ref"])) and np.isnan(float(ds["err_cor_floor"]))

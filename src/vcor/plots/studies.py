@@ -26,6 +26,9 @@ def work_precision(conv, opts):
                     ax.loglog(ds["wall_time"].values[ok], ds["err_cor"].values[ok], marker=markers[k % 8], ms=4,
                               color=f"C{k}", label=solver_label(str(s)))
             ax.axhline(1e-6, color="grey", lw=0.5, ls=":")
+            floor = float(d["err_cor_floor"]) if "err_cor_floor" in d else np.nan
+            if np.isfinite(floor) and floor > 0:  # below it an error measures the reference as much as the solver
+                ax.axhspan(floor * 1e-3, floor, color="grey", alpha=0.12, lw=0)
             ax.set_title(f"{m}, v0 = {v:g} m/s", fontsize=9)
             ax.set_xlabel("solver wall time [s]")
             ax.set_ylabel("COR error |COR - reference|")
@@ -41,7 +44,7 @@ def work_precision(conv, opts):
     fig.legend([drawn[lab] for lab in labels], labels, loc="outside lower center", ncol=min(len(labels), 5),
                fontsize=7)
     fig.suptitle("Work-precision: COR error against run time (reference: Richardson-extrapolated direct; "
-                 "dotted: 1e-6)")
+                 "dotted: 1e-6; grey band: errors that measure the reference as much as the solver)")
     return fig
 
 
