@@ -22,7 +22,7 @@ import pytest
 import yaml
 from lammps_run import cor_of, run_lammps
 
-from vcor.dem import export, fit, hereditary, trend
+from vcor.dem import export, fit, hereditary, lammps, trend
 
 pytestmark = [pytest.mark.slow, pytest.mark.lammps]
 
@@ -149,7 +149,7 @@ def test_periodic_images_and_newton_off_give_the_same_cor(lmp, vcor_plugin, tmp_
     an overlap of 1e-5 m). Each deck runs a fixed 4000 steps (the bodies part after ~1500)."""
     _, deck = _deck(tmp_path, "sls", {"sphere": {}}, v0=[1.0])
     fixed = [("run              ${nrun}\n", "run 4000\n"),
-             ('if "${sep} <= 0.0" then "run ${nsteps}" "jump SELF more"\n', "")]
+             ('if "${sep} > 0.0" then "jump SELF separated"\n', "jump             SELF separated\n")]
     reference = _variant(deck, "in.fixed", fixed)
     cors = {"fixed": _cors(lmp, vcor_plugin, reference, [1.0])[0]}
     for newton in ("on", "off"):
@@ -375,15 +375,20 @@ def test_a_wall_fix_missing_lo_or_hi_says_how_it_read_them(lmp, vcor_plugin, tmp
 @pytest.mark.parametrize("target", ["pair", "wall"])
 def test_moduli_in_mpa_draw_one_large_overlap_warning(lmp, vcor_plugin, tmp_path, target):
     """The coefficients' moduli divided by 1e6 (a user who writes MPa where si wants Pa): the spheres sink
-    deep into each other; LAMMPS warns once, naming the overlap, the contact and the likely cause. The
-    deck as written (Pa) draws no such warning."""
+    deep into each other; LAMMPS warns once, naming the overlap, the contact and the likely cause, and the
+    deck stops after MAX_CONTACT_TIMES more contact times without a separation (exit 3, one line on standard
+    error, no COR: the pair ran until LAMMPS lost its atoms, two minutes later). The deck as written (Pa)
+    draws no such warning."""
     ds, deck = _deck(tmp_path, "sls", {"sphere": {}} if target == "pair" else "rigid", v0=[1.0])
     coeffs = [float(c) for c in re.search(r'variable coeffs  string "([^"]*)"', deck.read_text()).group(1).split()]
     mpa = " ".join(repr(c / 1e6 if k == 0 or k % 2 else c) for k, c in enumerate(coeffs))  # E_inf E_1 beta_1 ...
     soft = _variant(deck, "in.mpa", [("${coeffs}\n", f"{mpa}\n")])
     who = "pair_style vcor/hereditary" if target == "pair" else "fix vcor/wall/hereditary"
-    warnings = _warnings(run_lammps(lmp, soft, "-var", "plugin", str(vcor_plugin), screen=True,
-                                    check=False).stdout)
+    out = run_lammps(lmp, soft, "-var", "plugin", str(vcor_plugin), screen=True, check=False, timeout=120)
+    assert out.returncode == 3 and not [x for x in out.stdout.splitlines() if x.startswith("COR = ")]
+    assert out.stderr.strip() == (f"no separation within {lammps.MAX_CONTACT_TIMES + 1.5:g} contact times of 1000 "
+                                  f"steps: the bodies stay in contact (a captured sphere, or moduli not in Pa), no COR")
+    warnings = _warnings(out.stdout)
     large = [w for w in warnings if "of the effective radius (" in w and "an overlap of" in w]
     assert len(large) == 1 and large[0].startswith(f"WARNING: {who}: an overlap of "), warnings
     assert "Moduli written in MPa or kPa instead of Pa give this" in large[0], large[0]

@@ -22,8 +22,8 @@ from __future__ import annotations
 from ..io.receipts import atomic_text
 from .export import quality_lines
 
-__all__ = ["DECK_NAMES", "NSTEPS", "PAIR_ATOMS", "PAIR_MASSES", "PAIR_RUN", "V0_CHECK", "WALL_ATOMS", "WALL_MASSES",
-           "WALL_RUN", "deck_name", "write_deck"]
+__all__ = ["DECK_NAMES", "MAX_CONTACT_TIMES", "NSTEPS", "PAIR_ATOMS", "PAIR_MASSES", "PAIR_RUN", "V0_CHECK",
+           "WALL_ATOMS", "WALL_MASSES", "WALL_RUN", "deck_name", "write_deck"]
 
 #: the deck of each contact kind
 DECK_NAMES = {"pair": "in.pair", "wall": "in.wall"}
@@ -106,6 +106,23 @@ velocity         all set 0.0 0.0 0.0 units box
 set              atom 1 vx ${{vh}}
 set              atom 2 vx ${{mvh}}
 """
+#: contact times the decks run past their first run before they give up on a separation
+MAX_CONTACT_TIMES = 64
+#: after the first run (1.5 contact times): runs of one contact time while the bodies touch, at most
+#: MAX_CONTACT_TIMES of them; then one line on standard error and exit 3 (no COR: a captured sphere, or
+#: moduli that are not in Pa, where the bodies sink into each other, would otherwise run until LAMMPS loses
+#: the atoms, minutes later). A template as the runs below ({{ }} for LAMMPS's braces).
+_MORE = ("variable more    loop " + str(MAX_CONTACT_TIMES) + "\n"
+         "label            more\n"
+         'if "${{sep}} > 0.0" then "jump SELF separated"\n'
+         "run              ${{nsteps}}\n"
+         "next             more\n"
+         "jump             SELF more\n"
+         'print            "no separation within ' + f"{MAX_CONTACT_TIMES + 1.5:g}" + " contact times of ${{nsteps}} "
+         'steps: the bodies stay in contact (a captured sphere, or moduli not in Pa), no COR" '
+         "append /dev/stderr screen no\n"
+         "quit             3\n"
+         "label            separated\n")
 PAIR_RUN = """\
 neighbor         ${{R1}} bin
 neigh_modify     delay 0 every 1 check yes
@@ -115,9 +132,7 @@ thermo           0
 variable sep     equal x[2]-x[1]-(v_R1+v_R2)
 variable nrun    equal ceil(1.5*v_nsteps)+20
 run              ${{nrun}}
-label            more
-if "${{sep}} <= 0.0" then "run ${{nsteps}}" "jump SELF more"
-variable cor     equal (vx[2]-vx[1])/v_v0
+""" + _MORE + """variable cor     equal (vx[2]-vx[1])/v_v0
 variable corf    format cor %.12g
 print            "COR = ${{corf}}" universe no
 """
@@ -149,9 +164,7 @@ thermo           0
 variable sep     equal x[1]-v_R
 variable nrun    equal ceil(1.5*v_nsteps)+20
 run              ${{nrun}}
-label            more
-if "${{sep}} <= 0.0" then "run ${{nsteps}}" "jump SELF more"
-variable cor     equal vx[1]/v_v0
+""" + _MORE + """variable cor     equal vx[1]/v_v0
 variable corf    format cor %.12g
 print            "COR = ${{corf}}" universe no
 """
