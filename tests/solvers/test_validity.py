@@ -120,6 +120,27 @@ def test_a_sphere_leaving_below_the_cor_floor_is_flagged_whatever_its_grids():
     assert extrapolation.extrapolate(rows, adaptive.RICHARDSON_WEIGHTS)[1] == ""
 
 
+def test_a_cor_just_above_the_floor_is_extrapolated_only_on_grids_that_agree_relatively():
+    """A sphere of r = 1 mm on a stiff Prony plate (1..10 GPa, rates 10..1e7 1/s) of h = 0.1 mm and 100 kg/m^3 at
+    3 mm/s is held by the plate for 1.6 s and leaves at a COR of 5.33e-9 (step_tol 2.5e-5 and 6e-6 agree on
+    5.332e-9 and t0 = 1.59246 s). The default grids' COR differ by 2e-11 (0.4 %) with a difference ratio of 2.1,
+    and their t0 by 1e-3: within COR_FLOOR absolute, the result was extrapolated, 5e-4 off in the COR and 1.5e-4
+    in t0, unflagged. The COR's gap is relative, as t0's is: the finest grid's values are kept, flagged."""
+    from vcor.solvers import adaptive, extrapolation
+    from vcor.solvers.common import OUTCOME
+    plate = {"model": "prony", "E_inf": 1e9, "E": [2e9, 3e9, 4e9], "beta": [1e1, 1e4, 1e7]}
+    r = vcor.simulate(plate, 3e-3, h=1e-4, rho_b=100.0, r=1e-3)
+    print(f"\nCOR {r.cor:.6g}, t0 {r.t0:.7g} s, validity {r.validity}: {r.message}")
+    assert r.ok and extrapolation.COR_FLOOR < r.cor < 1e-8
+    assert r.validity & validity.FLAGS["grids_disagree"], (r.cor, r.t0, r.message)
+    assert abs(r.cor / 5.332e-9 - 1) < 2e-3 and abs(r.t0 / 1.59246 - 1) < 2e-4
+    # the same in the grids alone: a COR of 5e-9 whose grids differ by 0.4 % with an erratic ratio
+    rows = [[{"t0": 1.5924 + 1e-4 * d, "cor": 5.33e-9 * (1.0 + c)}.get(x, 1.0) for x in OUTCOME]
+            for d, c in ((1.0, -4e-3), (-2.0, 5e-3), (1.0, 2e-3), (0.0, 0.0))]
+    values, message = extrapolation.extrapolate(rows, adaptive.RICHARDSON_WEIGHTS)
+    assert values == rows[-1][:len(values)] and "not Richardson-extrapolated" in message
+
+
 def test_direct_on_kelvin_voigt_says_when_it_is_not_accurate():
     """Kelvin-Voigt with tau = 1 s (the preset's modulus; the viscous force stops the sphere within
     5 us, the COR is ~2e-6): fixed-step direct is 2 % off in the COR and 16 % in the peak force and
