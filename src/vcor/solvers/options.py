@@ -24,7 +24,7 @@ from ..checks import interned, shown
 from ..materials.expsums import MAX_SOE_TOL, MIN_SOE_TOL
 
 __all__ = ["BOOLEAN_OPTIONS", "COMPILED_METHODS", "DEFAULT_METHOD", "FIXED_STEP_METHODS", "METHOD_NAMES",
-           "MIN_STEPS_PER_CONTACT",
+           "MAX_STEPS_PER_CONTACT", "MIN_STEPS_PER_CONTACT",
            "OPTION_HELP", "OPTION_UNITS", "RTOL_MIN", "SUM_TOL", "SolverOptions", "solver_options"]
 
 #: relative error of the exponential sum of a two-body (Eq. 1) contact modulus taken by the internal-variable
@@ -43,6 +43,9 @@ DEFAULT_METHOD = "adaptive"
 FIXED_STEP_METHODS = ("direct", "ive-numba", "paper", "soe")
 #: the fewest fixed steps per contact-time estimate (steps_per_contact; a given dt likewise)
 MIN_STEPS_PER_CONTACT = 10
+#: the most (a billion steps per contact time: beyond any step budget a run can spend, O(N^2) for direct; a
+#: smaller dt or a larger count would only run to its budget)
+MAX_STEPS_PER_CONTACT = 10**9
 #: methods whose solver is compiled by numba (the workflow compiles their kernels first, one job per
 #: method; vcor.study.kernels); ``ive`` is scipy's solve_ivp and compiles nothing
 COMPILED_METHODS = ("adaptive", "direct", "ive-numba", "paper", "soe")
@@ -74,12 +77,14 @@ _SPEC = {
                     "history), ive (internal variables, scipy solve_ivp; Prony kernels), ive-numba (internal "
                     "variables, fixed step; Prony kernels), paper (explicit baseline for benchmarks)", METHOD_NAMES),
     "dt": _spec(None, FIXED_STEP_METHODS, f"time step, s, at most the contact-time estimate / "
-                f"{MIN_STEPS_PER_CONTACT} (null: the estimate / steps_per_contact; give one of the two)",
+                f"{MIN_STEPS_PER_CONTACT} and at least the estimate / {MAX_STEPS_PER_CONTACT} (null: the estimate / "
+                f"steps_per_contact; give one of the two)",
                 bounds=("float", 0.0, math.inf, "(0, inf) s"), unit="s"),
-    "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, f"automatic dt = contact-time estimate / this (integer >= "
-                               f"{MIN_STEPS_PER_CONTACT})",
-                               bounds=("int", MIN_STEPS_PER_CONTACT, math.inf,
-                                       f"an integer >= {MIN_STEPS_PER_CONTACT}"), unit="1"),
+    "steps_per_contact": _spec(2000, FIXED_STEP_METHODS, f"automatic dt = contact-time estimate / this (integer "
+                               f"{MIN_STEPS_PER_CONTACT}..{MAX_STEPS_PER_CONTACT})",
+                               bounds=("int", MIN_STEPS_PER_CONTACT, MAX_STEPS_PER_CONTACT,
+                                       f"an integer in [{MIN_STEPS_PER_CONTACT}, {MAX_STEPS_PER_CONTACT}]"),
+                               unit="1"),
     "max_steps": _spec(200_000, FIXED_STEP_METHODS + ("ive",), "step budget (integer >= 100): of the fixed-step "
                        "march (4000000 for soe and ive-numba, whose cost is linear in the steps), and of solve_ivp's "
                        "steps for ive (60000, counted as calls of its event over every horizon, a doubled horizon "

@@ -10,7 +10,14 @@ from ..contact.pair import target_inputs
 from . import adaptive, direct, ive, soe
 from .applicability import refusal
 from .common import OUTCOME
-from .options import FIXED_STEP_METHODS, METHOD_NAMES, MIN_STEPS_PER_CONTACT, SolverOptions, solver_options
+from .options import (
+    FIXED_STEP_METHODS,
+    MAX_STEPS_PER_CONTACT,
+    METHOD_NAMES,
+    MIN_STEPS_PER_CONTACT,
+    SolverOptions,
+    solver_options,
+)
 from .validity import finalised
 
 __all__ = ["METHODS", "MIN_STEPS_FRACTION", "simulate", "split_keywords"]
@@ -122,10 +129,10 @@ def simulate(material, v0, *, options: SolverOptions | dict | None = None, histo
     if why:
         raise ValueError(why)
     tc = impact.contact_time_estimate()
-    if opts.dt is not None and not opts.dt <= tc / MIN_STEPS_PER_CONTACT:
-        raise ValueError(f"dt must be in (0, {tc / MIN_STEPS_PER_CONTACT:.4g}] s (at least {MIN_STEPS_PER_CONTACT} "
-                         f"steps per contact-time estimate {tc:.4g} s, as steps_per_contact >= "
-                         f"{MIN_STEPS_PER_CONTACT}), got {opts.dt!r}")
+    if opts.dt is not None and not tc / MAX_STEPS_PER_CONTACT <= opts.dt <= tc / MIN_STEPS_PER_CONTACT:
+        raise ValueError(f"dt must be in [{tc / MAX_STEPS_PER_CONTACT:.4g}, {tc / MIN_STEPS_PER_CONTACT:.4g}] s (from "
+                         f"{MIN_STEPS_PER_CONTACT} to {MAX_STEPS_PER_CONTACT} steps per contact-time estimate "
+                         f"{tc:.4g} s, as steps_per_contact), got {opts.dt!r}")
     run = METHODS[opts.method]
     res = run(impact, opts, tc, history)
     if (opts.dt is None and opts.method in FIXED_STEP_METHODS and res.ok
