@@ -8,7 +8,13 @@ COR too, however small: a COR of a few COR_FLOOR, where a creeping thin plate re
 per cents apart), or the ratio of successive differences of the three
 finest grids, (x_h - x_h/2) / (x_h/2 - x_h/4), is in RICHARDSON_RATIO (4 for the leading h^2 error;
 measured 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two error terms of opposite sign
-the ratio alone can leave the band where the grids agree closely, which the gap test covers).
+the ratio alone can leave the band where the grids agree closely, which the gap test covers). Grids further
+apart than RICHARDSON_MAX_GAP in t0 (relative) are never extrapolated, whatever their ratio: the expansion's
+later terms are then not small against its first (a Kelvin-Voigt gel whose dashpot holds the sphere, where t0 is
+set by a force 1e-10 of its peak: grids 10-15 % apart with ratios 4.0-4.4, extrapolated 0.5-1 % off; the largest
+t0 gap of the stability scenes' points is 2.2 %). A COR of a few 1e-6 can have grids tens of per cent apart and
+still extrapolate well (its error is absolute, of the order of the step error in the sphere's speed), so the COR's
+gap does not count here.
 Otherwise (e.g. a force creeping to zero over hours, t0 ill-conditioned: grids tens of per cent apart,
 erratic ratios) the values of the finest grid are kept and the message says so. So they are where the
 finest grid's COR is below COR_FLOOR, whatever the grids: the sphere then leaves slower than the step
@@ -25,9 +31,11 @@ import numpy as np
 
 from .common import OUTCOME
 
-__all__ = ["COR_FLOOR", "RICHARDSON_GAP", "RICHARDSON_RATIO", "difference_ratio", "extrapolate", "weights_for"]
+__all__ = ["COR_FLOOR", "RICHARDSON_GAP", "RICHARDSON_MAX_GAP", "RICHARDSON_RATIO", "difference_ratio", "extrapolate",
+           "weights_for"]
 
 RICHARDSON_GAP = 1e-3
+RICHARDSON_MAX_GAP = 0.05
 COR_FLOOR = 1e-9
 RICHARDSON_RATIO = (2.5, 8.0)
 _COR, _T0 = OUTCOME.index("cor"), OUTCOME.index("t0")
@@ -60,6 +68,12 @@ def extrapolate(runs, weights):
         return last[:n], (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
                           f"{', '.join(f'{r[_COR]:.3g}' for r in rows)}); values of the finest grid")
     gap_t0, gap_cor = abs(last[_T0] - first[_T0]) / last[_T0], abs(last[_COR] - first[_COR])
+    if gap_t0 > RICHARDSON_MAX_GAP:
+        return last[:n], (
+            f"not Richardson-extrapolated: the grid and the finest grid (every step divided by {2**(len(rows) - 1)}) "
+            f"differ by {gap_t0:.2g} in t0 (relative), more than {RICHARDSON_MAX_GAP:g}: too far apart for the error "
+            f"expansion's first terms to dominate, whatever the ratios of their differences; values of the finest "
+            f"grid")
     lo, hi = RICHARDSON_RATIO
     if not ((gap_t0 <= RICHARDSON_GAP or lo <= difference_ratio(rows, _T0) <= hi)
             and (gap_cor <= RICHARDSON_GAP * last[_COR] or lo <= difference_ratio(rows, _COR) <= hi)):
