@@ -11,7 +11,7 @@ measured 3.6..4.4 on thin plates, whose grids differ by up to 1 %; with two erro
 the ratio alone can leave the band where the grids agree closely, which the gap test covers). Grids further
 apart than RICHARDSON_MAX_GAP in t0 (relative) are never extrapolated, whatever their ratio: the expansion's
 later terms are then not small against its first (a Kelvin-Voigt gel whose dashpot holds the sphere, where t0 is
-set by a force 1e-10 of its peak: grids 10-15 % apart with ratios 4.0-4.4, extrapolated 0.5-1 % off; the largest
+set by a force 1e-10 of its peak: grids 10-20 % apart with ratios 4.0-4.4, extrapolated 0.5-1.2 % off; the largest
 t0 gap of the stability scenes' points is 2.2 %). A COR of a few 1e-6 can have grids tens of per cent apart and
 still extrapolate well (its error is absolute, of the order of the step error in the sphere's speed), so the COR's
 gap does not count here.

@@ -16,7 +16,8 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from ..contact.impact import make_impact
+from ..checks import number
+from ..contact.impact import RANGES, make_impact
 from ..fitting.calibrate import check_spec
 from ..fitting.spec import check_fit_spec, expand_fits
 from ..materials.catalogue import Catalogue
@@ -322,8 +323,8 @@ def _build_scene(name: str, config: dict, catalogue: Catalogue, sizing: dict) ->
                          f"(vcor.contact.impact.GEOMETRY_DEFAULTS) and takes no {bodies[0]}; put the convergence "
                          f"block in a scene without geometry, sphere or plate")
     for i, v0 in enumerate(scene.get("convergence", {}).get("v0", [])):
-        try:  # the speed's range is the same for every material (a preset stands in: a fit's file may not exist yet)
-            make_impact("sls", v0, {})
+        try:  # the impact's own range check (vcor.contact.impact.RANGES), before any material is read
+            number("v0", v0, *RANGES["v0"], lo_open=False, hi_open=False, unit="m/s")
         except ValueError as exc:
             raise ValueError(f"{where}.convergence.v0[{i}]: {exc}") from None
     for mat in scene.get("moduli", []):
