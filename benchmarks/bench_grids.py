@@ -19,9 +19,6 @@ Run: python benchmarks/bench_grids.py [--quick] [--out FILE]
 
 from __future__ import annotations
 
-import argparse
-from pathlib import Path
-
 import numpy as np
 
 import timing
@@ -116,11 +113,7 @@ def report(cases) -> list:
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--out", type=Path, help="write the table (Markdown) to this file instead of stdout")
-    p.add_argument("--quick", action="store_true", help="every fourth rate only")
-    args = p.parse_args()
-    timing.publish(args.out, 1, report(measure(args.quick)))
+    timing.one_process_main(__doc__, measure, report, quick="every fourth rate only")
 
 
 if __name__ == "__main__":

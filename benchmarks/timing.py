@@ -288,6 +288,16 @@ def main(doc: str, measure, report, *, quick: str | None = None, calls: int | No
     publish(args.out, args.runs, report(args, results))
 
 
+def one_process_main(doc: str, measure, report, *, quick: str) -> None:
+    """Tables that do not depend on the machine (errors, not timings): one process computes them. ``--out PATH``
+    and ``--quick`` (``quick`` says what it does); publishes ``report(measure(quick))``."""
+    p = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", type=Path, help="write the tables (Markdown) to this file instead of stdout")
+    p.add_argument("--quick", action="store_true", help=quick)
+    args = p.parse_args()
+    publish(args.out, 1, report(measure(args.quick)))
+
+
 def _markdown_main(argv=None) -> None:
     p = argparse.ArgumentParser(description="tab-separated rows on stdin (first line: headers) -> header "
                                 "and Markdown table")

@@ -271,8 +271,13 @@ class ValidityTable(Directive):
                   "under_resolved": f"fixed step, Kelvin-Voigt, t_d / dt < {validity.MIN_DAMPING_STEPS}",
                   "no_rebound": "sphere_velocity z'(t0) > 0 (still towards the target)",
                   "grids_disagree": (f"adaptive: grids differ by > {extrapolation.RICHARDSON_GAP:g}, their differences "
-                                     f"not shrinking as h^2 (ratio not in {extrapolation.RICHARDSON_RATIO}), "
-                                     f"or an extrapolated COR < 0")}
+                                     f"not shrinking as h^2 (ratio not in {extrapolation.RICHARDSON_RATIO}), or differ "
+                                     f"in t0 by > {extrapolation.RICHARDSON_MAX_GAP:g}, or an extrapolated COR < 0, or "
+                                     f"a COR < {extrapolation.COR_FLOOR:g}"),
+                  "uncertain_extrapolation": (f"adaptive: extrapolated grids apart in t0 by > "
+                                              f"{extrapolation.RICHARDSON_MAX_GAP_STEPS:g} step_tol, or by > "
+                                              f"{extrapolation.RICHARDSON_T0_GAP:g} with a t0 ratio not in "
+                                              f"{extrapolation.RICHARDSON_T0_RATIO}")}
         if set(limits) != set(validity.FLAGS):
             raise self.error(f"validity flags differ from the table: {sorted(set(limits) ^ set(validity.FLAGS))}")
         rows = [[f"`{name}`", str(mask), f"`{limits[name]}`"] for name, mask in validity.FLAGS.items()]

@@ -13,6 +13,10 @@ from vcor.contact import bodies, pair
 from vcor.contact.impact import make_impact
 from vcor.solvers import adaptive, extrapolation, nearly_elastic, validity
 from vcor.solvers import reference as R
+from vcor.solvers.options import SolverOptions
+
+#: the default step tolerance of method adaptive (the grids of the synthetic extrapolations are marched at it)
+STEP_TOL = SolverOptions(method="adaptive").step_tol
 
 PRESETS = ["sls", "butyl-fc", "butyl-cerf", "butyl-prony3", "elastic", "kelvin-voigt"]
 
@@ -438,10 +442,10 @@ def test_extrapolation_never_stores_a_negative_cor():
     w = adaptive.RICHARDSON_WEIGHTS
     creeping = [1e-11, 1e-11, 2e-10, 5e-11][-adaptive.GRIDS:]
     assert sum(wj * c for wj, c in zip(w, creeping)) < 0  # the case: weights that leave the physical range
-    values, message = adaptive.richardson_outcome(runs(creeping))
+    values, message, _ = adaptive.richardson_outcome(runs(creeping), STEP_TOL)
     assert values[cor] == creeping[-1] and "extrapolated COR" in message and "negative" in message
     ordinary = [0.43198 + 2e-4 * 4.0**-j for j in range(adaptive.GRIDS)]
-    values, message = adaptive.richardson_outcome(runs(ordinary))
+    values, message, _ = adaptive.richardson_outcome(runs(ordinary), STEP_TOL)
     assert message == "" and values[cor] == pytest.approx(sum(wj * c for wj, c in zip(w, ordinary)))
     assert values[cor] == pytest.approx(0.43198, abs=1e-15)  # an h^2 error is eliminated
     assert sum(w) == pytest.approx(1.0, abs=1e-15)  # a constant is extrapolated to itself

@@ -11,20 +11,23 @@ import pytest
 import yaml
 
 from vcor import status
-from vcor.solvers.validity import FLAGS
+from vcor.solvers.validity import FLAGS, SOLVER_FLAGS
 from vcor.study import runner, scene
 
 CONFIG = yaml.safe_load((Path(__file__).resolve().parents[2] / "config.yaml").read_text())
 SCENES = {k: v for k, v in CONFIG["scenes"].items() if k.startswith("stability-")}
 
 #: docs, "Stability": per scene with the default solver (adaptive): the statuses, the bound on the
-#: largest Richardson estimate of the COR error over the ok points (the documented number, the
+#: largest Richardson estimate of the COR error over the ok points without a solver flag (grids_disagree,
+#: uncertain_extrapolation: they say their error is not held to the method's accuracy; the documented number, the
 #: largest estimate rounded up to two digits), and how many ok points carry each validity flag
 DOCUMENTED = {
     "stability-plate": ({"ok": 84}, 8.5e-9, {"large_indentation": 38, "fast_impact": 26, "no_rebound": 10,
-                                              "grids_disagree": 11}),
-    "stability-relaxation": ({"ok": 32}, 1.5e-8, {"large_indentation": 20, "fast_impact": 12}),
-    "stability-ratio": ({"ok": 24}, 5.2e-9, {"large_indentation": 12, "fast_impact": 10, "no_rebound": 1}),
+                                              "grids_disagree": 11, "uncertain_extrapolation": 1}),
+    "stability-relaxation": ({"ok": 32}, 1.5e-8, {"large_indentation": 20, "fast_impact": 12,
+                                                  "uncertain_extrapolation": 2}),
+    "stability-ratio": ({"ok": 24}, 5.2e-9, {"large_indentation": 12, "fast_impact": 10, "no_rebound": 1,
+                                             "uncertain_extrapolation": 1}),
     "stability-mass": ({"ok": 32}, 6.5e-9, {"large_indentation": 14, "fast_impact": 9}),
     "stability-limits": ({"ok": 35}, 8.1e-9, {"large_indentation": 15, "fast_impact": 15}),
 }
@@ -45,12 +48,14 @@ def test_every_point_ok_with_its_error_estimate_and_validity(name):
     ok = ds["status"].values == status.code("ok")
     err, validity = ds["cor_err"].values, ds["validity"].values
     flags = {f: int(((validity[ok] & m) != 0).sum()) for f, m in FLAGS.items()}
-    print(f"\n{name}: {counts}, max cor_err {np.nanmax(err[ok]):.3e}, validity flags {flags}")
+    held = ok & ((validity & SOLVER_FLAGS) == 0)
+    print(f"\n{name}: {counts}, max cor_err {np.nanmax(err[held]):.3e} (with a solver flag: "
+          f"{np.nanmax(err[ok & ~held], initial=0.0):.3e}), validity flags {flags}")
     statuses, bound, documented_flags = DOCUMENTED[name]
     assert counts == statuses
     assert np.all(ds["error_status"].values[ok] == status.code("ok"))
     assert np.all(np.isfinite(ds["cor"].values[ok])) and np.all(ds["cor"].values[ok] > 0)
-    assert np.all(np.isfinite(err[ok])) and np.nanmax(err[ok]) <= bound
+    assert np.all(np.isfinite(err[ok])) and np.nanmax(err[held]) <= bound
     assert {f: n for f, n in flags.items() if n} == documented_flags
     flagged = validity != 0
     assert all(bool(m) for m in ds["validity_message"].values[flagged])

@@ -130,7 +130,8 @@ def flag_reasons(flags: int) -> str:
              "energy_residual": f"energy balance off by > {V.MAX_ENERGY_RESIDUAL:g}",
              "under_resolved": "damping under-resolved by the fixed step",
              "no_rebound": "no rebound, sphere still approaching",
-             "grids_disagree": "t0 ill-conditioned, grids disagree"}
+             "grids_disagree": "t0 ill-conditioned, grids disagree",
+             "uncertain_extrapolation": "t0 not held to the solver's accuracy"}
     out = [words.get(name, name.replace("_", " ")) for name, mask in V.FLAGS.items() if flags & mask]
     known = sum(V.FLAGS.values())
     if flags & ~known:

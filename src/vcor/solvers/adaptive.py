@@ -513,11 +513,11 @@ def _run_on_floor(impact, tc, h_base, factor, one_call_path, opts):
         runs.append(run)
     fine = runs[-1]
     fine.steps = sum(r.steps for r in runs)
-    values, message = richardson_outcome([[float(getattr(r, k)) for k in OUTCOME] for r in runs])
+    values, message, flag = richardson_outcome([[float(getattr(r, k)) for k in OUTCOME] for r in runs], step_tol)
     fine.__dict__.update(separation_scalars(values))
     fine.message = "; ".join(m for m in (fine.message, message) if m)
-    if message:
-        fine.validity |= FLAGS["grids_disagree"]
+    if flag:
+        fine.validity |= FLAGS[flag]
     return fine
 
 
@@ -572,16 +572,18 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
     if rows is None:
         return None
     rows = rows.tolist()
-    values, message = richardson_outcome(rows) if n_grids == GRIDS else (rows[-1], "")
+    values, message, flag = richardson_outcome(rows, step_tol) if n_grids == GRIDS else (rows[-1], "", "")
     res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
                  method="adaptive", soe_error=soe_error)
     res.message = message
-    if message:
-        res.validity |= FLAGS["grids_disagree"]
+    if flag:
+        res.validity |= FLAGS[flag]
     return res
 
 
-def richardson_outcome(runs):
-    """(values, message) of :func:`vcor.solvers.extrapolation.extrapolate` for ``runs`` (GRIDS rows, coarse to
-    fine: ``RICHARDSON_WEIGHTS``; SMOOTH_GRIDS rows: ``SMOOTH_WEIGHTS``)."""
-    return extrapolate(runs, RICHARDSON_WEIGHTS if len(runs) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS)
+def richardson_outcome(runs, step_tol):
+    """(values, message, flag) of :func:`vcor.solvers.extrapolation.extrapolate` for ``runs`` (GRIDS rows, coarse to
+    fine: ``RICHARDSON_WEIGHTS``; SMOOTH_GRIDS rows: ``SMOOTH_WEIGHTS``) of an accepted grid marched at
+    ``step_tol``."""
+    return extrapolate(runs, RICHARDSON_WEIGHTS if len(runs) == len(RICHARDSON_WEIGHTS) else SMOOTH_WEIGHTS,
+                       step_tol=step_tol)

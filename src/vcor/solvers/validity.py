@@ -30,6 +30,14 @@ grids_disagree           32    method ``adaptive``: its nested grids are not in 
                                the method's accuracy (the message gives the grids' differences): a
                                separation time that is ill-conditioned, as where a creeping force
                                returns to zero over hours and the sphere is captured
+uncertain_extrapolation  64    method ``adaptive``: its nested grids pass the checks above, but t0
+                               is not held to the method's accuracy: the grids are further apart
+                               in t0 than ``extrapolation.RICHARDSON_MAX_GAP_STEPS`` step_tol (an
+                               error the step control did not see), or t0's differences do not
+                               yet shrink as h^2 (``RICHARDSON_T0_RATIO``); the values are
+                               extrapolated (closer than the finest grid's) but their error is not
+                               held to the method's accuracy (a Kelvin-Voigt gel whose dashpot
+                               holds the sphere; an SLS relaxing within a step)
 =======================  ====  =====================================================================
 
 A result whose outputs are not finite is never ``ok``: :func:`finalised` gives it the status
@@ -55,10 +63,11 @@ __all__ = ["FLAGS", "MAX_ENERGY_RESIDUAL", "MAX_INDENTATION", "MAX_SPEED_FRACTIO
 
 #: flag name -> bit mask (stable: archived datasets keep their meaning)
 FLAGS = {"large_indentation": 1, "fast_impact": 2, "energy_residual": 4, "under_resolved": 8, "no_rebound": 16,
-         "grids_disagree": 32}
+         "grids_disagree": 32, "uncertain_extrapolation": 64}
 #: the flags a method sets on its result (:func:`finalised` keeps them and says why)
-SOLVER_FLAGS = FLAGS["grids_disagree"]
-_GRIDS_DISAGREE = FLAGS["grids_disagree"]  # (a name, not a look-up, on every result's path)
+SOLVER_FLAGS = FLAGS["grids_disagree"] | FLAGS["uncertain_extrapolation"]
+# (names, not look-ups, on every result's path)
+_GRIDS_DISAGREE, _UNCERTAIN = FLAGS["grids_disagree"], FLAGS["uncertain_extrapolation"]
 MAX_INDENTATION = 0.1
 MAX_SPEED_FRACTION = 0.1
 MAX_ENERGY_RESIDUAL = 1e-4
@@ -117,6 +126,11 @@ def finalised(res, impact, options):
                      f"extrapolation, or it would give a negative COR, or the COR is below {COR_FLOOR:g} (the message "
                      "says which): the values are the finest grid's, their error is not held to the method's "
                      "accuracy (an ill-conditioned separation time, as of a force creeping to zero)")
+    if flags & _UNCERTAIN:
+        notes.append("the nested grids of method adaptive are further apart in t0 than its step tolerance stands for, "
+                     "or t0's differences do not yet shrink as h^2 (the message says which): the values are "
+                     "Richardson-extrapolated, but their error is not held to the method's accuracy; a smaller "
+                     "step_tol tightens it")
     r = impact.geometry.r
     if res.s_max / r > MAX_INDENTATION:
         flags |= FLAGS["large_indentation"]
