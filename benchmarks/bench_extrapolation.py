@@ -11,10 +11,10 @@ Richardson references is below 3e-9). For every impact ``vcor.simulate`` runs at
 of the grids it extrapolates are recorded (a wrapper around ``vcor.solvers.extrapolation.extrapolate``, the
 one function that receives them); the error is max(|COR / ref - 1|, |t0 / ref - 1|).
 
-Printed: per family, the impacts whose grids were extrapolated, how many of them are within 1e-7, the
+Printed: per family, the impacts whose grids it extrapolates, how many of them are within 1e-7, the
 largest t0 spread (finest against coarse grid, relative, in units of step_tol) among those, and how many of
 those have a t0 difference ratio outside RICHARDSON_T0_RATIO with a spread above RICHARDSON_T0_GAP (the
-checks' false alarms); then every impact more than 1e-7 off with its spread, ratios and the flag it now
+checks' false alarms); then every impact more than 1e-7 off with its spread, ratios and the flag it
 carries. The numbers do not depend on the machine: one process computes them.
 
 Run: python benchmarks/bench_extrapolation.py [--quick] [--out FILE]

@@ -189,23 +189,47 @@ def test_a_kelvin_voigt_gel_held_by_its_dashpot_is_flagged():
 ])
 def test_grids_further_apart_than_the_step_tolerance_are_flagged(material, v0, kw):
     """Two impacts whose grids shrink as h^2 (t0 ratios 3.99 and 4.38) but are 4.6e-2 and 2.2e-2 apart in t0,
-    115 and 55 times the default step_tol: extrapolated 6.4e-4 and 1.8e-5 off in t0 against ive at rtol 1e-12,
-    unflagged before. The values stay extrapolated (closer than the finest grid's), flagged
+    114 and 54 times the default step_tol: extrapolated 6.4e-4 and 1.8e-5 off in t0 against ive at rtol 1e-12.
+    The values stay extrapolated (closer than the finest grid's), flagged
     uncertain_extrapolation, and the message and the validity message say so; a smaller step_tol is closer."""
     res, ref = vcor.simulate(material, v0, **kw), vcor.simulate(material, v0, method="ive", rtol=1e-12, **kw)
     err = abs(res.t0 / ref.t0 - 1)
     print(f"\nt0 {err:.2e} off, COR {abs(res.cor / ref.cor - 1):.2e}: {res.message}")
     assert res.ok and res.validity == validity.FLAGS["uncertain_extrapolation"], res.validity_message
     assert "not held to the method's accuracy" in res.message and "step_tol, more than 8" in res.message
-    assert "step_tol tightens it" in res.validity_message
+    assert "step_tol reduces the error" in res.validity_message
     assert err > 1e-5  # the flag is needed
     assert abs(vcor.simulate(material, v0, step_tol=STEP_TOL / 16, **kw).t0 / ref.t0 - 1) < err
+
+
+def test_the_t0_checks_keep_the_extrapolated_values_and_name_their_flag():
+    """The checks in the grids alone (four and three grids): t0 grids in the asymptotic range but 20 step_tol apart,
+    and t0 grids 5e-5 apart whose differences shrink by 2 (not 4) per halving, are extrapolated and flagged
+    uncertain_extrapolation; grids 2 step_tol apart shrinking as h^2 and grids 5e-6 apart with an erratic ratio are
+    extrapolated unflagged."""
+    from vcor.solvers import adaptive, extrapolation
+    from vcor.solvers.common import OUTCOME
+
+    def rows(gap, ratio, n):
+        return [[{"t0": 1.0 + gap * ratio**-j, "cor": 0.5 + 1e-4 * 4.0**-j}.get(x, 1.0) for x in OUTCOME]
+                for j in range(n)]
+
+    for n, w in ((4, adaptive.RICHARDSON_WEIGHTS), (3, adaptive.SMOOTH_WEIGHTS)):
+        uncertain = "uncertain_extrapolation"
+        for gap, ratio, flag in ((20 * STEP_TOL, 4.0, uncertain), (5e-5, 2.0, uncertain), (2 * STEP_TOL, 4.0, ""),
+                                 (5e-6, 2.0, "")):
+            r = rows(gap, ratio, n)
+            values, message, got = extrapolation.extrapolate(r, w, step_tol=STEP_TOL)
+            assert got == flag, (n, gap, ratio, message)
+            weighted = [sum(wj * row[k] for wj, row in zip(w, r)) for k in range(len(values))]
+            assert values == pytest.approx(weighted, rel=1e-14)
+            assert ("not held to the method's accuracy" in message) == bool(flag)
 
 
 def test_t0_differences_not_shrinking_as_h2_are_flagged():
     """An SLS relaxing at 1e6 1/s (stability-relaxation) at 10 m/s: its grids are 7.7e-5 apart in t0 with
     difference ratios 1.0 and 2.96, inside the band (2.5, 8) that decides whether to extrapolate at all. The
-    extrapolated t0 is 2.8e-6 off (ive, rtol 1e-12), its COR within 1e-7; it was unflagged. t0's ratio is held
+    extrapolated t0 is 2.8e-6 off (ive, rtol 1e-12), its COR within 1e-7. t0's ratio is held
     to (3.2, 5.0) for the accuracy: the values stay extrapolated, flagged uncertain_extrapolation."""
     material = M.SLS(1.5e7, 2.5e5, 1e6)
     res, ref = vcor.simulate(material, 10.0), vcor.simulate(material, 10.0, method="ive", rtol=1e-12)

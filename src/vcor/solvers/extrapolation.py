@@ -24,7 +24,8 @@ of 10 kg/m^3 leaves at 2.7e-13 m/s; its t0 moves by 1e-3 with step_tol, not as a
 
 Grids that pass these checks are extrapolated. Two tighter checks on t0 then say whether the result is held
 to the method's accuracy; where either fails, the values stay extrapolated (they are closer than the finest
-grid's: the COR is often within 1e-8 where t0 is not) and the flag is ``uncertain_extrapolation``:
+grid's) and the flag is ``uncertain_extrapolation``. A smaller step_tol reduces their error but need not clear
+the flag: where the step control misjudges the march, the spread does not shrink in proportion to step_tol:
 
 * the t0 spread, ``|t0 finest - t0 coarse| / t0``, is at most RICHARDSON_MAX_GAP_STEPS times the step tolerance:
   the step control holds each step's error to step_tol, so a march whose grids differ by far more has an
@@ -40,8 +41,7 @@ with a spread above RICHARDSON_T0_GAP, so neither check flags any of them; of th
 ``grids_disagree`` and 13 ``uncertain_extrapolation``: Kelvin-Voigt gels held by their dashpot (spreads of 27
 step_tol and more, 1e-6 .. 6.4e-4 off), an SLS of rubbery modulus 1e-3 of its glassy one at 1 mm/s (54 step_tol,
 1.8e-5 off) and SLS laws relaxing at 1e6-1e7 1/s (spreads of 0.2 and 0.8 step_tol but t0 ratios 2.96 and 7.7,
-inside RICHARDSON_RATIO; 2.8e-6 and 5.3e-6 off). One carries neither: a gel at 6.7 step_tol whose COR (0.02) is
-1.1e-7 off.
+inside RICHARDSON_RATIO; 2.8e-6 and 5.3e-6 off). One carries neither: a gel at 6.7 step_tol, 1.1e-7 off.
 """
 
 from __future__ import annotations
@@ -127,7 +127,7 @@ def extrapolate(runs, weights, *, step_tol):
                f"{RICHARDSON_T0_RATIO}: t0 is not yet in the asymptotic range")
         return extrapolated, (
             f"Richardson-extrapolated, but not held to the method's accuracy: {finest} differ by {gap_t0:.2g} in t0 "
-            f"(relative), {why} (a smaller step_tol tightens it)"), _UNCERTAIN
+            f"(relative), {why} (a smaller step_tol reduces the error but need not clear this)"), _UNCERTAIN
     return extrapolated, "", ""
 
 

@@ -33,8 +33,9 @@ grids_disagree           32    method ``adaptive``: its nested grids are not in 
 uncertain_extrapolation  64    method ``adaptive``: its nested grids pass the checks above, but t0
                                is not held to the method's accuracy: the grids are further apart
                                in t0 than ``extrapolation.RICHARDSON_MAX_GAP_STEPS`` step_tol (an
-                               error the step control did not see), or t0's differences do not
-                               yet shrink as h^2 (``RICHARDSON_T0_RATIO``); the values are
+                               error the step control did not see), or, where they differ by more
+                               than ``RICHARDSON_T0_GAP``, t0's differences do not yet shrink as
+                               h^2 (``RICHARDSON_T0_RATIO``); the values are
                                extrapolated (closer than the finest grid's) but their error is not
                                held to the method's accuracy (a Kelvin-Voigt gel whose dashpot
                                holds the sphere; an SLS relaxing within a step)
@@ -130,7 +131,7 @@ def finalised(res, impact, options):
         notes.append("the nested grids of method adaptive are further apart in t0 than its step tolerance stands for, "
                      "or t0's differences do not yet shrink as h^2 (the message says which): the values are "
                      "Richardson-extrapolated, but their error is not held to the method's accuracy; a smaller "
-                     "step_tol tightens it")
+                     "step_tol reduces the error")
     r = impact.geometry.r
     if res.s_max / r > MAX_INDENTATION:
         flags |= FLAGS["large_indentation"]
