@@ -96,11 +96,10 @@ def extrapolate(runs, weights, *, step_tol):
         return last[:n], (f"not Richardson-extrapolated: the extrapolated COR {cor:.3g} is negative (grids "
                           f"{', '.join(f'{r[_COR]:.3g}' for r in rows)}); values of the finest grid"), _DISAGREE
     gap_t0, gap_cor = abs(last[_T0] - first[_T0]) / last[_T0], abs(last[_COR] - first[_COR])
-    finest = f"the grid and the finest grid (every step divided by {2**(len(rows) - 1)})"
     ratio_t0, ratio_cor = difference_ratio(rows, _T0), difference_ratio(rows, _COR)
     if gap_t0 > RICHARDSON_MAX_GAP:
         return last[:n], (
-            f"not Richardson-extrapolated: {finest} differ by {gap_t0:.2g} in t0 (relative), more than "
+            f"not Richardson-extrapolated: {_pair(rows)} differ by {gap_t0:.2g} in t0 (relative), more than "
             f"{RICHARDSON_MAX_GAP:g}: too far apart for the error expansion's first terms to dominate, whatever the "
             f"ratios of their differences; values of the finest grid"), _DISAGREE
     lo, hi = RICHARDSON_RATIO
@@ -108,9 +107,10 @@ def extrapolate(runs, weights, *, step_tol):
             and (gap_cor <= RICHARDSON_GAP * last[_COR] or lo <= ratio_cor <= hi)):
         # not in the asymptotic range: an extrapolation would be a guess; keep the finest grid's values
         return last[:n], (
-            f"not Richardson-extrapolated: {finest} differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} (COR), "
-            f"and the differences between the three finest grids do not shrink as h^2 (ratios {ratio_t0:.3g} for "
-            f"t0, {ratio_cor:.3g} for the COR; asymptotically 4); values of the finest grid"), _DISAGREE
+            f"not Richardson-extrapolated: {_pair(rows)} differ by {gap_t0:.2g} (t0, relative) and {gap_cor:.2g} "
+            f"(COR), and the differences between the three finest grids do not shrink as h^2 (ratios "
+            f"{ratio_t0:.3g} for t0, {ratio_cor:.3g} for the COR; asymptotically 4); values of the finest "
+            f"grid"), _DISAGREE
     if last[_COR] < COR_FLOOR:
         # the grids may agree or even shrink as h^2 by chance: their t0 is not held to the method's accuracy
         return last[:n], (
@@ -126,9 +126,14 @@ def extrapolate(runs, weights, *, step_tol):
                f"and the ratio of t0's differences on the three finest grids, {ratio_t0:.3g}, is outside "
                f"{RICHARDSON_T0_RATIO}: t0 is not yet in the asymptotic range")
         return extrapolated, (
-            f"Richardson-extrapolated, but not held to the method's accuracy: {finest} differ by {gap_t0:.2g} in t0 "
-            f"(relative), {why} (a smaller step_tol reduces the error but need not clear this)"), _UNCERTAIN
+            f"Richardson-extrapolated, but not held to the method's accuracy: {_pair(rows)} differ by {gap_t0:.2g} "
+            f"in t0 (relative), {why} (a smaller step_tol reduces the error but need not clear this)"), _UNCERTAIN
     return extrapolated, "", ""
+
+
+def _pair(rows) -> str:
+    """The grids a message compares (built only where a message is: extrapolate runs on every result's path)."""
+    return f"the grid and the finest grid (every step divided by {2**(len(rows) - 1)})"
 
 
 def _weighted(weights, rows):
