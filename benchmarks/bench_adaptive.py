@@ -21,7 +21,8 @@ import timing
 import vcor
 from vcor.contact.impact import make_impact
 from vcor.materials.expsums import soe
-from vcor.solvers.adaptive import GRIDS, SMOOTH_GRIDS, level_tables, run_adaptive
+from vcor.solvers.adaptive import GRIDS, SMOOTH_GRIDS, run_adaptive
+from vcor.solvers.adaptive_tables import level_tables
 from vcor.solvers.options import solver_options
 from vcor.study import runner, scene
 

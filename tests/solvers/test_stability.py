@@ -23,7 +23,7 @@ SCENES = {k: v for k, v in CONFIG["scenes"].items() if k.startswith("stability-"
 #: largest estimate rounded up to two digits), and how many ok points carry each validity flag
 DOCUMENTED = {
     "stability-plate": ({"ok": 84}, 8.5e-9, {"large_indentation": 38, "fast_impact": 26, "no_rebound": 10,
-                                              "grids_disagree": 11, "uncertain_extrapolation": 1}),
+                                              "grids_disagree": 11}),
     "stability-relaxation": ({"ok": 32}, 1.5e-8, {"large_indentation": 20, "fast_impact": 12,
                                                   "uncertain_extrapolation": 2}),
     "stability-ratio": ({"ok": 24}, 5.2e-9, {"large_indentation": 12, "fast_impact": 10, "no_rebound": 1,

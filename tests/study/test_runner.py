@@ -5,7 +5,7 @@ import functools
 
 import numpy as np
 
-from vcor.solvers import adaptive
+from vcor.solvers import adaptive, adaptive_tables
 from vcor.study import runner, scene
 
 BETAS = {"start": 100, "stop": 1.0e5, "num": 70, "log": True}
@@ -23,7 +23,7 @@ def _solved(grid, monkeypatch):
     sc = _scene(grid)
     small = functools.lru_cache(maxsize=SMALL_CACHE)(adaptive.impact_tables.__wrapped__)
     monkeypatch.setattr(adaptive, "impact_tables", small)
-    adaptive.level_tables.cache_clear()
+    adaptive_tables.level_tables.cache_clear()
     ds = runner.run_points(scene.scene_points(sc), scene.settings_of(sc))
     return ds, small.cache_info().misses
 

@@ -43,8 +43,7 @@ from ..checks import positive as _positive
 
 __all__ = ["GL_NODES", "GL_WEIGHTS", "MAX_MODULUS", "PARAMETER_SHAPES", "REGISTRY", "SECOND_MOMENT_NODES",
            "SECOND_MOMENT_PANELS", "TIME_FUNCTIONS", "Family", "Material", "Parameter", "causal", "causal_inline",
-           "from_dict",
-           "modulus", "unregister"]
+           "from_dict", "modulus", "second_moment_rule", "unregister"]
 
 #: Gauss-Legendre nodes and weights on [-1, 1] for the step integrals of smooth kernels (steps i >= 1:
 #: the only singularity, t = 0, is at least one step away, so 12 nodes are exact to rounding)
@@ -80,8 +79,21 @@ PARAMETER_SHAPES = ("scalar", "terms", "material")
 
 
 @functools.cache
-def _second_moment_rule():
-    """Nodes and weights in y on [0, 1] of :meth:`Material.first_step_second_moment` (SECOND_MOMENT_NODES)."""
+def second_moment_rule():
+    """The quadrature rule in y = sqrt(t / dt) on [0, 1] of :meth:`Material.first_step_second_moment`.
+
+    Gauss-Legendre with SECOND_MOMENT_NODES nodes on each of SECOND_MOMENT_PANELS panels that halve
+    towards y = 0 (see SECOND_MOMENT_NODES). In y a t^-1/2 or sqrt(t) behaviour of a kernel at t = 0 is
+    smooth, so the rule also serves other weighted integrals over the newest step of such a kernel
+    (int_0^dt E(t) p(t) dt with p a polynomial: substitute t = dt y^2, dt_t = 2 dt y dy). Cached.
+
+    Returns
+    -------
+    y : ndarray
+        The nodes, dimensionless, in (0, 1) (t = dt y^2 in s for a step of dt s).
+    w : ndarray
+        Their weights, dimensionless: sum_i w_i f(y_i) approximates int_0^1 f(y) dy.
+    """
     x, w = np.polynomial.legendre.leggauss(SECOND_MOMENT_NODES)
     edges = np.concatenate(([0.0], 2.0 ** -np.arange(SECOND_MOMENT_PANELS - 1, -1, -1.0)))
     lo, hi = edges[:-1, None], edges[1:, None]
@@ -440,7 +452,7 @@ class Material:
         in y = sqrt(t / dt) (see SECOND_MOMENT_NODES), where a t^-1/2 or sqrt(t) behaviour at t = 0 is
         smooth; models with a closed form override it."""
         dt = np.asarray(dt, dtype=float)
-        y, w = _second_moment_rule()
+        y, w = second_moment_rule()
         # t = dt y^2, dt_t = 2 dt y dy; (t - dt/2)^2 - dt^2/12 = dt^2 ((y^2 - 1/2)^2 - 1/12)
         poly = 2.0 * y * ((y * y - 0.5) ** 2 - 1.0 / 12.0) * w
         e = self.relaxation_modulus(np.multiply.outer(dt, y * y))

@@ -21,6 +21,16 @@ the error expands in h^2 (the trapezoidal rule), h^2.5 and h^3 (the slope's O(h)
 parabola's remainder against a t^-1/2 kernel near lag 0); the second-order slope and the newest step's
 curvature term remove them, and on the method's graded grids the error is h^2 + h^3.5 + h^4
 (``vcor.solvers.adaptive.RICHARDSON_EXPONENTS``; docs/theory.md).
+
+The cubic specialisation (``singular``: kernels with a t^-1/2 singularity, the fractional and CERF laws;
+numba compiles it as a second specialisation, and prunes it from the plain march of the other kernels):
+while u' > 0 the newest step's u' is the cubic d_n + c_n x + q_n (x^2 - h^2/12) + r_n (x^3 - 0.15 h^2 x)
+(x = tau - mid_n) whose means over steps n..n-3 are d_n..d_{n-3} (:func:`cubic_weights`), with the exact
+weight int_0^h k(x) P3(h/2 - x) dx of its cubic term; the start is graded (a step grows only while it
+stays <= t / GRADE) and steps do not grow while unloading. The h^3.5 term of the error is then small
+enough for three grids (h^2, h^4: ``vcor.solvers.adaptive.CUBIC``). The NumPy reference
+(:func:`vcor.solvers.reference.adaptive_reference`) has it too (``reference.mean_cubic``, a 4 x 4 solve, and
+the cubic weight by adaptive quadrature).
 """
 
 from __future__ import annotations
@@ -47,6 +57,7 @@ from ._records import (
     WAIVED,
     AdaptiveControl,
     Body,
+    Grids,
     LevelTables,
     Modes,
     Plate,
@@ -56,17 +67,23 @@ from ._separation import locate_separation
 from ._step import advance, implicit_step_inline, separated
 from .erfcx import erfcx_slope
 
-__all__ = ["FEW_MODES", "adaptive_grids", "force_zero_cor", "march_adaptive", "slope_weights"]
+__all__ = ["FEW_MODES", "GRADE", "UNLOAD_HOLD", "adaptive_grids", "cubic_weights", "force_zero_cor", "march_adaptive",
+           "slope_weights"]
 
 #: sums over more modes than this go through the helpers below, whose additions may be reassociated
 #: (``_jit.jit_sum``: numba then vectorises them); shorter sums stay in the march (a call costs more
 #: than it saves)
 FEW_MODES = 8
 _NO_VOLTERRA = (0.0, 0.0, 0.0)
+#: kernels with a t^-1/2 singularity (march_adaptive's ``singular``): a step grows only while it stays <= t / GRADE
+#: (a graded start: near t = 0, u' ~ t^1/2, whose error the cubic does not remove on steps comparable to t)
+GRADE = 4.0
+#: ... and its steps do not grow while unloading before UNLOAD_HOLD contact-time estimates
+UNLOAD_HOLD = 2.0
 
 
 @jit
-def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, state, plan, row_offset):
+def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, state, plan, row_offset, singular):
     """Variable-step march with an exponential-sum history (module docstring); resumable.
 
     The records (nodes, tables, plate, body, control, stop, modes) arrive as plain tuples (``_records``).
@@ -78,7 +95,9 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     levels : int64 array
         The level of each accepted step (levels[n] for step n).
     tables : LevelTables
-        Per level: steps, weights of the newest step and of each mode, decays, live modes.
+        Per level: steps, weights of the newest step and of each mode, decays, live modes; the newest
+        step's weight of the cubic term, int_0^h k(x) P3(h/2 - x) dx, P3(z) = z^3 - 0.15 h^2 z
+        (N m^-1.5 s^4), is read only with ``singular`` (else empty).
     plate : Plate
         The plate's mobility: kind 0, constant; 1, E_b(t) on exponential modes with their own decay
         table (the kernel's, when the plate is of the contact's material); 2 and 3, in closed form.
@@ -96,6 +115,12 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         refinement); after the plan the march goes on with error control from the plan's last level.
     row_offset : int
         Level l uses table row l + row_offset (the tables of the Richardson grids are shifted copies).
+    singular : None or True
+        None for a kernel without a t^-1/2 singularity: numba prunes every branch below that tests it, so
+        those kernels run the plain march. True (a second specialisation): the newest step's u' gets a
+        cubic term while u' > 0 (the cubic through the means of the last four steps, :func:`cubic_weights`),
+        the start is graded (a step grows only while it stays <= t / GRADE) and steps do not grow while
+        unloading (module docstring: the cubic specialisation).
 
     Notes
     -----
@@ -126,6 +151,7 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     step, inv_step = tables.step, tables.inv_step
     newest_integral, newest_moment, newest_curvature = (tables.newest_integral, tables.newest_moment,
                                                         tables.newest_curvature)
+    newest_cubic = tables.newest_cubic
     mode_integral, mode_moment, mode_decay, live_modes = (tables.mode_integral, tables.mode_moment,
                                                           tables.mode_decay, tables.live_modes)
     P, X = modes.history, modes.plate
@@ -146,6 +172,15 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
     last_d = 0.0
     last_c = 0.0
     last_row = np.int64(0)  # (not a literal 0: numba would compile _fill a second time for it)
+    # the cubic specialisation's state (dead, and removed by the compiler, in the plain march)
+    prev2_d = 0.0
+    prev2_h = 0.0
+    k_h0 = -1.0
+    k_h1 = -1.0
+    k_h2 = -1.0
+    k_h3 = -1.0
+    kc1 = kc2 = kc3 = kq1 = kq2 = kq3 = 0.0
+    k_cs = k_w0 = k_r2 = k_a1 = k_a2 = k_a3 = 0.0
     n_plate = pe.shape[0]
     while n_plate > 1 and X[n_plate - 1] == 0.0:
         n_plate -= 1
@@ -185,6 +220,10 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         prev_dg = (g[n - 2] - g[n - 3]) / (t[n - 2] - t[n - 3])
         last_r2 = 2.0 / (t[n - 1] - t[n - 3])
         prev_d = (u[n - 2] - u[n - 3]) / (t[n - 2] - t[n - 3])
+    if singular is not None:  # noqa: SIM102 (numba prunes a branch whose whole condition tests None)
+        if n >= 4:
+            prev2_h = t[n - 3] - t[n - 4]
+            prev2_d = (u[n - 3] - u[n - 4]) / (t[n - 3] - t[n - 4])
     frozen = state[FROZEN] == 1
     state[STATUS] = STATUS_RUNNING
     tol_abs = step_tol * v0
@@ -216,7 +255,27 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         inv_h = inv_step[row]
         # the newest step's force: I d_n + M c_n + Q q_n with c_n = cs d_n + c0, q_n = qs d_n + q0
         # (cs, qs: the weights of d_n; c0, q0: of the older means), d_n = (u_n - u_{n-1}) / h
-        if n >= 3:
+        if singular is not None and n >= 4 and last_d > 0.0:
+            # the cubic through the means of the last four steps (module docstring: the cubic specialisation)
+            if h != k_h0 or hp != k_h1 or prev_h != k_h2 or prev2_h != k_h3:
+                k_h0, k_h1, k_h2, k_h3 = h, hp, prev_h, prev2_h
+                kc1, kc2, kc3, kq1, kq2, kq3, kr1, kr2, kr3 = cubic_weights(h, hp, prev_h, prev2_h)
+                k_r2 = 2.0 / (h + hp)
+                k_cs = -(kc1 + kc2 + kc3)
+                k_m = newest_moment[row]
+                k_q = newest_curvature[row]
+                k_r = newest_cubic[row]
+                k_w0 = (newest_integral[row] + k_cs * k_m - (kq1 + kq2 + kq3) * k_q - (kr1 + kr2 + kr3) * k_r) * inv_h
+                # the older means' weights in the force: c0 k_m + q0 k_q + r0 k_r
+                k_a1 = kc1 * k_m + kq1 * k_q + kr1 * k_r
+                k_a2 = kc2 * k_m + kq2 * k_q + kr2 * k_r
+                k_a3 = kc3 * k_m + kq3 * k_q + kr3 * k_r
+            r2 = k_r2
+            cs = k_cs
+            c0 = kc1 * last_d + kc2 * prev_d + kc3 * prev2_d
+            w0 = k_w0
+            H = Hh - w0 * u[n - 1] + k_a1 * last_d + k_a2 * prev_d + k_a3 * prev2_d
+        elif n >= 3:
             if h != w_h0 or hp != w_h1 or prev_h != w_h2:
                 w_h0, w_h1, w_h2 = h, hp, prev_h
                 c1, c2, q1, q2 = slope_weights(h, hp, prev_h)
@@ -331,6 +390,9 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         last_r2 = r2
         for k in range(n_live):
             P[k] = trial_history[k] + d * mode_integral[row, k] + c * mode_moment[row, k]
+        if singular is not None:
+            prev2_d = prev_d
+            prev2_h = prev_h
         n_explicit = n_live
         prev_d = last_d
         last_d = d
@@ -355,8 +417,16 @@ def march_adaptive(nodes, levels, tables, plate, body, control, stop, modes, sta
         elif est >= 0.0:
             # grow, from the estimate of this accepted step
             up = 0
-            while up < 2 and est * 4.0 ** (up + 1) < 0.5 * tol_abs and lev + up + 1 <= lev_max:
-                up += 1
+            if singular is None:
+                while up < 2 and est * 4.0 ** (up + 1) < 0.5 * tol_abs and lev + up + 1 <= lev_max:
+                    up += 1
+            else:
+                # graded start (near t = 0, u' ~ t^1/2), and no growth while unloading within UNLOAD_HOLD
+                # contact-time estimates (steps grown there leave the coarse grids a t0 and COR error that is
+                # not yet asymptotic: up to 1.1e-7 on plates; a long creep, as on a thin plate, grows)
+                while (up < 2 and (gn >= 0.0 or tn * inv_tc > UNLOAD_HOLD) and est * 4.0 ** (up + 1) < 0.5 * tol_abs
+                       and lev + up + 1 <= lev_max and step[lev + up + 1 + row_offset] * GRADE <= tn):
+                    up += 1
             lev += up
             state[LEVEL] = lev
         if tn >= t_horizon:
@@ -385,6 +455,41 @@ def slope_weights(h0, h1, h2):
     # d_j - d0 = -c e_j + q a_j (j = 1, 2), solved for c and q
     inv = 1.0 / (e1 * a2 - e2 * a1)
     return -a2 * inv, a1 * inv, -e2 * inv, e1 * inv
+
+
+@jit_inline
+def cubic_weights(h0, h1, h2, h3):
+    """(c1, c2, c3, q1, q2, q3, r1, r2, r3): c, q, r of p(x) = d0 + c x + q (x^2 - h0^2/12)
+    + r (x^3 - 0.15 h0^2 x) (x = tau - mid of the newest step, size h0) whose means over the newest and the
+    three steps before it (sizes h1, h2, h3) are d0..d3: c = sum_j cj (d_j - d0), likewise q, r.
+    Mean over step j (middle e_j before mid): d0 - c e_j + q a_j + r b_j,
+    a_j = e_j^2 + (h_j^2 - h0^2)/12, b_j = -e_j^3 - e_j h_j^2/4 + 0.15 h0^2 e_j."""
+    e1 = 0.5 * (h0 + h1)
+    e2 = e1 + 0.5 * (h1 + h2)
+    e3 = e2 + 0.5 * (h2 + h3)
+    g = h0 * h0
+    a1 = e1 * e1 + (h1 * h1 - g) * (1.0 / 12.0)
+    a2 = e2 * e2 + (h2 * h2 - g) * (1.0 / 12.0)
+    a3 = e3 * e3 + (h3 * h3 - g) * (1.0 / 12.0)
+    b1 = e1 * (0.15 * g - e1 * e1 - 0.25 * h1 * h1)
+    b2 = e2 * (0.15 * g - e2 * e2 - 0.25 * h2 * h2)
+    b3 = e3 * (0.15 * g - e3 * e3 - 0.25 * h3 * h3)
+    # M = [[-e1, a1, b1], [-e2, a2, b2], [-e3, a3, b3]]; (c, q, r) = M^-1 (d1 - d0, d2 - d0, d3 - d0)
+    m00, m01, m02 = -e1, a1, b1
+    m10, m11, m12 = -e2, a2, b2
+    m20, m21, m22 = -e3, a3, b3
+    C00 = m11 * m22 - m12 * m21
+    C01 = -(m10 * m22 - m12 * m20)
+    C02 = m10 * m21 - m11 * m20
+    C10 = -(m01 * m22 - m02 * m21)
+    C11 = m00 * m22 - m02 * m20
+    C12 = -(m00 * m21 - m01 * m20)
+    C20 = m01 * m12 - m02 * m11
+    C21 = -(m00 * m12 - m02 * m10)
+    C22 = m00 * m11 - m01 * m10
+    inv = 1.0 / (m00 * C00 + m01 * C01 + m02 * C02)
+    # inverse = adjugate / det, adjugate = cofactor transpose: row i of the inverse = (C0i, C1i, C2i)
+    return (C00 * inv, C10 * inv, C20 * inv, C01 * inv, C11 * inv, C21 * inv, C02 * inv, C12 * inv, C22 * inv)
 
 
 @jit_inline
@@ -485,21 +590,22 @@ def _node_arrays(n):
 
 
 @jit
-def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_steps, start_level, size0, out,
-                   smooth_step):
-    """The adaptive march (:func:`march_adaptive`), then (n_grids > 1) its replays with every step
+def adaptive_grids(grids, tables, plate, body, control, stop, max_steps, start_level, size0, out, singular):
+    """The adaptive march (:func:`march_adaptive`), then (grids.n_grids > 1) its replays with every step
     divided by 2, 4, ... 2^(n_grids - 1), and the separation of each, in one call (no histories).
 
-    The records arrive as plain tuples (``_records``) and are passed on so. The tables have
-    level_top + 1 + ``splits`` rows from h_base / 2^splits: grid k uses rows from splits - k.
-    ``smooth_step`` (s): when the first grid's largest step is at most this, one grid fewer is
-    marched (``vcor.solvers.adaptive.grid_count``; 0: never).
+    The records arrive as plain tuples (``_records``) and are passed on so. ``grids``
+    (:class:`~._records.Grids`): the tables have level_top + 1 + ``splits`` rows from h_base / 2^splits, grid
+    k uses rows from splits - k; when the first grid's largest step is at most ``smooth_step`` (s), one
+    grid fewer is marched (``vcor.solvers.adaptive.grid_count``; 0: never). ``singular``:
+    :func:`march_adaptive`'s.
     Fills out[k] = [the 9 outcome values of ``separation_point`` (under the force rule the COR by
     :func:`force_zero_cor`), separation index, largest step (s)]
     and returns the number of grids marched when every grid separated, the first within ``size0``
     steps; 0 (out undefined) for anything else (more steps, divergence, time horizon, step budget),
     which the caller then runs through the general path.
     """
+    n_grids, splits, smooth_step = Grids(*grids)
     nk = LevelTables(*tables).mode_decay.shape[1]
     n_extra, rule, glassy = Stop(*stop).n_extra, Stop(*stop).rule, Stop(*stop).glassy
     v0, m = Body(*body).v0, Body(*body).m
@@ -538,7 +644,7 @@ def adaptive_grids(n_grids, splits, tables, plate, body, control, stop, max_step
         state[LEVEL] = start_level
         e = size + 1  # the march fills at most ``size`` steps (views: no copies)
         march_adaptive((t[:e], s[:e], g[:e], F[:e], J[:e], u[:e]), lev[:e], tables, plate, body, control, stop,
-                       (P, X), state, plan, splits - k)
+                       (P, X), state, plan, splits - k, singular)
         if state[STATUS] != STATUS_SEPARATED:
             return 0
         n_sep = state[SEPARATION]

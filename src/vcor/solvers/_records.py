@@ -20,8 +20,8 @@ import numpy as np
 __all__ = [
     "DECAYED", "FROZEN", "LAST", "LEVEL", "LOADED", "REJECTED", "SEPARATION", "STATUS", "STATUS_DIVERGED",
     "STATUS_END", "STATUS_FULL", "STATUS_RUNNING", "STATUS_SEPARATED", "WAIVED", "AdaptiveControl", "Body",
-    "ExponentialModes", "FixedNodes", "Internal", "LevelTables", "Modes", "Nodes", "Plate", "PlateArrays", "Stop",
-    "Volterra", "fixed_state",
+    "ExponentialModes", "FixedNodes", "Grids", "Internal", "LevelTables", "Modes", "Nodes", "Plate", "PlateArrays",
+    "Stop", "Volterra", "fixed_state",
 ]
 
 # -- the march state: an int64 array, updated in place (so that a march can be resumed) ---------------
@@ -91,10 +91,12 @@ Nodes = namedtuple("Nodes", "t s g F J u")
 #: per level l (step h_l = h_base 2^l, one row per level): h_l (s), 1 / h_l (1/s), the newest step's
 #: exact weights int_0^h k (N m^-1.5 s) and int_0^h k(x) (h/2 - x) dx (N m^-1.5 s^2), per mode k the
 #: step weights kappa E_k int_0^h e^{-b x} dx and kappa E_k int_0^h e^{-b x} (h/2 - x) dx, the decay
-#: e^{-b_k h}, the number of modes still alive on the level (the rest decay below DECAYED), and the
-#: newest step's exact weight int_0^h k(x) ((x - h/2)^2 - h^2/12) dx (N m^-1.5 s^3) of the curvature of u'
+#: e^{-b_k h}, the number of modes still alive on the level (the rest decay below DECAYED), the
+#: newest step's exact weight int_0^h k(x) ((x - h/2)^2 - h^2/12) dx (N m^-1.5 s^3) of the curvature of u',
+#: and for a kernel with a t^-1/2 singularity (the march's cubic specialisation, else an empty array) the
+#: newest step's weight int_0^h k(x) P3(h/2 - x) dx, P3(z) = z^3 - 0.15 h^2 z (N m^-1.5 s^4), of its cubic term
 LevelTables = namedtuple("LevelTables", "step inv_step newest_integral newest_moment mode_integral mode_moment "
-                         "mode_decay live_modes newest_curvature")
+                         "mode_decay live_modes newest_curvature newest_cubic")
 #: the plate's mobility in the adaptive march: kind 0 (rigid target, or a constant mobility: const),
 #: 1 (E_b on exponential modes), 2 (E_b = factor (e_inf + coef t^-1/2), the fractional law, in closed
 #: form; coef in Pa s^0.5), 3 (E_b = factor (e_inf + coef erfcx(rate sqrt(t))), the CERF law, in closed
@@ -109,3 +111,7 @@ Plate = namedtuple("Plate", "kind scale factor e_inf coef rate const moduli rate
 AdaptiveControl = namedtuple("AdaptiveControl", "step_tol inv_tc level_floor level_top horizon sep_fraction ghost")
 #: the adaptive march's mode variables: the history P_k (N) and the plate's X_k = e^{-b_k t}
 Modes = namedtuple("Modes", "history plate")
+#: the one-call path's Richardson grids (``_adaptive_kernels.adaptive_grids``): how many (the accepted grid
+#: and its replays), the extra table levels below the accepted grid's (``splits``: grid k uses rows from
+#: splits - k), and the largest step (s) of an accepted grid on which one grid fewer is marched (0: never)
+Grids = namedtuple("Grids", "n_grids splits smooth_step")

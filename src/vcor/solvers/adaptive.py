@@ -47,10 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..contact.impact import Impact
-from ..materials.expsums import soe
 from ._adaptive_kernels import adaptive_grids, force_zero_cor, march_adaptive, slope_weights
 from ._records import (
-    DECAYED,
     LAST,
     MOTION_FLOOR,
     SEPARATION,
@@ -60,12 +58,13 @@ from ._records import (
     STATUS_FULL,
     STATUS_RUNNING,
     AdaptiveControl,
-    LevelTables,
+    Grids,
     Modes,
     Nodes,
     Plate,
     Stop,
 )
+from .adaptive_tables import level_tables, plate_record, singular_kernel
 from .common import OUTCOME, Result, separation_scalars
 from .extrapolation import extrapolate, weights_for
 from .march import N_EXTRA, Arrays, March, finish
@@ -75,9 +74,8 @@ from .validity import FLAGS
 __all__ = ["FLOOR_BITS", "GRIDS", "HORIZON_START", "MAX_FLOOR_LOWERING", "MAX_HORIZON", "MAX_SEP_STEPS",
            "MOTION_FLOOR", "RESOLVED_DECAY", "RICHARDSON_WEIGHTS", "SEP_DECAY", "SEP_STEPS",
            "SMOOTH_GRIDS", "SMOOTH_WEIGHTS",
-           "PlateTables", "Tables", "exact_rate", "grid_count", "grid_outcomes", "impact_tables",
-           "level_tables", "one_call", "plate_kind", "plate_record", "plate_tables", "richardson_outcome",
-           "run_adaptive", "separation_steps", "slope_weights", "smooth_step", "solve"]
+           "exact_rate", "grid_count", "grid_outcomes", "impact_tables", "one_call", "plate_kind",
+           "richardson_outcome", "run_adaptive", "separation_steps", "slope_weights", "smooth_step", "solve"]
 
 #: smallest step = 2^-FLOOR_BITS times the power of two at or below t_c
 FLOOR_BITS = 16
@@ -112,64 +110,24 @@ def solve(impact, options, tc, history):
                         extrapolate=options.richardson)
 
 
-@dataclass(kw_only=True, frozen=True)
-class Tables:
-    """Level tables of one (material, step range, horizon): ``levels`` (the kernel record,
-    :class:`~._records.LevelTables`), the plate modulus's constant ``e_inf`` (Pa), its modes'
-    ``moduli`` (Pa) and ``rate_moduli`` (moduli times rates, Pa/s), the exponential sum's number of
-    terms and its checked relative error, the end of its window ``t_max`` (s) and its tolerance."""
-
-    levels: LevelTables
-    e_inf: float
-    moduli: np.ndarray
-    rate_moduli: np.ndarray
-    n_terms: int
-    soe_error: float
-    t_max: float
-    tol: float
-
-    @functools.cached_property
-    def plain_levels(self) -> tuple:
-        """``levels`` as the plain tuple the kernels take (``_records``)."""
-        return tuple(self.levels)
+#: kernels with a t^-1/2 singularity (fractional, CERF): the newest step's u' gets a cubic term while u' > 0,
+#: the start is graded (``_adaptive_kernels.GRADE``), steps do not grow while unloading, and the first step is
+#: on level START_LEVEL_SINGULAR; their error then has no h^3.5 term to speak of and they take SMOOTH_GRIDS
+#: grids (:func:`smooth_step`). False: the plain march and GRIDS grids (benchmarks)
+CUBIC = True
+START_LEVEL_SINGULAR = 6
 
 
-@functools.lru_cache(maxsize=64)
-def level_tables(material, kappa: float, h_base: float, n_levels: int, t_max: float, tol: float) -> Tables:
-    """(Cached: a sweep's points share them.) Per level l (step h_l = h_base 2^l): the newest step's
-    exact weights int_0^h k, int_0^h k(x) (h/2 - x) dx and int_0^h k(x) ((x - h/2)^2 - h^2/12) dx
-    (N m^-1.5 s, N m^-1.5 s^2, N m^-1.5 s^3), and per
-    exponential mode k of the kernel's sum on [h_base, t_max] (column 0: the constant E(inf) plus the
-    slow modes, rate 0) the step weights kappa E_k int_0^h e^{-b x} dx, kappa E_k int_0^h e^{-b x}
-    (h/2 - x) dx and the decay e^{-b h}, and the number of modes alive on the level (every later mode
-    decays below ``DECAYED`` within one step). ``kappa``: k(t) = kappa E(t), m^0.5."""
-    mat = material
-    rep = soe(mat, h_base, t_max, tol)
-    pr = rep.material
-    e_inf, e, b = pr.prony_terms()
-    hl = h_base * 2.0 ** np.arange(n_levels)
-    nk = e.size + 1
-    # per mode, all levels at once (the closed forms broadcast over a column of step sizes)
-    ti = pr.term_step_integrals(hl[:, None], 1)[0]
-    tm = pr.term_step_moments(hl[:, None], 1)[0]
-    GA, GB, R = np.zeros((n_levels, nk)), np.zeros((n_levels, nk)), np.ones((n_levels, nk))
-    GA[:, 0] = kappa * e_inf * hl
-    GA[:, 1:] = kappa * ti
-    GB[:, 1:] = -kappa * tm
-    R[:, 1:] = np.exp(-np.multiply.outer(hl, b))
-    alive = R >= DECAYED
-    live = nk - np.argmax(alive[:, ::-1], axis=1)
-    # the newest step: the material's own kernel (for Prony kinds the same terms as the sum; when the sum
-    # is the material itself, its first step is the sums of the columns just computed)
-    if pr is mat:
-        i0, m0 = e_inf * hl + ti.sum(axis=-1), tm.sum(axis=-1)
-    else:
-        i0, m0 = mat.first_step(hl)
-    q0 = mat.first_step_second_moment(hl)
-    levels = LevelTables(hl, 1.0 / hl, kappa * i0, -kappa * m0, GA, GB, R, live, kappa * q0)
-    return Tables(levels=levels, e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
-                  rate_moduli=np.concatenate(([0.0], b * e)), n_terms=rep.n_terms, soe_error=rep.checked_error,
-                  t_max=t_max, tol=tol)
+def _singular(material):
+    """A kernel the method marches with the cubic specialisation (:func:`~.adaptive_tables.singular_kernel`,
+    while CUBIC)."""
+    return CUBIC and singular_kernel(material)
+
+
+def _start_level(tables):
+    """The first step's level on ``tables`` (:class:`~.adaptive_tables.Tables`): START_LEVEL_SINGULAR for the
+    cubic march."""
+    return START_LEVEL if tables.singular is None else START_LEVEL_SINGULAR
 
 
 def _grown(a, n):
@@ -181,8 +139,8 @@ def _grown(a, n):
 def plate_kind(impact) -> int:
     """How the march evaluates the plate's mobility: 0, a rigid target or a constant mobility; 1, the
     plate's modulus on exponential modes (the kernel's own when the plate is of the contact's material,
-    else the plate material's exact Prony terms or exponential sum, :func:`plate_tables`); in closed
-    form, 2 for the fractional law (``Material.sqrt_law``) and 3 for the CERF law
+    else the plate material's exact Prony terms or exponential sum, :func:`~.adaptive_tables.plate_tables`);
+    in closed form, 2 for the fractional law (``Material.sqrt_law``) and 3 for the CERF law
     (``Material.erfcx_law``; its ~100 modes would cost a third of the impact)."""
     g = impact.geometry
     plate = impact.material if g.plate_material is None else g.plate_material
@@ -191,58 +149,6 @@ def plate_kind(impact) -> int:
     if plate.sqrt_law() is not None:
         return 2
     return 3 if plate.erfcx_law() is not None else 1
-
-
-@dataclass(kw_only=True, frozen=True)
-class PlateTables:
-    """A plate material's modulus as exponential modes for the march: the constant ``e_inf`` (Pa), per mode
-    (column 0: the constant, rate 0) the ``moduli`` (Pa), ``rate_moduli`` (moduli times rates, Pa/s) and
-    per level the ``decay`` e^{-b h_l}, and the exponential sum's checked relative error."""
-
-    e_inf: float
-    moduli: np.ndarray
-    rate_moduli: np.ndarray
-    decay: np.ndarray
-    soe_error: float
-
-
-@functools.lru_cache(maxsize=64)
-def plate_tables(material, h_base: float, n_levels: int, t_max: float, tol: float) -> PlateTables:
-    """(Cached.) :class:`PlateTables` of a plate material whose modulus is not the contact kernel's
-    (vcor.contact.bodies: a deformable sphere on a viscoelastic plate), on the levels h_base 2^l
-    (l < n_levels) of the kernel's tables and its exponential sum's window [h_base, t_max] (s)."""
-    rep = soe(material, h_base, t_max, tol)
-    e_inf, e, b = rep.material.prony_terms()
-    hl = h_base * 2.0 ** np.arange(n_levels)
-    decay = np.ones((n_levels, e.size + 1))
-    decay[:, 1:] = np.exp(-np.multiply.outer(hl, b))
-    return PlateTables(e_inf=float(e_inf), moduli=np.concatenate(([0.0], e)),
-                       rate_moduli=np.concatenate(([0.0], b * e)), decay=decay, soe_error=rep.checked_error)
-
-
-def plate_record(impact, tables: Tables, kind: int) -> tuple[Plate, float]:
-    """The march's :class:`~._records.Plate` for ``kind`` (:func:`plate_kind`) and the kernel's
-    ``tables``, and the relative error of the plate modulus's exponential sum (0: exact or closed form)."""
-    g = impact.geometry
-    same = (tables.moduli, tables.rate_moduli, tables.levels.mode_decay)
-    if kind == 0:
-        const = 0.0 if g.rigid else float(impact.alpha(0.0))
-        return Plate(0, 0.0, 0.0, 0.0, 0.0, 0.0, const, *same), 0.0
-    own = g.plate_material is not None
-    plate = g.plate_material if own else impact.material
-    factor = 1.0 / (1.0 - (g.nu_plate if own else g.nu) ** 2)
-    if kind == 2:
-        e0, c = plate.sqrt_law()
-        return Plate(2, impact.mobility_scale, factor, float(e0), float(c), 0.0, 0.0, *same), 0.0
-    if kind == 3:
-        e0, e1, b1 = plate.erfcx_law()
-        return Plate(3, impact.mobility_scale, factor, e0, e1, b1, 0.0, *same), 0.0
-    if not own:
-        return Plate(1, impact.mobility_scale, factor, tables.e_inf, 0.0, 0.0, 0.0, *same), tables.soe_error
-    lv = tables.levels
-    pt = plate_tables(plate, float(lv.step[0]), int(lv.step.size), tables.t_max, tables.tol)
-    return (Plate(1, impact.mobility_scale, factor, pt.e_inf, 0.0, 0.0, 0.0, pt.moduli, pt.rate_moduli, pt.decay),
-            pt.soe_error)
 
 
 def smooth_step(impact, kind: int | None = None, tc: float | None = None) -> float:
@@ -262,6 +168,8 @@ def _resolved_step(impact, kind):
     level tables, cached for every speed, hold this)."""
     if not (RESOLVED_DECAY > 0.0 and SMOOTH_GRIDS == GRIDS - 1) or impact.material.is_elastic:
         return 0.0
+    if _singular(impact.material):
+        return math.inf
     rate = exact_rate(impact, plate_kind(impact) if kind is None else kind)
     return 0.0 if rate < 0.0 else RESOLVED_DECAY / rate if rate > 0.0 else math.inf
 
@@ -327,7 +235,8 @@ def _tables_for(impact, h_base, factor, tol, kind, tc):
     :func:`level_tables` as they are at the call, so that a benchmark or test that sets them is never
     served tables made under others."""
     tables = impact_tables(impact.material, impact.geometry, h_base, factor, tol, kind,
-                           (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS),
+                           (level_tables, FLOOR_BITS, SPLIT_LEVELS, MAX_STEP_FRACTION, RESOLVED_DECAY, SMOOTH_GRIDS,
+                            CUBIC, START_LEVEL_SINGULAR),
                            contact_octave(tc))
     glassy = tables[7]
     return (*tables[:5], 0.0 if glassy else tables[5], tables[6], glassy)
@@ -345,7 +254,7 @@ def impact_tables(material, geometry, h_base, factor, tol, kind, module, octave)
     horizon = factor * 2.0 * top  # a power of two >= factor t_c: the tables of a sweep's points are shared
     n_levels = round(math.log2(MAX_STEP_FRACTION * horizon / h_base)) + 1
     tables = level_tables(impact.material, float(impact.kappa), h_base * 2.0**-SPLIT_LEVELS, n_levels + SPLIT_LEVELS,
-                          2.0 * horizon, tol)
+                          2.0 * horizon, tol, module[6])
     plate, plate_error = plate_record(impact, tables, kind)
     return (horizon, n_levels, tables, tuple(plate), max(tables.soe_error, plate_error), _resolved_step(impact, kind),
             exact_rate(impact, kind), octave_stiffness(impact.material, float(impact.kappa), octave))
@@ -360,7 +269,7 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
                                                                                    kind, grid.tc)
         nk = tables.levels.mode_decay.shape[1]
         modes = tuple(Modes(np.zeros(nk), np.ones(Plate(*plate).moduli.size)))
-        first = START_LEVEL if grid.fixed_level is None else int(grid.fixed_level)
+        first = _start_level(tables) if grid.fixed_level is None else int(grid.fixed_level)
         lo, hi = (0, n_levels - 1) if grid.fixed_level is None else (first, first)
         control = tuple(AdaptiveControl(step_tol, 1.0 / grid.tc, lo, hi, horizon, 1.0 / separation_steps(rate, grid.tc),
                                         ghost))
@@ -371,7 +280,8 @@ def _march(impact, grid, factor, *, step_tol, max_steps, rule, ghost, tol, kind)
         arr.g[0] = impact.v0
         while True:
             march_adaptive(tuple(Nodes(t, arr.s, arr.g, arr.F, arr.J, arr.u)), lev, tuple(tables.levels), plate,
-                           _body(impact), control, _stop(rule, glassy), modes, state, plan, SPLIT_LEVELS - grid.split)
+                           _body(impact), control, _stop(rule, glassy), modes, state, plan, SPLIT_LEVELS - grid.split,
+                           tables.singular)
             if state[STATUS] != STATUS_FULL or (state[SEPARATION] < 0 and arr.n >= max_steps):
                 break  # a verdict, or the step budget (the steps after a separation are not budgeted)
             arr.grow(2 * arr.n if state[SEPARATION] >= 0 else min(2 * arr.n, max_steps))
@@ -414,8 +324,10 @@ def _budget_text(t, n_done, horizon, tc, max_steps):
 #: impact, against the quadratic u' of the newest step) and h^4 (every kernel). The second-order slopes
 #: and the newest step's curvature term (``_adaptive_kernels``) leave no h^3 term, and the grading near
 #: t = 0 (steps of h_base where u = s^{3/2} is not smooth) leaves the h^2.5 term of uniform grids below
-#: the others: with h^2 removed the grids' differences fall as h^3.3..h^3.8 (fractional, Kelvin-Voigt)
-#: and h^3.8..h^4.5 (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``); against
+#: the others: with h^2 removed the grids' differences fall as h^3.3..h^3.8 (Kelvin-Voigt, and the fractional
+#: law in the plain march) and h^3.8..h^4.5 (``tests/solvers/test_adaptive.py::test_graded_grids_error_expansion``;
+#: the fractional and CERF laws' cubic march, ``CUBIC``: faster than h^4 on the coarse grids, 1/53 and 1/37 of
+#: the plain march's residual at 1 m/s, and three grids); against
 #: independent references (bench_accuracy.py) (2, 3.5, 4) leave half the error of (2, 3, 4)
 RICHARDSON_EXPONENTS = (2.0, 3.5, 4.0)
 RICHARDSON_WEIGHTS = weights_for(RICHARDSON_EXPONENTS)
@@ -559,8 +471,9 @@ def _grid_rows(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol
     control = (step_tol, 1.0 / tc, 0, n_levels - 1, horizon, 1.0 / separation_steps(rate, tc), 0.0)  # AdaptiveControl
     out = np.empty((max(GRIDS, n_grids), 11))
     stop = _stop(rule, glassy)
-    done = adaptive_grids(n_grids, SPLIT_LEVELS, tables.plain_levels, plate, _body(impact), control, stop, max_steps,
-                          START_LEVEL, INITIAL_SIZE, out, own if smooth is None else smooth)
+    grids = tuple(Grids(n_grids, SPLIT_LEVELS, own if smooth is None else smooth))
+    done = adaptive_grids(grids, tables.plain_levels, plate, _body(impact), control, stop, max_steps,
+                          _start_level(tables), INITIAL_SIZE, out, tables.singular)
     if not done:
         return None, soe_error
     return out[:done], soe_error

@@ -71,9 +71,11 @@ from functools import partial
 
 import numpy as np
 from numpy.polynomial import Polynomial
+from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from ..materials.expsums import soe
+from . import _adaptive_kernels as _kernels
 from . import adaptive as _adaptive
 from .nearly_elastic import glassy_stiffness
 
@@ -546,7 +548,12 @@ class AdaptiveGrid:
     2, 4, ...); levels ``floor`` .. ``top``; the first step on ``start_level``. ``horizon`` (s) is the
     first time horizon; ``representation`` the exponential sum (a Prony series, or a fitted
     exponential sum) of the kernel on ``window`` = (h_base / 2^SPLIT_LEVELS, 2 horizon, soe_tol); a
-    separation is located on a step <= ``sep_frac`` t.
+    separation is located on a step <= ``sep_frac`` t. ``singular``: the kernel has a t^-1/2 singularity
+    (a fractional or CERF law but of E1 = 0, elastic) and the method's cubic scheme is on
+    (``vcor.solvers.adaptive.CUBIC``): the newest step's cubic term (:class:`ExponentialSumHistory`), the
+    graded start and the unloading hold (:class:`StepControl`), the first step on
+    ``vcor.solvers.adaptive.START_LEVEL_SINGULAR`` and three Richardson grids
+    (:func:`adaptive_richardson_reference`).
     """
 
     h_base: float
@@ -557,6 +564,7 @@ class AdaptiveGrid:
     sep_frac: float
     representation: object
     window: tuple
+    singular: bool = False
 
     @classmethod
     def of(cls, impact, tc, soe_tol=1e-10):
@@ -569,7 +577,10 @@ class AdaptiveGrid:
         window = (h_base * 2.0**-a.SPLIT_LEVELS, 2.0 * horizon, soe_tol)
         rep = soe(impact.material, *window).material
         sep = a.separation_steps(a.exact_rate(impact, a.plate_kind(impact)), tc)
-        return cls(h_base, a.START_LEVEL, 0, n_levels - 1, horizon, 1.0 / sep, rep, window)
+        mat = impact.material
+        singular = bool(a.CUBIC) and not mat.is_elastic and (mat.sqrt_law() is not None or mat.erfcx_law() is not None)
+        start = a.START_LEVEL_SINGULAR if singular else a.START_LEVEL
+        return cls(h_base, start, 0, n_levels - 1, horizon, 1.0 / sep, rep, window, singular)
 
 
 class ExponentialSumHistory:
@@ -590,12 +601,22 @@ class ExponentialSumHistory:
         GA_k(h) = kappa E_k int_0^h e^{-b_k x} dx,  GB_k(h) = kappa E_k int_0^h e^{-b_k x} (h/2 - x) dx,
 
     (mode 0: b = 0, E~_inf). Here the double sum is evaluated in full at every trial step.
+
+    ``cubic`` (a kernel with a t^-1/2 singularity, :attr:`AdaptiveGrid.singular`): from step 4 on, while the
+    mean of the step before the newest is positive (d_{n-1} > 0: u' > 0), the newest step's u' is the cubic
+    d_n + c_n x + q_n (x^2 - h_n^2/12) + r_n (x^3 - 0.15 h_n^2 x), x = tau - tau_n, whose means over steps
+    n..n-3 are d_n..d_{n-3} (:func:`mean_cubic`; the added polynomial has zero mean and zero first moment on
+    the step, so d_n and c_n keep their meaning, and an older step keeps d_j + c_j (tau - tau_j) as before),
+    and A_n gains r_n R(h_n), R(h) = int_0^h k(x) P3(h/2 - x) dx, P3(z) = z^3 - 0.15 h^2 z
+    (:meth:`cubic_weight`).
     """
 
-    def __init__(self, impact, representation):
+    def __init__(self, impact, representation, cubic=False):
         self.kappa = impact.kappa
         self.material = impact.material
         self.exp_sum = representation
+        self.cubic = cubic
+        self._cubic_weights = {}  # R(h) per step size h
         e_inf, _, b = representation.prony_terms()
         self.e_inf = e_inf
         self.rates = np.concatenate(([0.0], b))
@@ -615,16 +636,37 @@ class ExponentialSumHistory:
         curvature = self.material.first_step_second_moment(h)
         return self.kappa * float(integral), -self.kappa * float(moment), self.kappa * float(curvature)
 
+    def cubic_weight(self, h):
+        """R(h) = int_0^h k(x) P3(h/2 - x) dx, P3(z) = z^3 - 0.15 h^2 z (N m^-1.5 s^4), by adaptive quadrature
+        (:func:`scipy.integrate.quad`) in y = sqrt(x / h), where a t^-1/2 kernel is smooth:
+        R = kappa h^4 int_0^1 (E(h y^2) - E(0)) 2 y P3(1/2 - y^2)|_{h=1} dy (P3 has zero mean: a finite E(0)
+        is taken out, and with it the cancellation of a kernel that barely relaxes on the step). Cached per
+        step size."""
+        if h not in self._cubic_weights:
+            glassy = self.material.glassy
+            e0 = glassy if math.isfinite(glassy) else 0.0
+
+            def integrand(y):
+                z = 0.5 - y * y
+                return 2.0 * y * (float(self.material.relaxation_modulus(h * y * y)) - e0) * (z**3 - 0.15 * z)
+
+            value, _ = quad(integrand, 0.0, 1.0, epsabs=0.0, epsrel=1e-11, limit=200)
+            self._cubic_weights[h] = self.kappa * h**4 * value
+        return self._cubic_weights[h]
+
     def slopes(self, h, u_prev, u_n):
-        """(d_n, c_n, q_n) of a step h from u_{n-1} to u_n."""
+        """(d_n, c_n, q_n, r_n) of a step h from u_{n-1} to u_n (r_n = 0 but on the cubic steps)."""
         d = (u_n - u_prev) / h
         if not self.means:
-            return d, 0.0, 0.0
+            return d, 0.0, 0.0, 0.0
         h1, d1 = self.means[-1]
         if len(self.means) == 1:
-            return d, 2.0 * (d - d1) / (h + h1), 0.0
+            return d, 2.0 * (d - d1) / (h + h1), 0.0, 0.0
         h2, d2 = self.means[-2]
-        return (d, *mean_parabola((h, h1, h2), (d, d1, d2))[1:])
+        if self.cubic and len(self.means) >= 3 and d1 > 0.0:
+            h3, d3 = self.means[-3]
+            return (d, *mean_cubic((h, h1, h2, h3), (d, d1, d2, d3))[1:])
+        return (d, *mean_parabola((h, h1, h2), (d, d1, d2))[1:], 0.0)
 
     def older_steps(self, t_n):
         """sum_{j<n} sum_k e^{-b_k (t_n - t_j)} (d_j GA_k + c_j GB_k), N."""
@@ -637,15 +679,16 @@ class ExponentialSumHistory:
         """A_n(u_n) for a trial step h ending at t_n (u_prev = u_{n-1})."""
         older = self.older_steps(t_n)
         i0, moment, curvature = self._newest_weights(h)
+        cubic = self.cubic_weight(h) if self.cubic else 0.0
 
         def force(u_n):
-            d, c, q = self.slopes(h, u_prev, u_n)
-            return older + d * i0 + c * moment + q * curvature
+            d, c, q, r = self.slopes(h, u_prev, u_n)
+            return older + d * i0 + c * moment + q * curvature + r * cubic
 
         return force
 
     def accept(self, t_n, h, u_prev, u_n):
-        d, c, _ = self.slopes(h, u_prev, u_n)
+        d, c, _, _ = self.slopes(h, u_prev, u_n)
         ga, gb = self._mode_weights(h)
         self.t_end.append(t_n)
         self.parts.append(d * ga + c * gb)
@@ -665,6 +708,23 @@ def mean_parabola(sizes, means):
     rows = np.column_stack([np.ones(3), mean_x, mean_x2 - 1.0 / 12.0])
     a, c, q = np.linalg.solve(rows, np.asarray(means, dtype=float))
     return float(a), float(c) / sizes[0], float(q) / sizes[0] ** 2
+
+
+def mean_cubic(sizes, means):
+    """(a, c, q, r) of p(x) = a + c x + q (x^2 - h_0^2/12) + r (x^3 - 0.15 h_0^2 x), x the time from the
+    middle of the newest of four consecutive steps of ``sizes`` (h_0..h_3: newest first, s), whose means over
+    the steps are ``means`` (d_0..d_3): as :func:`mean_parabola`, the 4 x 4 system of the exact means of 1,
+    x, x^2 and x^3 over each step, solved in units of h_0 (``_adaptive_kernels.cubic_weights`` in closed
+    form)."""
+    h = np.asarray(sizes, dtype=float) / sizes[0]
+    right = 0.5 - np.concatenate(([0.0], np.cumsum(h[:-1])))  # each step's right end, x / h_0
+    left = right - h
+    mean_x = 0.5 * (left + right)
+    mean_x2 = (right**3 - left**3) / (3.0 * h)
+    mean_x3 = (right**4 - left**4) / (4.0 * h)
+    rows = np.column_stack([np.ones(4), mean_x, mean_x2 - 1.0 / 12.0, mean_x3 - 0.15 * mean_x])
+    a, c, q, r = np.linalg.solve(rows, np.asarray(means, dtype=float))
+    return float(a), float(c) / sizes[0], float(q) / sizes[0] ** 2, float(r) / sizes[0] ** 3
 
 
 def _adaptive_mobility(impact, representation, window):
@@ -723,7 +783,11 @@ class StepControl:
       scale (m/s);
       error > tol: retry on :func:`retry_level` (at the floor level the step is accepted);
     * a step that would separate with h > sep_frac t_n: retry one level down (not below the floor);
-    * after an accepted step (n >= 2, not separated) the next level is :func:`grown_level`.
+    * after an accepted step (n >= 2, not separated) the next level is :func:`grown_level`; on a
+      ``singular`` grid (:class:`AdaptiveGrid`) only up to steps h with GRADE h <= t_n (a graded start:
+      near t = 0 u' ~ t^1/2, which the newest step's cubic does not fit on steps comparable to t), and not
+      at all while unloading (s' < 0) within UNLOAD_HOLD contact-time estimates (:meth:`grown`;
+      ``_adaptive_kernels.GRADE``, ``UNLOAD_HOLD``).
     """
 
     grid: AdaptiveGrid
@@ -743,6 +807,17 @@ class StepControl:
         if separates and h > self.grid.sep_frac * t_n and level > floor:
             return level - 1
         return None
+
+    def grown(self, level, error, tol, g, t_n, split):
+        """The level after an accepted step (error, tol: its own) ending at t_n with s' = g, on a grid of
+        steps h_base 2^(level - split)."""
+        top = self.grid.top
+        if self.grid.singular:
+            if g < 0.0 and t_n <= _kernels.UNLOAD_HOLD * self.tc:
+                return level
+            while top > level and self.grid.h_base * 2.0 ** (top - split) * _kernels.GRADE > t_n:
+                top -= 1
+        return grown_level(level, error, tol, top)
 
 
 def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split=0, soe_tol=1e-10):
@@ -772,7 +847,7 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
         (trial steps retried).
     """
     grid = AdaptiveGrid.of(impact, tc, soe_tol)
-    history = ExponentialSumHistory(impact, grid.representation)
+    history = ExponentialSumHistory(impact, grid.representation, grid.singular)
     mobility = _adaptive_mobility(impact, grid.representation, grid.window)
     body = Body.of(impact)
     control = StepControl(grid, step_tol, tc, body.v0)
@@ -810,7 +885,7 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
             out.update(levels=np.array(levels), rejected=rejected)
             return out
         if error is not None and watch.n_sep is None:
-            level = grown_level(level, error, tol, grid.top)
+            level = control.grown(level, error, tol, g, t_n, split)
         n += 1
 
 
@@ -856,8 +931,10 @@ def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_t
     """The ``adaptive`` method with Richardson extrapolation (its default): the controlled grid, its
     replays with every step divided by 2, 4, ... (the levels of steps 1..n_sep + N_EXTRA, each repeated
     2, 4, ... times; vcor.solvers.adaptive.SPLIT_LEVELS replays, one fewer where
-    :func:`smooth_kernel_rates` are all resolved on the controlled grid) and the scalars extrapolated
-    with :func:`richardson_weights` (``SMOOTH_EXPONENTS`` on three grids).
+    :func:`smooth_kernel_rates` are all resolved on the controlled grid, or where the kernel has a t^-1/2
+    singularity and the cubic scheme (:attr:`AdaptiveGrid.singular`) leaves its error no h^3.5 term to
+    speak of; neither for a nearly elastic kernel) and the scalars extrapolated with
+    :func:`richardson_weights` (``SMOOTH_EXPONENTS`` on three grids).
 
     Returns {"grids": [the dicts of :func:`adaptive_reference`], and each name of OUTCOME: the
     extrapolated value}. The method's guards (extrapolate only in the asymptotic range, never to a
@@ -866,8 +943,10 @@ def adaptive_richardson_reference(impact, tc, step_tol=4e-4, rule="force", soe_t
     first = adaptive_reference(impact, tc, step_tol, rule, soe_tol=soe_tol)
     plan = first["levels"][: first["n_sep"] + N_EXTRA]
     largest = float(np.max(np.diff(first["t"])))
-    rates = None if glassy_stiffness(impact, tc) else smooth_kernel_rates(impact)  # (nearly elastic)
+    glassy = glassy_stiffness(impact, tc)  # (nearly elastic: all grids)
+    rates = None if glassy else smooth_kernel_rates(impact)
     smooth = rates is not None and max(rates, default=0.0) * largest <= _adaptive.RESOLVED_DECAY
+    smooth = smooth or (not glassy and AdaptiveGrid.of(impact, tc, soe_tol).singular)
     replays = _adaptive.SPLIT_LEVELS - 1 if smooth else _adaptive.SPLIT_LEVELS
     grids = [first] + [adaptive_reference(impact, tc, step_tol, rule, np.repeat(plan, 2**k), k, soe_tol)
                        for k in range(1, replays + 1)]

@@ -111,10 +111,10 @@ def run_points(points, settings, catalogue: Catalogue | None = None):
 
 def solving_order(points) -> list[int]:
     """Indices of ``points``, those that differ only in speed together (in their order of first
-    appearance): a material's tables and kernels (vcor.solvers.adaptive.impact_tables and level_tables and
-    the materials' caches, each bounded) are built once per material rather than once per point when the speed is an
-    outer grid axis. The results do not depend on the order: every cached value is a pure function of
-    its arguments.
+    appearance): a material's tables and kernels (vcor.solvers.adaptive.impact_tables,
+    vcor.solvers.adaptive_tables.level_tables and the materials' caches, each bounded) are built once per
+    material rather than once per point when the speed is an outer grid axis. The results do not depend on
+    the order: every cached value is a pure function of its arguments.
 
     Examples
     --------
