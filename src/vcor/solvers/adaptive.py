@@ -33,7 +33,8 @@ divided by 2, 4 and 8 and the results are Richardson-extrapolated (errors h^2, h
 eliminated, see ``RICHARDSON_EXPONENTS``); the four marches share one set of level tables (exponential
 sum on [h_base / 8, 2 horizon]). Where the error has no h^3.5 term (an exact exponential-sum kernel
 without a Dirac term, whose modes are resolved on the accepted grid, on a rigid target or a plate of
-the same kind: :func:`grid_count`), the replays stop at every step divided by 4 and three grids
+the same kind; and the fractional and CERF laws in the cubic march, ``CUBIC``: :func:`grid_count`), the
+replays stop at every step divided by 4 and three grids
 eliminate h^2 and h^4 (``SMOOTH_EXPONENTS``): half the work.
 """
 
