@@ -96,6 +96,8 @@ def interned(factory, maxsize: int = 256):
 
     @functools.wraps(factory)
     def build(**kw):
+        if not kw:  # the defaults (simulate without options or geometry): the key of no keywords
+            return cached(())
         key = tuple((k, type(v), v) for k, v in sorted(kw.items()))
         try:
             hash(key)

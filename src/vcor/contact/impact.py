@@ -153,6 +153,13 @@ class Geometry:
         """Sphere mass, kg (computed once: the geometry is immutable)."""
         return 4.0 / 3.0 * math.pi * self.r**3 * self.sphere_density
 
+    @cached_property
+    def kernel_scale(self) -> float:
+        """kappa, m^0.5: the contact kernel k(t) = kappa E(t) (``Impact.kappa``; computed once: the geometry is
+        immutable)."""
+        c = 0.5 if self.case == 2 else 1.0
+        return 4.0 / 3.0 * math.sqrt(self.r) * c / (1.0 - self.nu**2)
+
 
 @dataclass(frozen=True)
 class Impact:
@@ -186,12 +193,11 @@ class Impact:
     def m(self) -> float:
         return self.geometry.mass
 
-    @cached_property
+    @property
     def kappa(self) -> float:
-        """k(t) = kappa E(t), m^0.5 (computed once: the impact is immutable)."""
-        g = self.geometry
-        c = 0.5 if g.case == 2 else 1.0
-        return 4.0 / 3.0 * math.sqrt(g.r) * c / (1.0 - g.nu**2)
+        """k(t) = kappa E(t), m^0.5 (``Geometry.kernel_scale``: computed once per geometry, which a sweep's
+        points and repeated calls share)."""
+        return self.geometry.kernel_scale
 
     def kernel(self, t):
         """k(t) = kappa E(t) in N m^-1.5 (regular part)."""
@@ -360,7 +366,7 @@ def make_impact(material, v0, geometry: dict) -> Impact:
     ...
     ValueError: unknown geometry keyword(s) ['radius']; allowed: [...]
     """
-    unknown = set(geometry) - set(GEOMETRY_DEFAULTS)
+    unknown = set(geometry) - set(GEOMETRY_DEFAULTS) if geometry else ()  # (no sets built for no keywords)
     if unknown:
         raise ValueError(f"unknown geometry keyword(s) {sorted(unknown)}; allowed: {sorted(GEOMETRY_DEFAULTS)}")
     if isinstance(material, dict):  # a spec {model: ...}, as a config's materials: block and the bodies take it

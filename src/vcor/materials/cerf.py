@@ -21,9 +21,16 @@ _SQRT_PI = math.sqrt(math.pi)
 def erfcx(x):
     """:func:`scipy.special.erfcx` (scipy loads on first use: the workflow's planning imports the
     material classes, not their numerics)."""
+    return _scipy_erfcx()(x)
+
+
+@functools.cache
+def _scipy_erfcx():
+    """scipy's erfcx ufunc, imported once (an import statement in every call costs 0.5 us, and a CERF impact makes nine:
+    ``modulus_at`` in the contact-time estimate and the validity check)."""
     from scipy.special import erfcx as f
 
-    return f(x)
+    return f
 
 
 @functools.cache

@@ -487,7 +487,7 @@ def _one_call(impact, tc, kind, h_base, n_grids, step_tol, max_steps, rule, tol)
         return None
     rows = rows.tolist()
     values, message, flag = richardson_outcome(rows, step_tol) if n_grids == GRIDS else (rows[-1], "", "")
-    res = Result(**separation_scalars(values), steps=int(sum(row[9] for row in rows)), dt=rows[-1][10],
+    res = Result(**separation_scalars(values), steps=int(sum([row[9] for row in rows])), dt=rows[-1][10],
                  method="adaptive", soe_error=soe_error)
     res.message = message
     if flag:

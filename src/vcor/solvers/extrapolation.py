@@ -151,6 +151,6 @@ def _weighted(weights, rows):
 def difference_ratio(rows, i):
     """(x0 - x1) / (x1 - x2) of the values ``rows[j][i]`` on the three finest grids h, h/2, h/4 (4 for h^2
     errors)."""
-    a, b, c = (r[i] for r in rows[-3:])
+    a, b, c = rows[-3][i], rows[-2][i], rows[-1][i]  # (indexed, not a generator: on every result's path)
     d1, d2 = a - b, b - c
     return d1 / d2 if d2 != 0.0 else math.inf
