@@ -42,7 +42,7 @@ FINER = (48, 56, 64)
 #: the curvature)
 SCHEMES = ((2, 1), (3, 1), (3, 2))
 #: (label, scheme, grids used (first, count), exponents removed)
-ROWS = (("quadratic, 4 grids (adaptive's)", (2, 1), (0, 4), (2.0, 3.5, 4.0)),
+ROWS = (("quadratic, 4 grids (adaptive's plain march)", (2, 1), (0, 4), (2.0, 3.5, 4.0)),
         ("quadratic, 3 grids", (2, 1), (0, 3), (2.0, 4.0)),
         ("cubic, 3 grids", (3, 1), (0, 3), (2.0, 4.0)),
         ("cubic, older steps' curvature, 3 grids", (3, 2), (0, 3), (2.0, 4.0)),
