@@ -552,7 +552,7 @@ class AdaptiveGrid:
     (a fractional or CERF law but of E1 = 0, elastic) and the method's cubic scheme is on
     (``vcor.solvers.adaptive.CUBIC``): the newest step's cubic term (:class:`ExponentialSumHistory`), the
     graded start and the unloading hold (:class:`StepControl`), the first step on
-    ``vcor.solvers.adaptive.START_LEVEL_SINGULAR`` and three Richardson grids
+    ``vcor.solvers.adaptive.first_level`` (START_LEVEL_FRACTIONAL, START_LEVEL_SINGULAR) and three Richardson grids
     (:func:`adaptive_richardson_reference`).
     """
 
@@ -567,7 +567,7 @@ class AdaptiveGrid:
     singular: bool = False
 
     @classmethod
-    def of(cls, impact, tc, soe_tol=1e-10):
+    def of(cls, impact, tc, soe_tol=1e-10, step_tol=4e-4):
         """``tc``: the contact-time estimate (s) the method was given."""
         a = _adaptive
         top_power = 2.0 ** math.floor(math.log2(tc))
@@ -579,7 +579,7 @@ class AdaptiveGrid:
         sep = a.separation_steps(a.exact_rate(impact, a.plate_kind(impact)), tc)
         mat = impact.material
         singular = bool(a.CUBIC) and not mat.is_elastic and (mat.sqrt_law() is not None or mat.erfcx_law() is not None)
-        start = a.START_LEVEL_SINGULAR if singular else a.START_LEVEL
+        start = a.first_level(mat, step_tol) if singular else a.START_LEVEL
         return cls(h_base, start, 0, n_levels - 1, horizon, 1.0 / sep, rep, window, singular)
 
 
@@ -846,7 +846,7 @@ def adaptive_reference(impact, tc, step_tol=4e-4, rule="force", plan=None, split
         As :func:`direct_reference`, plus ``levels`` (level of step j + 1 at index j) and ``rejected``
         (trial steps retried).
     """
-    grid = AdaptiveGrid.of(impact, tc, soe_tol)
+    grid = AdaptiveGrid.of(impact, tc, soe_tol, step_tol)
     history = ExponentialSumHistory(impact, grid.representation, grid.singular)
     mobility = _adaptive_mobility(impact, grid.representation, grid.window)
     body = Body.of(impact)
