@@ -104,8 +104,10 @@ README_FITS = {
     "Prony N=9": ((0.0008, 0.0011, 0.0009), 0.00018),
     "Prony N=12": ((0.000075, 0.000087, 0.000096), 0.000003),
 }
-#: the fitted CERF reproduces the fractional law to round-off of the fit: upper bounds
+#: the fitted CERF reproduces the fractional law to round-off of the fit: upper bounds; its COR gap is taken
+#: with both laws at FINE_STEP_TOL, where the solver's error is below the gap (the gap is the same at 2.5e-5)
 README_CERF_BOUNDS = ((1e-8, 2e-8, 4e-8), 2e-9)
+FINE_STEP_TOL = 1e-5
 
 
 def test_fit_table_of_the_readme(data, auto_prony):
@@ -125,8 +127,11 @@ def test_fit_table_of_the_readme(data, auto_prony):
             assert abs(m[k] / e - 1) < 0.1, (name, k, m[k], e)
         assert abs(gap / expected_gap - 1) < 0.1, (name, gap, expected_gap)
     cerf = fit.fit_cerf(data)
-    gap = vcor.simulate(cerf.material, 10.0).cor / c_fc - 1
-    print(f"{'fitted CERF':18s} " + " ".join(f"{cerf.metrics[k]:.2e}" for k in keys) + f"  COR gap {gap:+.2e}")
+    # the fit's own gap is below the default solver's error (about 1e-8 each, of either sign): both at FINE_STEP_TOL
+    gap = (vcor.simulate(cerf.material, 10.0, step_tol=FINE_STEP_TOL).cor
+           / vcor.simulate("butyl-fc", 10.0, step_tol=FINE_STEP_TOL).cor - 1)
+    print(f"{'fitted CERF':18s} " + " ".join(f"{cerf.metrics[k]:.2e}" for k in keys)
+          + f"  COR gap {gap:+.2e} (step_tol {FINE_STEP_TOL:g})")
     for k, bound in zip(keys, README_CERF_BOUNDS[0]):
         assert cerf.metrics[k] < bound, (k, cerf.metrics[k])
     assert abs(gap) < README_CERF_BOUNDS[1]
