@@ -51,10 +51,10 @@ def test_a_sphere_still_approaching_at_separation_is_flagged(material, v0, h, ap
     flags no_rebound; the message gives the velocity in m/s. On the default plate butyl-fc rebounds.
     The velocity is compared with adaptive at step_tol 1e-6; direct runs at 8000 steps per contact time
     (at its default 2000 its own error on the thin fractional plate is 1.2e-6). On the thin fractional plate
-    adaptive's three grids (the cubic march of the fractional law) are 4.7e-4 apart in t0 (1.2 step_tol, ratio
-    3.94): extrapolated, the COR 1.3e-8 and t0 8.8e-9 off the run at step_tol 1e-6, not flagged
-    uncertain_extrapolation (``apart``: the plain march's four grids were 5.8e-3 apart, 14 step_tol, the COR
-    7.3e-7 off, and flagged it)."""
+    adaptive's three grids (the cubic march of the fractional law) are 4.8e-4 apart in t0 (1.2 step_tol, ratio
+    3.94): extrapolated, the COR 2.9e-8 and t0 1.5e-8 off the run at step_tol 1e-6, not flagged
+    uncertain_extrapolation (``apart``: the plain march's four grids are 5.8e-3 apart, 14 step_tol, the COR
+    7.3e-7 off, and flag it)."""
     methods = ("adaptive", "direct") + (("ive",) if vcor.materials.get(material).is_prony else ())
     runs = [vcor.simulate(material, v0, method=m, h=h, **({"steps_per_contact": 8000} if m == "direct" else {}))
             for m in methods]

@@ -119,7 +119,7 @@ def solve(impact, options, tc, history):
 CUBIC = True
 START_LEVEL_SINGULAR = 6
 #: the fractional law's first level at step_tol FRACTIONAL_TOL: its kernel is t^-1/2 at every lag, with no time scale
-#: of its own, and its start takes two levels coarser (8 graded steps fewer, butyl-fc at 10 m/s: 652 steps, not 709)
+#: of its own, and its start takes two levels coarser (8 graded steps fewer on the accepted grid of butyl-fc at 10 m/s)
 #: at no loss over the dense scans; the CERF law's kernel (glassy below 1 / b1^2) does not (level 8: errors up to 4e-7)
 START_LEVEL_FRACTIONAL = 8
 FRACTIONAL_TOL = 4e-4
@@ -128,16 +128,13 @@ FRACTIONAL_TOL = 4e-4
 def first_level(material, step_tol: float = FRACTIONAL_TOL) -> int:
     """The first step's level for a kernel of ``material`` at ``step_tol``: START_LEVEL, or in the cubic march
     (:func:`_singular`) START_LEVEL_SINGULAR for the CERF law and for the fractional law START_LEVEL_FRACTIONAL
-    one level lower per factor 4 of step_tol below FRACTIONAL_TOL (the error-controlled steps go as step_tol^1/2:
-    the start keeps its ratio to them), not below START_LEVEL_SINGULAR."""
+    one level lower for each factor 4, or part of one, of step_tol below FRACTIONAL_TOL (the error-controlled
+    steps go as step_tol^1/2: the start stays at most their ratio to it at FRACTIONAL_TOL), not below
+    START_LEVEL_SINGULAR."""
     if not _singular(material):
         return START_LEVEL
-    return START_LEVEL_SINGULAR if material.sqrt_law() is None else _fractional_level(step_tol)
-
-
-@functools.lru_cache(maxsize=16)
-def _fractional_level(step_tol):
-    """(Cached: one per tolerance.) :func:`first_level` of the fractional law."""
+    if material.sqrt_law() is None:
+        return START_LEVEL_SINGULAR
     shift = math.floor(0.5 * math.log2(step_tol / FRACTIONAL_TOL) + 1e-9)
     return max(START_LEVEL_SINGULAR, min(START_LEVEL_FRACTIONAL, START_LEVEL_FRACTIONAL + shift))
 
