@@ -135,6 +135,26 @@ def test_graded_grids_error_expansion(name, monkeypatch):
         assert ratio <= 0.1, ratio
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(SINGULAR))
+def test_singular_kernels_on_a_fast_prony_plate_keep_1e7(name):
+    """The cubic march's three grids count only the kernel: a fractional or CERF sphere on a plate of another,
+    exact Prony material that relaxes within a step (an SLS at 1e6 1/s, the family's stiffest) keeps COR and
+    t0 within 1e-7 of direct at 8000 and 16000 steps per contact time, Richardson-extrapolated (h^2), at 1 and
+    10 m/s (the worst is printed)."""
+    plate = vcor.materials.SLS(1.5e7, 2.5e5, 1e6)
+    worst = 0.0
+    for v0 in (1.0, 10.0):
+        res = vcor.simulate(name, v0, plate_material=plate)
+        runs = [vcor.simulate(name, v0, plate_material=plate, method="direct", steps_per_contact=n)
+                for n in (8000, 16000)]
+        cor, t0 = ((4.0 * getattr(runs[1], k) - getattr(runs[0], k)) / 3.0 for k in ("cor", "t0"))
+        assert res.ok and res.message == "", res.message
+        worst = max(worst, abs(res.cor / cor - 1), abs(res.t0 / t0 - 1))
+    print(f"\n{name} on an SLS plate relaxing at 1e6 1/s: worst relative error {worst:.1e}")
+    assert worst <= 1e-7
+
+
 @pytest.mark.parametrize("name", PRESETS)
 def test_one_call_path_equals_the_general_path(name, monkeypatch):
     """run_adaptive's one-numba-call path (``adaptive.one_call``) gives exactly the numbers of the general
